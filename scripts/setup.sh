@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Idempotent install of every Debian 12 package wavebake needs (README.md says
+# why each is here). Runs apt-get only when something is missing.
+set -euo pipefail
+PKGS=(
+  build-essential cmake ninja-build pkg-config git
+  libabsl-dev libzstd-dev nlohmann-json3-dev libembree-dev libassimp-dev
+  libopenexr-dev libstb-dev libcli11-dev libspdlog-dev libsqlite3-dev
+  libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
