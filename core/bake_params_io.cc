@@ -1,0 +1,79 @@
+#include "core/bake_params_io.h"
+
+#include "absl/strings/str_cat.h"
+
+namespace wavebake {
+
+bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+std::string_view ToString(ColumnMode m) {
+  switch (m) {
+    case ColumnMode::k2d: return "2d";
+    case ColumnMode::kFull: return "full";
+    case ColumnMode::kAdaptive: return "adaptive";
+  }
+  return "?";
+}
+
+std::string_view ToString(WaveletFilter f) {
+  switch (f) {
+    case WaveletFilter::kHaar: return "haar";
+    case WaveletFilter::kDaub4: return "daub4";
+    case WaveletFilter::kLeGall53: return "legall53";
+    case WaveletFilter::kCdf97: return "cdf97";
+  }
+  return "?";
+}
+
+std::string_view ToString(ErrorScope s) { return s == ErrorScope::kMatrix ? "matrix" : "column"; }
+
+absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s) {
+  for (ColumnMode m : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive})
+    if (s == ToString(m)) return m;
+  return absl::InvalidArgumentError(
+      absl::StrCat("column_mode: unknown mode '", s, "' (adaptive|full|2d)"));
+}
+
+absl::StatusOr<WaveletFilter> ParseWaveletFilter(std::string_view s) {
+  for (WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4, WaveletFilter::kLeGall53,
+                          WaveletFilter::kCdf97})
+    if (s == ToString(f)) return f;
+  return absl::InvalidArgumentError(
+      absl::StrCat("filter: unknown filter '", s, "' (haar|daub4|legall53|cdf97)"));
+}
+
+absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s) {
+  if (s == "matrix") return ErrorScope::kMatrix;
+  if (s == "column") return ErrorScope::kColumn;
+  return absl::InvalidArgumentError(
+      absl::StrCat("error_scope: unknown scope '", s, "' (matrix|column)"));
+}
+
+absl::Status ValidateBakeParams(const BakeParams& p) {
+  auto bad = [](std::string_view field, auto... msg) {
+    return absl::InvalidArgumentError(absl::StrCat(field, ": ", msg...));
+  };
+  if (!IsPowerOfTwo(p.light_res) || p.light_res < 8 || p.light_res > 256)
+    return bad("light_res", p.light_res, " is not a power of two in 8..256");
+  if (p.supersample < 1 || p.supersample > 256)
+    return bad("supersample", p.supersample, " is outside 1..256");
+  if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
+    return bad("row_filter", ToString(p.row_filter), " is not a row filter (haar|daub4)");
+  if (p.column_filter == WaveletFilter::kDaub4)
+    return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
+  if (!(p.target_error >= 0) || p.target_error > 1)
+    return bad("target_error", p.target_error, " is outside [0, 1]");
+  if (p.column_terms < 0) return bad("column_terms", p.column_terms, " is negative");
+  if (p.column_terms == 0 && p.target_error == 0)
+    return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
+  if (p.bits != 0 && (p.bits < 2 || p.bits > 16))
+    return bad("bits", p.bits, " is outside 2..16 (or auto)");
+  if (!IsPowerOfTwo(p.tile_size) || p.tile_size > 256)
+    return bad("tile_size", p.tile_size, " is not a power of two up to 256");
+  if (p.column_group < 1 || p.column_group > 65536)
+    return bad("column_group", p.column_group, " is outside 1..65536");
+  if (!(p.ray_epsilon >= 0)) return bad("ray_epsilon", p.ray_epsilon, " is negative");
+  return absl::OkStatus();
+}
+
+}  // namespace wavebake

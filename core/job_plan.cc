@@ -1,0 +1,22 @@
+#include "core/job_plan.h"
+
+#include <algorithm>
+
+namespace wavebake {
+
+JobPlan MakeJobPlan(const BakeParams& p, int width, int height) {
+  JobPlan plan;
+  plan.width = width;
+  plan.height = height;
+  plan.tile_w = std::min(p.tile_size, width);
+  plan.tile_h = std::min(p.tile_size, height);
+  plan.tiles_x = width / plan.tile_w;
+  plan.tiles_y = height / plan.tile_h;
+  plan.light_res = p.light_res;
+  plan.columns = 6 * p.light_res * p.light_res;
+  plan.group_size = std::min(p.column_group, plan.columns);
+  plan.groups = (plan.columns + plan.group_size - 1) / plan.group_size;
+  return plan;
+}
+
+}  // namespace wavebake
