@@ -31,7 +31,7 @@ absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s) {
   for (ColumnMode m : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive})
     if (s == ToString(m)) return m;
   return absl::InvalidArgumentError(
-      absl::StrCat("column_mode: unknown mode '", s, "' (adaptive|full|2d)"));
+      absl::StrCat("column_mode: unknown mode '", std::string(s), "' (adaptive|full|2d)"));
 }
 
 absl::StatusOr<WaveletFilter> ParseWaveletFilter(std::string_view s) {
@@ -39,18 +39,19 @@ absl::StatusOr<WaveletFilter> ParseWaveletFilter(std::string_view s) {
                           WaveletFilter::kCdf97})
     if (s == ToString(f)) return f;
   return absl::InvalidArgumentError(
-      absl::StrCat("filter: unknown filter '", s, "' (haar|daub4|legall53|cdf97)"));
+      absl::StrCat("filter: unknown filter '", std::string(s), "' (haar|daub4|legall53|cdf97)"));
 }
 
 absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s) {
   if (s == "matrix") return ErrorScope::kMatrix;
   if (s == "column") return ErrorScope::kColumn;
   return absl::InvalidArgumentError(
-      absl::StrCat("error_scope: unknown scope '", s, "' (matrix|column)"));
+      absl::StrCat("error_scope: unknown scope '", std::string(s), "' (matrix|column)"));
 }
 
 absl::Status ValidateBakeParams(const BakeParams& p) {
-  auto bad = [](std::string_view field, auto... msg) {
+  // Debian's Abseil has its own string_view, so views are passed as strings.
+  auto bad = [](const char* field, const auto&... msg) {
     return absl::InvalidArgumentError(absl::StrCat(field, ": ", msg...));
   };
   if (!IsPowerOfTwo(p.light_res) || p.light_res < 8 || p.light_res > 256)
@@ -58,7 +59,7 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   if (p.supersample < 1 || p.supersample > 256)
     return bad("supersample", p.supersample, " is outside 1..256");
   if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
-    return bad("row_filter", ToString(p.row_filter), " is not a row filter (haar|daub4)");
+    return bad("row_filter", std::string(ToString(p.row_filter)), " is not a row filter (haar|daub4)");
   if (p.column_filter == WaveletFilter::kDaub4)
     return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
   if (!(p.target_error >= 0) || p.target_error > 1)
