@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "core/cubemap.h"
@@ -108,8 +110,8 @@ struct Fixture {
 };
 
 const Fixture& GetFixture() {
-  static const Fixture* fixture = new Fixture();  // shared by all benchmarks, never freed
-  return *fixture;
+  static const Fixture fixture;  // built once, shared by all benchmarks
+  return fixture;
 }
 
 void BM_TransportRow(benchmark::State& state) {

@@ -45,6 +45,7 @@ class RayCaster {
   // normals array whose size differs from positions.
   static absl::StatusOr<RayCaster> Build(const Scene& scene);
 
+  // Move-only; a moved-from RayCaster may only be assigned to or destroyed.
   RayCaster(RayCaster&&) noexcept;
   RayCaster& operator=(RayCaster&&) noexcept;
   RayCaster(const RayCaster&) = delete;
@@ -57,6 +58,7 @@ class RayCaster {
 
   // occluded[i] = Occluded(origin, fan[i], tnear, tfar) as 0/1, for all rays of
   // the fan at once (packets or a stream: the transport row's hot loop).
+  // occluded.size() must be at least fan.size().
   void OccludedFan(Vec3 origin, const RayFan& fan, float tnear, float tfar,
                    std::span<uint8_t> occluded, FanKernel kernel = kDefaultFanKernel) const;
   static constexpr FanKernel kDefaultFanKernel = FanKernel::kPacket8;
