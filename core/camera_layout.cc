@@ -1,0 +1,83 @@
+#include "core/camera_layout.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+
+namespace wavebake {
+namespace {
+
+bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+// Orthonormal pinhole frame; `right` and `up` are pre-scaled to the image
+// plane at distance 1 so a pixel's ray is forward + sx·right + sy·up.
+struct PinholeFrame {
+  Vec3 forward, right, up;
+};
+
+absl::StatusOr<PinholeFrame> MakeFrame(const Camera& cam, int width, int height) {
+  if (!IsFinite(cam.eye) || !IsFinite(cam.target) || !IsFinite(cam.up)) {
+    return absl::InvalidArgumentError("layout camera: eye, target and up must be finite");
+  }
+  if (!(cam.fov_y_degrees > 0 && cam.fov_y_degrees < 180)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("layout camera: fov_y_degrees ", cam.fov_y_degrees, " is not in (0, 180)"));
+  }
+  const Vec3 view = cam.target - cam.eye;
+  const Vec3 side = Cross(view, cam.up);
+  if (!(Dot(view, view) > 0) || !(Dot(side, side) > 0)) {
+    return absl::InvalidArgumentError(
+        "layout camera: target equals eye, or up is parallel to the view direction");
+  }
+  const float half_h = static_cast<float>(std::tan(cam.fov_y_degrees * std::numbers::pi / 360.0));
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  PinholeFrame f;
+  f.forward = Normalize(view);
+  const Vec3 right = Normalize(side);
+  f.right = right * (half_h * aspect);
+  f.up = Cross(right, f.forward) * half_h;
+  return f;
+}
+
+}  // namespace
+
+absl::StatusOr<SampleSet> CameraLayout(const Scene& scene, const RayCaster& caster, int width,
+                                       int height) {
+  if (!scene.camera) return absl::InvalidArgumentError("layout camera needs a camera");
+  if (!IsPowerOfTwo(width) || !IsPowerOfTwo(height)) {
+    return absl::InvalidArgumentError(absl::StrCat("layout camera: ", width, "x", height,
+                                                   " is not a power-of-two width x height"));
+  }
+  absl::StatusOr<PinholeFrame> frame = MakeFrame(*scene.camera, width, height);
+  if (!frame.ok()) return frame.status();
+
+  SampleSet set;
+  set.width = width;
+  set.height = height;
+  set.grid.assign(static_cast<size_t>(width) * height, -1);
+  for (int py = 0; py < height; ++py) {
+    // Pixel row 0 is the top of the image: sy runs from +1 down to −1.
+    const float sy = 1 - 2 * (py + 0.5f) / height;
+    for (int px = 0; px < width; ++px) {
+      const float sx = 2 * (px + 0.5f) / width - 1;
+      const Vec3 dir = frame->forward + frame->right * sx + frame->up * sy;
+      const std::optional<Hit> hit = caster.FirstHit(scene.camera->eye, dir);
+      if (!hit) continue;
+      if (hit->mesh >= scene.meshes.size()) {
+        return absl::InvalidArgumentError(
+            "layout camera: the ray caster was built from another scene");
+      }
+      set.grid[static_cast<size_t>(py) * width + px] = set.size();
+      set.position.push_back(hit->position);
+      // The camera sees the side of the surface that faces it (DESIGN.md §1:
+      // rays start at x + ε n, so n must point into the visible half-space).
+      set.normal.push_back(Dot(hit->normal, dir) > 0 ? -hit->normal : hit->normal);
+      set.albedo.push_back(scene.meshes[hit->mesh].albedo);
+    }
+  }
+  return set;
+}
+
+}  // namespace wavebake
