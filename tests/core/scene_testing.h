@@ -22,6 +22,21 @@ inline double MeshArea(const Mesh& m) {
   return sum;
 }
 
+// Generalized winding number of a triangle mesh around q: the sum of the
+// triangles' signed solid angles over 4π (Van Oosterom–Strackee). ≈1 inside
+// a closed outward-wound surface, ≈0 outside, and robust to small holes.
+inline double WindingNumber(const Mesh& m, Vec3 q) {
+  double sum = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 a = m.positions[t[0]] - q, b = m.positions[t[1]] - q, c = m.positions[t[2]] - q;
+    const double la = Length(a), lb = Length(b), lc = Length(c);
+    const double num = Dot(a, Cross(b, c));
+    const double den = la * lb * lc + Dot(a, b) * lc + Dot(a, c) * lb + Dot(b, c) * la;
+    sum += 2 * std::atan2(num, den);
+  }
+  return sum / (4 * 3.14159265358979323846);
+}
+
 // Mean distance between the samples of horizontally adjacent, unmasked cells.
 inline double MeanNeighbourDistance(const SampleSet& s, const std::vector<int32_t>& grid) {
   double sum = 0;
