@@ -1,0 +1,45 @@
+#include "storage/scene_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "core/builtin_scenes.h"
+#include "storage/scene_loader_parts.h"
+
+namespace wavebake {
+namespace {
+
+constexpr std::string_view kBuiltinPrefix = "builtin:";
+
+bool HasJsonExtension(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".json";
+}
+
+absl::StatusOr<Scene> ReadScene(std::string_view spec) {
+  if (spec.starts_with(kBuiltinPrefix)) return MakeBuiltinScene(spec.substr(kBuiltinPrefix.size()));
+  const std::filesystem::path path{std::string(spec)};
+  if (HasJsonExtension(path)) return ReadJsonScene(path);
+  absl::StatusOr<std::vector<Mesh>> meshes = ReadMeshFile(path);
+  if (!meshes.ok()) return meshes.status();
+  return Scene{.name = path.stem().string(), .meshes = *std::move(meshes), .camera = {}};
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadScene(std::string_view spec, SceneReport* report) {
+  if (spec.empty())
+    return absl::InvalidArgumentError("scene: empty (builtin:NAME, a mesh or a .json)");
+  absl::StatusOr<Scene> scene = ReadScene(spec);
+  if (!scene.ok()) return scene.status();
+  if (absl::Status s = CheckAndRepairScene(*scene, report); !s.ok())
+    return absl::Status(s.code(), absl::StrCat("scene '", std::string(spec), "': ", s.message()));
+  return scene;
+}
+
+}  // namespace wavebake

@@ -1,0 +1,23 @@
+#pragma once
+// SCENE argument of DESIGN.md §5 → a checked Scene.
+#include <string_view>
+
+#include "absl/status/statusor.h"
+#include "core/scene.h"
+#include "core/scene_check.h"
+
+namespace wavebake {
+
+// spec is one of
+//   builtin:NAME      a scene generated in code (core/builtin_scenes.h)
+//   PATH.json         a scene file: meshes + transforms + albedo + camera
+//                     (format in storage/scene_loader_json.cc)
+//   PATH              any mesh file assimp reads (OBJ, PLY, glTF, ...): all of
+//                     its meshes, transforms baked in, albedo from the
+//                     material's diffuse colour; no camera (see FramingCamera)
+// Every result has passed CheckAndRepairScene; `report` (may be null) says
+// what it repaired. Errors are InvalidArgument and name the file and field.
+// The content hash of the result is SceneHash (core/scene_hash.h).
+absl::StatusOr<Scene> LoadScene(std::string_view spec, SceneReport* report = nullptr);
+
+}  // namespace wavebake

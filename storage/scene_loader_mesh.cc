@@ -1,0 +1,111 @@
+// Mesh files through assimp.
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+
+#include "absl/strings/str_cat.h"
+#include "storage/scene_loader_parts.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status FileError(const std::filesystem::path& path, const auto&... what) {
+  return absl::InvalidArgumentError(absl::StrCat("scene file '", path.string(), "': ", what...));
+}
+
+// The material's diffuse colour, unless the file has no material and assimp
+// made up its "DefaultMaterial" (whose colour is assimp's, not the author's).
+Vec3 Albedo(const aiScene& scene, const aiMesh& mesh) {
+  const Vec3 fallback = Mesh{}.albedo;
+  if (mesh.mMaterialIndex >= scene.mNumMaterials) return fallback;
+  const aiMaterial& mat = *scene.mMaterials[mesh.mMaterialIndex];
+  aiString name;
+  if (mat.Get(AI_MATKEY_NAME, name) == AI_SUCCESS &&
+      std::string_view(name.C_Str()) == AI_DEFAULT_MATERIAL_NAME)
+    return fallback;
+  aiColor3D c;
+  if (mat.Get(AI_MATKEY_COLOR_DIFFUSE, c) != AI_SUCCESS) return fallback;
+  // Clamped: files in the wild carry diffuse colours above 1, which are not
+  // reflectances; CheckAndRepairScene would reject them.
+  auto unit = [](float v) { return std::clamp(v, 0.0f, 1.0f); };
+  return {unit(c.r), unit(c.g), unit(c.b)};
+}
+
+Mesh Convert(const aiScene& scene, const aiMesh& am, std::string name) {
+  Mesh m;
+  m.name = std::move(name);
+  m.positions.reserve(am.mNumVertices);
+  for (unsigned i = 0; i < am.mNumVertices; ++i)
+    m.positions.push_back({am.mVertices[i].x, am.mVertices[i].y, am.mVertices[i].z});
+  if (am.HasNormals()) {
+    m.normals.reserve(am.mNumVertices);
+    for (unsigned i = 0; i < am.mNumVertices; ++i)
+      m.normals.push_back({am.mNormals[i].x, am.mNormals[i].y, am.mNormals[i].z});
+  }
+  // Points and lines survive aiProcess_Triangulate as 1- and 2-index faces;
+  // they have no area to shade or occlude.
+  for (unsigned f = 0; f < am.mNumFaces; ++f) {
+    const aiFace& face = am.mFaces[f];
+    if (face.mNumIndices == 3)
+      m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+  }
+  m.albedo = Albedo(scene, am);
+  return m;
+}
+
+std::string MeshName(const aiScene& scene, unsigned i, const std::filesystem::path& path) {
+  const std::string stem = path.stem().string();
+  if (scene.mNumMeshes == 1) return stem;
+  return absl::StrCat(stem, "/", i, ":", scene.mMeshes[i]->mName.C_Str());
+}
+
+// Before post-processing, which would merge NaN vertices away and fail with
+// a puzzling message on a file without faces.
+absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path) {
+  bool has_polygon = false;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i)
+    for (unsigned f = 0; f < scene.mMeshes[i]->mNumFaces; ++f)
+      has_polygon = has_polygon || scene.mMeshes[i]->mFaces[f].mNumIndices >= 3;
+  if (!has_polygon) return FileError(path, "has no triangles (an empty mesh)");
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    const aiMesh& m = *scene.mMeshes[i];
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      const aiVector3D& p = m.mVertices[v];
+      if (!IsFinite({p.x, p.y, p.z}))
+        return FileError(path, "mesh '", MeshName(scene, i, path), "': vertex ", v,
+                         " is not finite (", p.x, ", ", p.y, ", ", p.z, ")");
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<Mesh>> ReadMeshFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return FileError(path, "no such file");
+  Assimp::Importer importer;
+  // Read raw first: JoinIdenticalVertices silently merges a NaN vertex into
+  // another one, so non-finite input must be caught before it runs.
+  if (importer.ReadFile(path.string(), 0) == nullptr)
+    return FileError(path, "cannot read: ", importer.GetErrorString());
+  if (absl::Status s = CheckRaw(*importer.GetScene(), path); !s.ok()) return s;
+  // PreTransformVertices bakes the node hierarchy into world space, so a mesh
+  // is a Mesh; JoinIdenticalVertices makes vertices (the hilbert layout's
+  // samples) shared between faces again.
+  const aiScene* ai = importer.ApplyPostProcessing(
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+  if (ai == nullptr) return FileError(path, "cannot process: ", importer.GetErrorString());
+  std::vector<Mesh> meshes;
+  for (unsigned i = 0; i < ai->mNumMeshes; ++i) {
+    Mesh m = Convert(*ai, *ai->mMeshes[i], MeshName(*ai, i, path));
+    if (!m.triangles.empty()) meshes.push_back(std::move(m));
+  }
+  if (meshes.empty()) return FileError(path, "has no triangles (an empty mesh)");
+  return meshes;
+}
+
+}  // namespace wavebake
