@@ -1,0 +1,21 @@
+#pragma once
+// One entry point from a layout spec to the samples of a scene (DESIGN.md §1
+// "Spatial layout"), and the grid size alone for planners that must not trace.
+#include <utility>
+
+#include "absl/status/statusor.h"
+#include "core/layout.h"
+#include "core/ray_caster.h"
+#include "core/samples.h"
+#include "core/scene.h"
+
+namespace wavebake {
+
+// W×H of the layout's grid: from the spec for camera/hilbert, from the first
+// grid mesh for grid. No ray is traced.
+absl::StatusOr<std::pair<int, int>> LayoutGridSize(const Scene& scene, const LayoutSpec& layout);
+
+absl::StatusOr<SampleSet> MakeSampleSet(const Scene& scene, const RayCaster& caster,
+                                        const LayoutSpec& layout);
+
+}  // namespace wavebake

@@ -1,0 +1,43 @@
+#include "worker/bake_context.h"
+
+#include "core/bake_params_io.h"
+#include "core/sample_layout.h"
+#include "core/scene_hash.h"
+#include "storage/scene_loader.h"
+
+namespace wavebake {
+
+absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view scene_spec,
+                                                             const BakeParams& params) {
+  if (absl::Status s = ValidateBakeParams(params); !s.ok()) return s;
+  absl::StatusOr<LayoutSpec> layout = ParseLayout(params.layout);
+  if (!layout.ok()) return layout.status();
+  SceneReport report;
+  absl::StatusOr<Scene> scene = LoadScene(scene_spec, &report);
+  if (!scene.ok()) return scene.status();
+  absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
+  if (!caster.ok()) return caster.status();
+
+  auto ctx = std::make_unique<BakeContext>(*std::move(caster));
+  ctx->scene_spec = std::string(scene_spec);
+  ctx->scene = *std::move(scene);
+  ctx->scene_report = std::move(report);
+  ctx->params = params;
+  ctx->layout = *layout;
+  ctx->cubemap = Cubemap(params.light_res);
+  ctx->scene_hash = SceneHash(ctx->scene);
+  absl::StatusOr<SampleSet> samples = MakeSampleSet(ctx->scene, ctx->caster, ctx->layout);
+  if (!samples.ok()) return samples.status();
+  ctx->samples = *std::move(samples);
+  if (ctx->samples.size() == 0)
+    return absl::InvalidArgumentError("layout: no sample hits the scene (check the camera)");
+  absl::StatusOr<JitterPattern> jitter =
+      MakeJitterPattern(ctx->cubemap, params.supersample, params.seed);
+  if (!jitter.ok()) return jitter.status();
+  ctx->jitter = *std::move(jitter);
+  ctx->plan = MakeJobPlan(params, ctx->samples.width, ctx->samples.height);
+  ctx->epsilon = params.ray_epsilon > 0 ? params.ray_epsilon : ctx->caster.DefaultEpsilon();
+  return ctx;
+}
+
+}  // namespace wavebake

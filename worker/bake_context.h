@@ -1,0 +1,46 @@
+#pragma once
+// Everything a worker derives once per job from (scene, params) before it
+// runs any task: the checked scene, its samples, the Embree scene, the jitter
+// pattern and the plan. Deterministic in its inputs, so every worker (and a
+// restarted one) derives the same context. Read-only once built: tasks share
+// it across threads.
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "absl/status/statusor.h"
+#include "core/bake_params.h"
+#include "core/cubemap.h"
+#include "core/job_plan.h"
+#include "core/layout.h"
+#include "core/ray_caster.h"
+#include "core/samples.h"
+#include "core/scene.h"
+#include "core/scene_check.h"
+#include "worker/jitter_pattern.h"
+
+namespace wavebake {
+
+struct BakeContext {
+  explicit BakeContext(RayCaster c) : caster(std::move(c)) {}
+
+  std::string scene_spec;  // as given: builtin:NAME or a file path
+  Scene scene;
+  std::string scene_hash;
+  SceneReport scene_report;
+  BakeParams params;
+  LayoutSpec layout;
+  SampleSet samples;
+  JobPlan plan;
+  Cubemap cubemap{8};
+  JitterPattern jitter;
+  float epsilon = 0;  // ray offset along the normal (DESIGN.md §1)
+  RayCaster caster;
+};
+
+// Loads and checks the scene, validates params (errors name the field), lays
+// out the samples and builds the ray caster.
+absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view scene_spec,
+                                                             const BakeParams& params);
+
+}  // namespace wavebake
