@@ -18,6 +18,13 @@ absl::Status Bad(absl::string_view source, absl::string_view field, absl::string
   return absl::InvalidArgumentError(absl::StrCat(source, ": field \"", field, "\" ", why));
 }
 
+// Whether obj[key] exists and equals `value` (JSON equality never throws,
+// unlike json::value() on a field of the wrong type).
+bool FieldIs(const nlohmann::json& obj, const char* key, const nlohmann::json& value) {
+  const auto it = obj.find(key);
+  return it != obj.end() && *it == value;
+}
+
 // Product of dims, or -1 if it overflows int64.
 int64_t Product(const std::vector<int64_t>& dims) {
   int64_t p = 1;
@@ -62,7 +69,7 @@ absl::StatusOr<std::vector<int64_t>> ParseDims(const nlohmann::json& zarray, abs
 
 absl::StatusOr<int> ParseCompressor(const nlohmann::json& zarray, absl::string_view source) {
   const auto it = zarray.find("compressor");
-  if (it == zarray.end() || !it->is_object() || it->value("id", "") != "zstd") {
+  if (it == zarray.end() || !it->is_object() || !FieldIs(*it, "id", "zstd")) {
     return Bad(source, "compressor", "must be {\"id\": \"zstd\", ...}");
   }
   // Other keys (a newer numcodecs' "checksum") do not change how frames decode.
@@ -79,8 +86,8 @@ absl::StatusOr<bool> ParseFilters(const nlohmann::json& zarray, DType dtype,
   const std::string name(ZarrName(dtype));
   if (it->is_array() && it->size() == 1 && (*it)[0].is_object()) {
     const nlohmann::json& f = (*it)[0];
-    if (f.value("id", "") == "delta" && f.value("dtype", "") == name &&
-        f.value("astype", name) == name) {
+    if (FieldIs(f, "id", "delta") && FieldIs(f, "dtype", name) &&
+        (!f.contains("astype") || FieldIs(f, "astype", name))) {
       return true;
     }
   }
@@ -159,14 +166,13 @@ nlohmann::json ToZarray(const ArraySpec& spec) {
 
 namespace {
 
-// Reads the fields; json::value() throws when a field has the wrong type,
-// which FromZarray turns into an error naming the file.
+// Reads and checks every field; FromZarray catches any json exception left.
 absl::StatusOr<ArraySpec> ParseZarray(const nlohmann::json& zarray, absl::string_view source) {
   if (!zarray.is_object())
     return absl::InvalidArgumentError(absl::StrCat(source, ": not an object"));
-  if (zarray.value("zarr_format", 0) != 2) return Bad(source, "zarr_format", "must be 2");
-  if (zarray.value("order", "") != "C") return Bad(source, "order", "must be \"C\"");
-  if (zarray.value("dimension_separator", ".") != ".") {
+  if (!FieldIs(zarray, "zarr_format", 2)) return Bad(source, "zarr_format", "must be 2");
+  if (!FieldIs(zarray, "order", "C")) return Bad(source, "order", "must be \"C\"");
+  if (zarray.contains("dimension_separator") && !FieldIs(zarray, "dimension_separator", ".")) {
     return Bad(source, "dimension_separator", "must be \".\"");
   }
   ArraySpec spec;
@@ -182,8 +188,8 @@ absl::StatusOr<ArraySpec> ParseZarray(const nlohmann::json& zarray, absl::string
   absl::StatusOr<DType> dtype = ParseDType(dtype_it->get<std::string>());
   if (!dtype.ok()) return Bad(source, "dtype", dtype.status().message());
   spec.dtype = *dtype;
-  absl::StatusOr<double> fill =
-      ParseFillValue(zarray.value("fill_value", nlohmann::json()), source);
+  absl::StatusOr<double> fill = ParseFillValue(
+      zarray.contains("fill_value") ? zarray.at("fill_value") : nlohmann::json(), source);
   if (!fill.ok()) return fill.status();
   spec.fill_value = *fill;
   absl::StatusOr<int> level = ParseCompressor(zarray, source);

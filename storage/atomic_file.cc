@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstring>
 #include <random>
+#include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -36,15 +36,20 @@ class Fd {
 };
 
 absl::Status ErrnoError(absl::string_view what, const std::filesystem::path& path, int err) {
-  std::string msg = absl::StrCat(what, " ", path.string(), ": ", std::strerror(err));
+  // std::error_code's message is thread-safe, unlike strerror.
+  std::string msg = absl::StrCat(what, " ", path.string(), ": ",
+                                 std::error_code(err, std::generic_category()).message());
   return err == ENOENT ? absl::NotFoundError(msg) : absl::InternalError(msg);
 }
 
-// Random suffix: pids and thread ids repeat across the hosts sharing a store
-// (DESIGN.md §4), so temp names must not be derived from them alone.
-std::string RandomSuffix() {
-  thread_local std::mt19937_64 rng{std::random_device{}()};
-  return absl::StrFormat("%016x", rng());
+// Temp name for `path`, unique among all writers: the pid separates processes
+// on one host (forked workers would share a seeded generator's state), fresh
+// OS randomness separates hosts sharing the store (DESIGN.md §4) and threads.
+std::filesystem::path TempName(const std::filesystem::path& dir,
+                               const std::filesystem::path& path) {
+  std::random_device random;
+  const uint64_t r = (uint64_t{random()} << 32) | random();
+  return dir / absl::StrFormat(".%s.%d.%016x.partial", path.filename().string(), ::getpid(), r);
 }
 
 absl::Status WriteAll(int fd, std::span<const std::byte> data, const std::filesystem::path& tmp) {
@@ -66,31 +71,44 @@ absl::Status SyncDirectory(const std::filesystem::path& dir) {
   return absl::OkStatus();
 }
 
-// Writes and syncs the temp file; the caller renames or removes it.
-absl::Status WriteTemp(const std::filesystem::path& tmp, std::span<const std::byte> data) {
-  // 0666 & umask like any other file: a store on a shared filesystem is read by
-  // other users' processes (mkstemp's 0600 would hide it).
-  Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
-  if (fd.get() < 0) return ErrnoError("cannot create", tmp, errno);
+absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& tmp,
+                           std::span<const std::byte> data) {
   if (absl::Status s = WriteAll(fd.get(), data, tmp); !s.ok()) return s;
   if (::fsync(fd.get()) != 0) return ErrnoError("cannot fsync", tmp, errno);
   if (fd.Close() != 0) return ErrnoError("cannot close", tmp, errno);
   return absl::OkStatus();
 }
 
+// Creates, fills and syncs a temp file beside `path`; removes it on failure.
+absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir,
+                                                const std::filesystem::path& path,
+                                                std::span<const std::byte> data) {
+  for (int attempt = 0;; ++attempt) {
+    const std::filesystem::path tmp = TempName(dir, path);
+    // O_EXCL: never write into (or later remove) another writer's temp file.
+    // 0666 & umask like any other file: a store on a shared filesystem is read
+    // by other users' processes (mkstemp's 0600 would hide it).
+    Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+    if (fd.get() < 0 && errno == EEXIST && attempt < 8) continue;
+    if (fd.get() < 0) return ErrnoError("cannot create", tmp, errno);
+    if (absl::Status s = WriteAndClose(fd, tmp, data); !s.ok()) {
+      ::unlink(tmp.c_str());  // best effort; the write error is the one to report
+      return s;
+    }
+    return tmp;
+  }
+}
+
 }  // namespace
 
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data) {
   const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
-  const std::filesystem::path tmp =
-      dir / absl::StrCat(".", path.filename().string(), ".", RandomSuffix(), ".partial");
-  absl::Status s = WriteTemp(tmp, data);
-  if (s.ok() && ::rename(tmp.c_str(), path.c_str()) != 0) {
-    s = ErrnoError(absl::StrCat("cannot rename ", tmp.string(), " to"), path, errno);
-  }
-  if (!s.ok()) {
-    ::unlink(tmp.c_str());  // best effort; the original error is the one to report
-    return s;
+  absl::StatusOr<std::filesystem::path> tmp = WriteTemp(dir, path, data);
+  if (!tmp.ok()) return tmp.status();
+  if (::rename(tmp->c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp->c_str());
+    return ErrnoError(absl::StrCat("cannot rename ", tmp->string(), " to"), path, err);
   }
   return SyncDirectory(dir);
 }
