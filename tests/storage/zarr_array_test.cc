@@ -27,7 +27,7 @@ struct Shape {
 // 1-D/2-D/3-D with partial edge chunks, a chunk larger than the array, and an
 // empty array (nnz = 0 is a real CSC case).
 const Shape kShapes[] = {
-    {{1000}, {128}}, {{37, 50}, {8, 16}}, {{5, 7, 3}, {2, 3, 2}}, {{10}, {64}}, {{0}, {16}},
+    {{300}, {128}}, {{19, 37}, {8, 16}}, {{5, 7, 3}, {4, 3, 2}}, {{10}, {64}}, {{0}, {16}},
 };
 
 template <class T>
