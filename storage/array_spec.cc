@@ -10,8 +10,8 @@
 namespace wavebake {
 namespace {
 
-// Chunks are single zstd frames decoded into one buffer; numcodecs and our
-// readers allocate them whole, so keep them far below what a process can hold.
+// Each chunk is one zstd frame that numcodecs and our readers decode into one
+// buffer; a cap keeps a typo in `chunks` from asking for terabytes.
 constexpr int64_t kMaxChunkBytes = int64_t{1} << 31;
 
 absl::Status Bad(absl::string_view source, absl::string_view field, absl::string_view why) {
@@ -96,76 +96,6 @@ absl::StatusOr<bool> ParseFilters(const nlohmann::json& zarray, DType dtype,
                           "): ", it->dump()));
 }
 
-}  // namespace
-
-bool SameSpec(const ArraySpec& a, const ArraySpec& b) {
-  const bool same_fill =
-      a.fill_value == b.fill_value || (std::isnan(a.fill_value) && std::isnan(b.fill_value));
-  return a.shape == b.shape && a.chunks == b.chunks && a.dtype == b.dtype && same_fill &&
-         a.zstd_level == b.zstd_level && a.delta_filter == b.delta_filter;
-}
-
-absl::Status ValidateSpec(const ArraySpec& spec, absl::string_view kSpec) {
-  if (spec.shape.empty()) return Bad(kSpec, "shape", "must have at least one dimension");
-  if (spec.chunks.size() != spec.shape.size()) {
-    return Bad(
-        kSpec, "chunks",
-        absl::StrCat("has ", spec.chunks.size(), " dimensions, shape has ", spec.shape.size()));
-  }
-  for (size_t d = 0; d < spec.shape.size(); ++d) {
-    if (spec.shape[d] < 0) return Bad(kSpec, "shape", "must not be negative");
-    if (spec.chunks[d] < 1) return Bad(kSpec, "chunks", "must be positive");
-  }
-  if (Product(spec.shape) < 0) return Bad(kSpec, "shape", "overflows int64 elements");
-  const int64_t chunk = Product(spec.chunks);
-  if (chunk < 0 || chunk > kMaxChunkBytes / static_cast<int64_t>(ItemSize(spec.dtype))) {
-    return Bad(kSpec, "chunks", absl::StrCat("exceed ", kMaxChunkBytes, " bytes per chunk"));
-  }
-  if (!Representable(spec.dtype, spec.fill_value)) {
-    return Bad(kSpec, "fill_value",
-               absl::StrCat(spec.fill_value, " is not a value of dtype ", ZarrName(spec.dtype)));
-  }
-  if (spec.zstd_level < ZSTD_minCLevel() || spec.zstd_level > ZSTD_maxCLevel()) {
-    return Bad(kSpec, "compressor.level", absl::StrCat(spec.zstd_level, " is not a zstd level"));
-  }
-  if (spec.delta_filter && !IsInteger(spec.dtype)) {
-    return Bad(kSpec, "filters", "delta is exact only on integer dtypes");
-  }
-  return absl::OkStatus();
-}
-
-int64_t ElementCount(const ArraySpec& spec) { return Product(spec.shape); }
-int64_t ChunkElementCount(const ArraySpec& spec) { return Product(spec.chunks); }
-
-std::vector<int64_t> ChunkGrid(const ArraySpec& spec) {
-  std::vector<int64_t> grid(spec.shape.size());
-  for (size_t d = 0; d < grid.size(); ++d) {
-    grid[d] = (spec.shape[d] + spec.chunks[d] - 1) / spec.chunks[d];
-  }
-  return grid;
-}
-
-nlohmann::json ToZarray(const ArraySpec& spec) {
-  const std::string dtype(ZarrName(spec.dtype));
-  nlohmann::json filters = nullptr;
-  if (spec.delta_filter) {
-    filters = nlohmann::json::array({{{"id", "delta"}, {"dtype", dtype}, {"astype", dtype}}});
-  }
-  return {
-      {"zarr_format", 2},
-      {"shape", spec.shape},
-      {"chunks", spec.chunks},
-      {"dtype", dtype},
-      {"compressor", {{"id", "zstd"}, {"level", spec.zstd_level}}},
-      {"fill_value", FillValueJson(spec)},
-      {"order", "C"},
-      {"filters", filters},
-      {"dimension_separator", "."},
-  };
-}
-
-namespace {
-
 // Reads and checks every field; FromZarray catches any json exception left.
 absl::StatusOr<ArraySpec> ParseZarray(const nlohmann::json& zarray, absl::string_view source) {
   if (!zarray.is_object())
@@ -203,6 +133,72 @@ absl::StatusOr<ArraySpec> ParseZarray(const nlohmann::json& zarray, absl::string
 }
 
 }  // namespace
+
+bool SameSpec(const ArraySpec& a, const ArraySpec& b) {
+  const bool same_fill =
+      a.fill_value == b.fill_value || (std::isnan(a.fill_value) && std::isnan(b.fill_value));
+  return a.shape == b.shape && a.chunks == b.chunks && a.dtype == b.dtype && same_fill &&
+         a.zstd_level == b.zstd_level && a.delta_filter == b.delta_filter;
+}
+
+absl::Status ValidateSpec(const ArraySpec& spec, absl::string_view source) {
+  if (spec.shape.empty()) return Bad(source, "shape", "must have at least one dimension");
+  if (spec.chunks.size() != spec.shape.size()) {
+    return Bad(
+        source, "chunks",
+        absl::StrCat("has ", spec.chunks.size(), " dimensions, shape has ", spec.shape.size()));
+  }
+  for (size_t d = 0; d < spec.shape.size(); ++d) {
+    if (spec.shape[d] < 0) return Bad(source, "shape", "must not be negative");
+    if (spec.chunks[d] < 1) return Bad(source, "chunks", "must be positive");
+  }
+  if (Product(spec.shape) < 0) return Bad(source, "shape", "overflows int64 elements");
+  const int64_t chunk = Product(spec.chunks);
+  if (chunk < 0 || chunk > kMaxChunkBytes / static_cast<int64_t>(ItemSize(spec.dtype))) {
+    return Bad(source, "chunks", absl::StrCat("exceed ", kMaxChunkBytes, " bytes per chunk"));
+  }
+  if (!Representable(spec.dtype, spec.fill_value)) {
+    return Bad(source, "fill_value",
+               absl::StrCat(spec.fill_value, " is not a value of dtype ", ZarrName(spec.dtype)));
+  }
+  if (spec.zstd_level < ZSTD_minCLevel() || spec.zstd_level > ZSTD_maxCLevel()) {
+    return Bad(source, "compressor.level", absl::StrCat(spec.zstd_level, " is not a zstd level"));
+  }
+  if (spec.delta_filter && !IsInteger(spec.dtype)) {
+    return Bad(source, "filters", "delta is exact only on integer dtypes");
+  }
+  return absl::OkStatus();
+}
+
+int64_t ElementCount(const ArraySpec& spec) { return Product(spec.shape); }
+int64_t ChunkElementCount(const ArraySpec& spec) { return Product(spec.chunks); }
+
+std::vector<int64_t> ChunkGrid(const ArraySpec& spec) {
+  std::vector<int64_t> grid(spec.shape.size());
+  for (size_t d = 0; d < grid.size(); ++d) {
+    grid[d] = (spec.shape[d] + spec.chunks[d] - 1) / spec.chunks[d];
+  }
+  return grid;
+}
+
+nlohmann::json ToZarray(const ArraySpec& spec) {
+  const std::string dtype(ZarrName(spec.dtype));
+  nlohmann::json filters = nullptr;
+  if (spec.delta_filter) {
+    filters = nlohmann::json::array({{{"id", "delta"}, {"dtype", dtype}, {"astype", dtype}}});
+  }
+  return {
+      {"zarr_format", 2},
+      {"shape", spec.shape},
+      {"chunks", spec.chunks},
+      {"dtype", dtype},
+      {"compressor", {{"id", "zstd"}, {"level", spec.zstd_level}}},
+      {"fill_value", FillValueJson(spec)},
+      {"order", "C"},
+      {"filters", filters},
+      {"dimension_separator", "."},
+  };
+}
 
 absl::StatusOr<ArraySpec> FromZarray(const nlohmann::json& zarray, absl::string_view source) {
   try {

@@ -113,6 +113,16 @@ absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const 
   return SyncDirectory(dir);
 }
 
+absl::Status CreateDirectories(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    return absl::InternalError(
+        absl::StrCat("cannot create directory ", dir.string(), ": ", ec.message()));
+  }
+  return absl::OkStatus();
+}
+
 absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path) {
   Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
   if (fd.get() < 0) return ErrnoError("cannot open", path, errno);

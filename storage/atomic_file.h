@@ -21,4 +21,8 @@ absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const 
 // chunk as the fill value); other failures are Internal, naming the path.
 absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path);
 
+// Creates `dir` and its parents; existing directories are fine (concurrent
+// workers create the same array directories).
+absl::Status CreateDirectories(const std::filesystem::path& dir);
+
 }  // namespace wavebake

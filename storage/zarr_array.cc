@@ -1,7 +1,5 @@
 #include "storage/zarr_array.h"
 
-#include <system_error>
-
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "storage/atomic_file.h"
@@ -28,10 +26,7 @@ absl::StatusOr<ZarrArray> ZarrArray::Create(const std::filesystem::path& dir,
         ToZarray(existing->spec()).dump(), " (requested ", ToZarray(spec).dump(), ")"));
   }
   if (!absl::IsNotFound(existing.status())) return existing.status();
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-    return absl::InternalError(absl::StrCat("cannot create ", dir.string(), ": ", ec.message()));
+  if (absl::Status s = CreateDirectories(dir); !s.ok()) return s;
   if (absl::Status s = WriteJsonFile(dir / kZarray, ToZarray(spec)); !s.ok()) return s;
   return ZarrArray(dir, spec);
 }

@@ -3,15 +3,13 @@
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
+#include "storage/atomic_file.h"
 #include "storage/json_file.h"
 
 namespace wavebake {
 
 absl::Status WriteGroup(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-    return absl::InternalError(absl::StrCat("cannot create ", dir.string(), ": ", ec.message()));
+  if (absl::Status s = CreateDirectories(dir); !s.ok()) return s;
   return WriteJsonFile(dir / ".zgroup", {{"zarr_format", 2}});
 }
 
