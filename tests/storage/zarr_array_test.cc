@@ -97,6 +97,8 @@ TEST(ZarrArrayTest, DeltaFilterShrinksSortedIndices) {
     return bytes;
   };
   const uintmax_t delta = size_with(true), plain = size_with(false);
+  RecordProperty("delta_bytes", std::to_string(delta));
+  RecordProperty("plain_bytes", std::to_string(plain));
   EXPECT_LT(delta * 10, plain * 8) << "delta " << delta << " plain " << plain;
 }
 
