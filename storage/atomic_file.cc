@@ -1,0 +1,149 @@
+#include "storage/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <random>
+#include <system_error>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+
+namespace wavebake {
+namespace {
+
+// Closes a file descriptor when it goes out of scope.
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  // Closes now so that a close() failure (e.g. a deferred NFS write error) is reported.
+  int Close() {
+    const int rc = ::close(fd_);
+    fd_ = -1;
+    return rc;
+  }
+
+ private:
+  int fd_;
+};
+
+absl::Status ErrnoError(absl::string_view what, const std::filesystem::path& path, int err) {
+  // std::error_code's message is thread-safe, unlike strerror.
+  std::string msg = absl::StrCat(what, " ", path.string(), ": ",
+                                 std::error_code(err, std::generic_category()).message());
+  return err == ENOENT ? absl::NotFoundError(msg) : absl::InternalError(msg);
+}
+
+// Temp name for `path`, unique among all writers: the pid separates processes
+// on one host (forked workers would share a seeded generator's state), fresh
+// OS randomness separates hosts sharing the store (DESIGN.md §4) and threads.
+std::filesystem::path TempName(const std::filesystem::path& dir,
+                               const std::filesystem::path& path) {
+  std::random_device random;
+  const uint64_t r = (uint64_t{random()} << 32) | random();
+  return dir / absl::StrFormat(".%s.%d.%016x.partial", path.filename().string(), ::getpid(), r);
+}
+
+absl::Status WriteAll(int fd, std::span<const std::byte> data, const std::filesystem::path& tmp) {
+  while (!data.empty()) {
+    const ssize_t n = ::write(fd, data.data(), data.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return ErrnoError("cannot write", tmp, errno);
+    data = data.subspan(static_cast<size_t>(n));
+  }
+  return absl::OkStatus();
+}
+
+// Makes the rename durable. Some filesystems cannot fsync a directory (EINVAL);
+// the rename is still atomic there, so that is not an error.
+absl::Status SyncDirectory(const std::filesystem::path& dir) {
+  Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (fd.get() < 0) return ErrnoError("cannot open directory", dir, errno);
+  if (::fsync(fd.get()) != 0 && errno != EINVAL) return ErrnoError("cannot fsync", dir, errno);
+  return absl::OkStatus();
+}
+
+absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& tmp,
+                           std::span<const std::byte> data) {
+  if (absl::Status s = WriteAll(fd.get(), data, tmp); !s.ok()) return s;
+  if (::fsync(fd.get()) != 0) return ErrnoError("cannot fsync", tmp, errno);
+  if (fd.Close() != 0) return ErrnoError("cannot close", tmp, errno);
+  return absl::OkStatus();
+}
+
+// Creates, fills and syncs a temp file beside `path`; removes it on failure.
+absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir,
+                                                const std::filesystem::path& path,
+                                                std::span<const std::byte> data) {
+  for (int attempt = 0;; ++attempt) {
+    const std::filesystem::path tmp = TempName(dir, path);
+    // O_EXCL: never write into (or later remove) another writer's temp file.
+    // 0666 & umask like any other file: a store on a shared filesystem is read
+    // by other users' processes (mkstemp's 0600 would hide it).
+    Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+    if (fd.get() < 0 && errno == EEXIST && attempt < 8) continue;
+    if (fd.get() < 0) return ErrnoError("cannot create", tmp, errno);
+    if (absl::Status s = WriteAndClose(fd, tmp, data); !s.ok()) {
+      ::unlink(tmp.c_str());  // best effort; the write error is the one to report
+      return s;
+    }
+    return tmp;
+  }
+}
+
+}  // namespace
+
+absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data) {
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
+  absl::StatusOr<std::filesystem::path> tmp = WriteTemp(dir, path, data);
+  if (!tmp.ok()) return tmp.status();
+  if (::rename(tmp->c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp->c_str());
+    return ErrnoError(absl::StrCat("cannot rename ", tmp->string(), " to"), path, err);
+  }
+  return SyncDirectory(dir);
+}
+
+absl::Status CreateDirectories(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    return absl::InternalError(
+        absl::StrCat("cannot create directory ", dir.string(), ": ", ec.message()));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) return ErrnoError("cannot stat", path, errno);
+  if (!S_ISREG(st.st_mode))
+    return absl::InternalError(absl::StrCat(path.string(), ": not a regular file"));
+  std::vector<std::byte> data(static_cast<size_t>(st.st_size));
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::read(fd.get(), data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return ErrnoError("cannot read", path, errno);
+    if (n == 0) break;  // the file shrank; report what we read as a short read below
+    done += static_cast<size_t>(n);
+  }
+  if (done != data.size()) {
+    return absl::InternalError(
+        absl::StrFormat("short read of %s: %d of %d bytes", path.string(), done, data.size()));
+  }
+  return data;
+}
+
+}  // namespace wavebake

@@ -1,0 +1,28 @@
+#pragma once
+// Whole-file I/O for the store. Writes are atomic (DESIGN.md §3): readers and
+// concurrent or retried writers of the same file see either the old or the new
+// contents, never a partial file, on a local disk or a shared filesystem.
+#include <cstddef>
+#include <filesystem>
+#include <span>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+
+namespace wavebake {
+
+// Writes `data` to a uniquely named temp file beside `path` (".NAME.<random>.partial",
+// which Zarr readers ignore), fsyncs it, renames it over `path` and fsyncs the
+// directory. On any failure the temp file is removed and `path` is untouched.
+absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data);
+
+// Reads a whole file. A missing file is NotFound (ZarrArray reads a missing
+// chunk as the fill value); other failures are Internal, naming the path.
+absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path);
+
+// Creates `dir` and its parents; existing directories are fine (concurrent
+// workers create the same array directories).
+absl::Status CreateDirectories(const std::filesystem::path& dir);
+
+}  // namespace wavebake

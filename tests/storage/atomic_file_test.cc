@@ -1,0 +1,98 @@
+#include "storage/atomic_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/storage/test_support.h"
+
+namespace wavebake {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::IsEmpty;
+using testing::PartialFiles;
+using testing::TempDir;
+
+std::vector<std::byte> Bytes(const std::string& s) {
+  const auto b = std::as_bytes(std::span(s));
+  return {b.begin(), b.end()};
+}
+
+// Reads with plain stdio, not with the ReadFile under test.
+std::string Slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(AtomicFileTest, WritesReplacesAndReadsBack) {
+  TempDir tmp;
+  const auto path = tmp.path() / "f.bin";
+  ASSERT_TRUE(AtomicWriteFile(path, Bytes("first version")).ok());
+  EXPECT_EQ(Slurp(path), "first version");
+  ASSERT_TRUE(AtomicWriteFile(path, Bytes("v2")).ok());
+  EXPECT_EQ(Slurp(path), "v2");
+  absl::StatusOr<std::vector<std::byte>> read = ReadFile(path);
+  ASSERT_TRUE(read.ok()) << read.status();
+  EXPECT_EQ(*read, Bytes("v2"));
+  ASSERT_TRUE(AtomicWriteFile(path, {}).ok());
+  EXPECT_EQ(std::filesystem::file_size(path), 0u);
+  EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
+}
+
+TEST(AtomicFileTest, MissingFileIsNotFoundNamingThePath) {
+  TempDir tmp;
+  absl::StatusOr<std::vector<std::byte>> read = ReadFile(tmp.path() / "nope");
+  EXPECT_TRUE(absl::IsNotFound(read.status()));
+  EXPECT_THAT(read.status().message(), HasSubstr("nope"));
+}
+
+TEST(AtomicFileTest, FailedWriteLeavesNoTempFileAndKeepsTarget) {
+  TempDir tmp;
+  // Missing directory: the temp file cannot even be created.
+  absl::Status s = AtomicWriteFile(tmp.path() / "no_dir" / "f", Bytes("x"));
+  EXPECT_FALSE(s.ok());
+  EXPECT_THAT(s.message(), HasSubstr("no_dir"));
+  // Target is a non-empty directory: the temp file is written, the rename fails.
+  std::filesystem::create_directories(tmp.path() / "d" / "inner");
+  s = AtomicWriteFile(tmp.path() / "d", Bytes("x"));
+  EXPECT_FALSE(s.ok());
+  EXPECT_THAT(s.message(), HasSubstr("rename"));
+  EXPECT_TRUE(std::filesystem::is_directory(tmp.path() / "d" / "inner"));
+  EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
+}
+
+// Many threads replacing one file (retried tasks rewriting a chunk): every
+// read sees one writer's complete contents, and no temp file survives.
+TEST(AtomicFileTest, ConcurrentReplacementsAreNeverTorn) {
+  TempDir tmp;
+  const auto path = tmp.path() / "shared";
+  constexpr int kThreads = 6, kRounds = 40;
+  auto content = [](int t) { return std::string(20000 + 1000 * t, static_cast<char>('a' + t)); };
+  ASSERT_TRUE(AtomicWriteFile(path, Bytes(content(0))).ok());
+  std::vector<std::thread> threads;
+  std::vector<int> torn(kThreads, 0), failed(kThreads, 0);
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int r = 0; r < kRounds; ++r) {
+        failed[t] += !AtomicWriteFile(path, Bytes(content(t))).ok();
+        const std::string seen = Slurp(path);
+        const int who = seen.empty() ? -1 : seen[0] - 'a';
+        torn[t] += who < 0 || who >= kThreads || seen != content(who);
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < kThreads; ++t) {
+    EXPECT_EQ(failed[t], 0) << "thread " << t;
+    EXPECT_EQ(torn[t], 0) << "thread " << t;
+  }
+  EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
+}
+
+}  // namespace
+}  // namespace wavebake
