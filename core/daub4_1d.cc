@@ -29,8 +29,9 @@ void Daub4Forward1d(std::span<float> line, std::span<float> scratch) {
   if (h == 0) return;
   const auto& [hk, gk] = kTaps;
   for (size_t i = 0; i < h; ++i) {
-    const float x0 = line[2 * i], x1 = line[2 * i + 1];
-    const float x2 = line[(2 * i + 2) % n], x3 = line[(2 * i + 3) % n];
+    // Only the last pair wraps (to x[0], x[1]); no modulo in the hot loop.
+    const size_t j = i + 1 < h ? 2 * i + 2 : 0;
+    const float x0 = line[2 * i], x1 = line[2 * i + 1], x2 = line[j], x3 = line[j + 1];
     scratch[i] = hk[0] * x0 + hk[1] * x1 + hk[2] * x2 + hk[3] * x3;
     scratch[h + i] = gk[0] * x0 + gk[1] * x1 + gk[2] * x2 + gk[3] * x3;
   }
@@ -45,7 +46,7 @@ void Daub4Inverse1d(std::span<float> line, std::span<float> scratch) {
   if (h == 0) return;
   const auto& [hk, gk] = kTaps;
   for (size_t m = 0; m < h; ++m) {
-    const size_t p = (m + h - 1) % h;
+    const size_t p = m > 0 ? m - 1 : h - 1;
     const float lo = line[m], hi = line[h + m], lo_p = line[p], hi_p = line[h + p];
     scratch[2 * m] = hk[0] * lo + gk[0] * hi + hk[2] * lo_p + gk[2] * hi_p;
     scratch[2 * m + 1] = hk[1] * lo + gk[1] * hi + hk[3] * lo_p + gk[3] * hi_p;

@@ -2,10 +2,10 @@
 
 #include <cstddef>
 #include <cstring>
-#include <vector>
 
 #include "core/bake_params.h"
 #include "core/separable2d.h"
+#include "core/thread_scratch.h"
 
 namespace wavebake {
 
@@ -15,7 +15,7 @@ void HaarForwardStep2d(std::span<float> img, int width, int height, int step) {
   const int hw = bw / 2, hh = bh / 2;
   // Outputs of row pair j land in rows j and hh+j, which later pairs still
   // read: build the block in a buffer, then copy it back.
-  std::vector<float> out(static_cast<size_t>(bw) * bh);
+  std::span<float> out = ThreadScratch(ScratchSlot::kBlock, static_cast<size_t>(bw) * bh);
   for (int j = 0; j < hh; ++j) {
     const float* r0 = img.data() + static_cast<size_t>(2 * j) * width;
     const float* r1 = r0 + width;
@@ -39,7 +39,7 @@ void HaarInverseStep2d(std::span<float> img, int width, int height, int step) {
   const int bw = BlockExtent(width, step), bh = BlockExtent(height, step);
   if (bw < 2 || bh < 2) return SeparableInverseStep(WaveletFilter::kHaar, img, width, height, step);
   const int hw = bw / 2, hh = bh / 2;
-  std::vector<float> out(static_cast<size_t>(bw) * bh);
+  std::span<float> out = ThreadScratch(ScratchSlot::kBlock, static_cast<size_t>(bw) * bh);
   for (int j = 0; j < hh; ++j) {
     const float* top = img.data() + static_cast<size_t>(j) * width;
     const float* bottom = img.data() + static_cast<size_t>(hh + j) * width;
