@@ -1,0 +1,16 @@
+#pragma once
+// Orthonormal Daubechies-4 step with PERIODIC boundary handling (DESIGN.md §1
+// "Daubechies-4 is an optional alternative row filter"; 4D paper §4.1).
+// Periodization keeps the analysis matrix exactly orthogonal for every even
+// length, including 2 (where it folds into Haar), so energy and dot products
+// are preserved and the inverse is the transpose. Symmetric extension would
+// break orthogonality for an orthonormal non-symmetric filter.
+#include <span>
+
+namespace wavebake {
+
+// line: even length n (or 1: untouched); output [lo | hi]; scratch ≥ n floats.
+void Daub4Forward1d(std::span<float> line, std::span<float> scratch);
+void Daub4Inverse1d(std::span<float> line, std::span<float> scratch);
+
+}  // namespace wavebake

@@ -1,0 +1,188 @@
+// Quantizer (DESIGN.md §1 "Scaling and quantization"): error bound for every
+// bit depth, the statistics subtractive dither must have, and a dither stream
+// reproducible from its documented formula.
+#include "core/quantizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace wavebake {
+namespace {
+
+struct Column {
+  std::vector<float> values;
+  std::vector<uint32_t> positions;
+  std::vector<uint8_t> levels;
+};
+
+// Wavelet-like column: coefficient at level l ~ 2^−l (4D paper §4.3).
+Column RandomColumn(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g(0, 1);
+  std::uniform_int_distribution<int> lvl(0, 9);
+  Column c;
+  for (int i = 0; i < n; ++i) {
+    const int l = lvl(rng);
+    c.levels.push_back(static_cast<uint8_t>(l));
+    c.values.push_back(std::ldexp(g(rng), -l));
+    c.positions.push_back(static_cast<uint32_t>(7 * i + 3));
+  }
+  return c;
+}
+
+std::vector<float> RoundTrip(const Column& c, int bits, uint64_t seed, uint64_t column,
+                             QuantizedColumn* qc_out = nullptr) {
+  const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, bits, seed, column);
+  std::vector<float> out(c.values.size());
+  Dequantize(qc.q, c.positions, c.levels, qc.scale, bits, seed, column, out);
+  if (qc_out) *qc_out = qc;
+  return out;
+}
+
+TEST(QuantizerTest, ErrorWithinBoundForAllBitDepths) {
+  const Column c = RandomColumn(2000, 1);
+  for (int bits = 2; bits <= 16; ++bits) {
+    QuantizedColumn qc;
+    const std::vector<float> out = RoundTrip(c, bits, 42, 7, &qc);
+    const int qmax = (1 << (bits - 1)) - 1;
+    double worst_ratio = 0;
+    for (size_t i = 0; i < out.size(); ++i) {
+      ASSERT_LE(std::abs(qc.q[i]), qmax);
+      const double err = std::fabs(double(out[i]) - c.values[i]);
+      const double bound = QuantizationBound(qc.scale, c.levels[i], bits);
+      ASSERT_LE(err, bound) << "bits " << bits << " i " << i;
+      // Half a step, independently: scale / (2Q) / 2^l.
+      worst_ratio =
+          std::max(worst_ratio, err / (qc.scale / (2.0 * qmax) / std::ldexp(1.0, c.levels[i])));
+    }
+    // Dither spreads errors over the whole half step: the bound is nearly met.
+    EXPECT_GT(worst_ratio, 0.9) << "bits " << bits;
+  }
+}
+
+TEST(QuantizerTest, ScaleIsLargestLevelScaledMagnitude) {
+  const Column c = RandomColumn(300, 2);
+  double expected = 0;
+  for (size_t i = 0; i < c.values.size(); ++i) {
+    expected = std::max(expected, std::fabs(std::ldexp(double(c.values[i]), c.levels[i])));
+  }
+  const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, 9, 1, 1);
+  EXPECT_GE(double(qc.scale), expected);
+  EXPECT_NEAR(qc.scale, expected, 1e-7 * expected);
+}
+
+TEST(QuantizerTest, SubtractiveDitherErrorIsUniformAndUnbiased) {
+  // A constant input sits at the same spot between two levels for every
+  // coefficient; without dither every error would be equal. With subtractive
+  // dither the error is uniform on ±½ step: mean 0, variance step²/12.
+  const int n = 20000, bits = 6, qmax = (1 << (bits - 1)) - 1;
+  Column c;
+  for (int i = 0; i < n; ++i) {
+    c.values.push_back(i == 0 ? 1.0f : 0.3137f);  // first one fixes scale = 1
+    c.positions.push_back(static_cast<uint32_t>(i));
+    c.levels.push_back(0);
+  }
+  const std::vector<float> out = RoundTrip(c, bits, 5, 11);
+  const double step = 1.0 / qmax;
+  double mean = 0, var = 0;
+  for (int i = 1; i < n; ++i) mean += (out[i] - c.values[i]) / step;
+  mean /= n - 1;
+  for (int i = 1; i < n; ++i) var += std::pow((out[i] - c.values[i]) / step - mean, 2);
+  var /= n - 2;
+  EXPECT_NEAR(mean, 0.0, 0.01);       // σ/√n ≈ 0.002
+  EXPECT_NEAR(var, 1.0 / 12, 0.004);  // 1/12 ≈ 0.0833
+}
+
+TEST(QuantizerTest, ZeroAndEmptyColumns) {
+  Column zero{{0, 0, 0}, {1, 2, 3}, {0, 2, 5}};
+  QuantizedColumn qc;
+  const std::vector<float> out = RoundTrip(zero, 8, 1, 2, &qc);
+  EXPECT_EQ(qc.scale, 0.0f);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(qc.q[i], 0);
+    EXPECT_EQ(out[i], 0.0f);
+  }
+  const QuantizedColumn empty = Quantize({}, {}, {}, 8, 1, 2);
+  EXPECT_TRUE(empty.q.empty());
+  EXPECT_EQ(empty.scale, 0.0f);
+}
+
+TEST(QuantizerTest, ExtremesMapToFullScaleCodes) {
+  // ±scale has y = ±1: y·Q + u ∈ [Q − ½, Q + ½) rounds (half away from zero)
+  // to Q, and −Q + u ∈ [−Q − ½, −Q + ½) to −Q (−Q − 1 at u = −½ is clamped).
+  Column c{{1.0f, -0.5f, 0.25f}, {0, 1, 2}, {0, 1, 2}};  // all scale to ±1 after 2^l
+  for (int bits = 2; bits <= 16; ++bits) {
+    const int qmax = (1 << (bits - 1)) - 1;
+    const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, bits, 3, 4);
+    EXPECT_EQ(qc.scale, 1.0f);
+    EXPECT_EQ(qc.q[0], qmax);
+    EXPECT_EQ(qc.q[1], -qmax);
+    EXPECT_EQ(qc.q[2], qmax);
+  }
+}
+
+TEST(QuantizerTest, DeterministicForSeedAndColumn) {
+  const Column c = RandomColumn(500, 3);
+  const QuantizedColumn a = Quantize(c.values, c.positions, c.levels, 10, 99, 5);
+  const QuantizedColumn b = Quantize(c.values, c.positions, c.levels, 10, 99, 5);
+  EXPECT_EQ(a.q, b.q);
+  const QuantizedColumn other = Quantize(c.values, c.positions, c.levels, 10, 100, 5);
+  EXPECT_NE(a.q, other.q);
+}
+
+// The documented formula (core/quantizer.h), written out independently.
+uint64_t SplitMix(uint64_t z) {
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+TEST(DitherTest, MatchesDocumentedSplitMixFormula) {
+  // Anchor: splitmix64 seeded with 0 first yields 0xE220A8397B1DCDAF.
+  ASSERT_EQ(SplitMix(0), 0xE220A8397B1DCDAFull);
+  for (const uint64_t seed : {0ull, 1ull, 0xDEADBEEFull}) {
+    for (const uint64_t column : {0ull, 5ull, 123456ull}) {
+      for (const uint32_t pos : {0u, 1u, 65535u}) {
+        const uint64_t h = SplitMix(SplitMix(SplitMix(seed) ^ column) ^ pos);
+        const double u = double(h >> 40) / 16777216.0 - 0.5;
+        EXPECT_EQ(DitherAt(seed, column, pos), static_cast<float>(u));
+      }
+    }
+  }
+}
+
+TEST(DitherTest, UniformOnHalfOpenInterval) {
+  const int n = 100000;
+  double mean = 0, var = 0, lo = 1, hi = -1;
+  for (int i = 0; i < n; ++i) {
+    const double u = DitherAt(7, 3, static_cast<uint32_t>(i));
+    ASSERT_GE(u, -0.5);
+    ASSERT_LT(u, 0.5);
+    lo = std::min(lo, u), hi = std::max(hi, u);
+    mean += u;
+    var += u * u;
+  }
+  mean /= n;
+  var = var / n - mean * mean;
+  EXPECT_NEAR(mean, 0.0, 0.005);
+  EXPECT_NEAR(var, 1.0 / 12, 0.002);
+  EXPECT_LT(lo, -0.499);
+  EXPECT_GT(hi, 0.499);
+}
+
+TEST(DitherTest, ColumnsAndSeedsGiveDifferentStreams) {
+  int same_column = 0, same_seed = 0;
+  for (uint32_t i = 0; i < 1000; ++i) {
+    same_column += DitherAt(1, 2, i) == DitherAt(1, 3, i);
+    same_seed += DitherAt(1, 2, i) == DitherAt(2, 2, i);
+  }
+  EXPECT_LT(same_column, 5);
+  EXPECT_LT(same_seed, 5);
+}
+
+}  // namespace
+}  // namespace wavebake
