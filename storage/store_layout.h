@@ -1,0 +1,38 @@
+#pragma once
+// Names inside a wavebake store (DESIGN.md §3) — the one place that spells
+// them. A store is a Zarr v2 group; while a job runs, its staging arrays live
+// under staging/ in the same format.
+#include <filesystem>
+
+namespace wavebake::store {
+
+inline constexpr char kFormat[] = "wavebake/1";
+
+// Final arrays.
+inline constexpr char kTransport[] = "transport";  // group, attrs: encoding-type csc_matrix
+inline constexpr char kIndptr[] = "transport/indptr";    // int64  [M+1]
+inline constexpr char kIndices[] = "transport/indices";  // uint32 [nnz]  y*W+x in the Mallat layout
+inline constexpr char kData[] = "transport/data";        // int16  [nnz]
+inline constexpr char kDepth[] = "transport/depth";      // uint8  [M]
+inline constexpr char kScale[] = "transport/scale";      // float32 [M]
+inline constexpr char kSamples[] = "samples";
+inline constexpr char kGrid[] = "samples/grid";          // int32 [H, W]
+inline constexpr char kPosition[] = "samples/position";  // float32 [S, 3]
+inline constexpr char kNormal[] = "samples/normal";      // float32 [S, 3]
+inline constexpr char kAlbedo[] = "samples/albedo";      // float32 [S, 3]
+inline constexpr char kVertex[] = "samples/vertex";      // int32 [S] (mesh layouts)
+
+// Staging (removed by FINALIZE unless --keep-staging).
+inline constexpr char kStaging[] = "staging";
+// float32 [M, W*H] chunked [group_size, tile_cells]: the chunk layout is the
+// transpose; the second axis is tile-major (core/job_plan.h StagingCell).
+inline constexpr char kStagingTransport[] = "staging/transport";
+// float32 [tiles] chunked [1]: Σ of squared staged values of each tile (the
+// matrix energy is needed by the "matrix" error scope before any group runs).
+inline constexpr char kStagingTileEnergy[] = "staging/tile_energy";
+
+inline std::filesystem::path Path(const std::filesystem::path& store, const char* name) {
+  return store / name;
+}
+
+}  // namespace wavebake::store

@@ -1,0 +1,38 @@
+#pragma once
+// Reading a finished store (DESIGN.md §3). Shared by the runtime, `fetch`
+// verification and tests.
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "absl/status/statusor.h"
+#include "core/bake_params.h"
+#include "core/compressed_columns.h"
+#include "core/samples.h"
+
+namespace wavebake {
+
+struct StoreInfo {
+  nlohmann::json attrs;     // the root .zattrs as written by FINALIZE
+  BakeParams params;        // parsed back from attrs["params"]
+  std::string scene_spec;   // attrs["scene"]: builtin:NAME or the scene file path
+  std::string scene_hash;   // attrs["scene_hash"]
+  int width = 0, height = 0, light_res = 0, columns = 0, bits = 0;
+};
+
+// Errors: not a store, or attrs["format"] other than store::kFormat.
+absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store);
+absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store);
+// The whole matrix, dequantized and unscaled (core/quantizer.h, DESIGN.md §1).
+absl::StatusOr<CompressedColumns> ReadTransport(const std::filesystem::path& store);
+
+// One decoded column: its depth and its kept coefficients (transform domain).
+struct DecodedColumn {
+  int depth = 0;
+  std::vector<uint32_t> positions;
+  std::vector<float> values;
+};
+absl::StatusOr<DecodedColumn> ReadColumn(const std::filesystem::path& store, int column);
+
+}  // namespace wavebake
