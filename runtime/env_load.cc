@@ -38,8 +38,8 @@ absl::Status CheckRadiance(const std::filesystem::path& path, const EnvMap& imag
       for (int c = 0; c < 3; ++c) {
         if (std::isfinite(p[c]) && p[c] >= 0) continue;
         return absl::InvalidArgumentError(absl::StrCat(
-            path.string(), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]),
-            " is ", std::to_string(p[c]), "; radiance must be finite and non-negative"));
+            path.string(), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]), " is ",
+            std::to_string(p[c]), "; radiance must be finite and non-negative"));
       }
     }
   }
@@ -81,8 +81,8 @@ absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec) {
   } else if (ext == ".exr") {
     image = ReadExrImage(path);
   } else {
-    return absl::InvalidArgumentError(absl::StrCat(
-        path.string(), ": unknown environment format '", ext, "' (expected .hdr or .exr)"));
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": unknown environment format '",
+                                                   ext, "' (expected .hdr or .exr)"));
   }
   if (!image.ok()) return image.status();
   if (absl::Status s = CheckRadiance(path, *image); !s.ok()) return s;

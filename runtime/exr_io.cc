@@ -84,8 +84,8 @@ absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path) {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
     const Imf::ChannelList& channels = file.header().channels();
-    const bool has_rgb = channels.findChannel("R") && channels.findChannel("G") &&
-                         channels.findChannel("B");
+    const bool has_rgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     if (!has_rgb && !channels.findChannel("Y")) {
       return absl::InvalidArgumentError(
           absl::StrCat(path.string(), ": EXR has neither R, G, B nor Y channels"));
@@ -102,12 +102,12 @@ absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path) {
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     if (!has_rgb) {
-      for (size_t i = 0; i < image.rgb.size(); i += 3) image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
+      for (size_t i = 0; i < image.rgb.size(); i += 3)
+        image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
     }
     return image;
   } catch (const std::exception& e) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(path.string(), ": unreadable EXR: ", e.what()));
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": unreadable EXR: ", e.what()));
   }
 }
 

@@ -34,15 +34,15 @@ std::string PlyHeader(size_t vertices, size_t faces) {
 absl::Status CheckMesh(const std::filesystem::path& path, size_t vertices,
                        std::span<const std::array<uint32_t, 3>> triangles, size_t rgb_values) {
   if (rgb_values != vertices * 3) {
-    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": ", vertices,
-                                                   " vertices need ", vertices * 3,
-                                                   " colour values, got ", rgb_values));
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": ", vertices, " vertices need ",
+                                                   vertices * 3, " colour values, got ",
+                                                   rgb_values));
   }
   for (size_t f = 0; f < triangles.size(); ++f) {
     for (uint32_t v : triangles[f]) {
       if (v >= vertices) {
-        return absl::InvalidArgumentError(absl::StrCat(path.string(), ": triangle ", f,
-                                                       " uses vertex ", v, " of ", vertices));
+        return absl::InvalidArgumentError(
+            absl::StrCat(path.string(), ": triangle ", f, " uses vertex ", v, " of ", vertices));
       }
     }
   }

@@ -103,8 +103,8 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
   // Pieces: between kinks and pixel column edges φ = π (2x/W − 1).
   std::vector<double> cuts = kinks;
   const double column = 2 * kPi / g.width;
-  for (double phi = -kPi + column * std::ceil((kinks.front() + kPi) / column);
-       phi < kinks.back(); phi += column) {
+  for (double phi = -kPi + column * std::ceil((kinks.front() + kPi) / column); phi < kinks.back();
+       phi += column) {
     if (phi > kinks.front()) cuts.push_back(phi);
   }
   std::sort(cuts.begin(), cuts.end());
@@ -116,7 +116,8 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
     std::vector<double> sub = {a, b};
     AddRowCrossings(g, texel, a, b, sub);
     std::sort(sub.begin(), sub.end());
-    for (size_t j = 0; j + 1 < sub.size(); ++j) IntegratePiece(g, texel, x, sub[j], sub[j + 1], entries);
+    for (size_t j = 0; j + 1 < sub.size(); ++j)
+      IntegratePiece(g, texel, x, sub[j], sub[j + 1], entries);
   }
   // Merge repeats of a pixel (one per node).
   std::sort(entries.begin(), entries.end());

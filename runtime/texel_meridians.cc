@@ -18,10 +18,14 @@ struct SideFrame {
 };
 SideFrame SideFrameOf(int face) {
   switch (face) {
-    case kPosX: return {{1, 0, 0}, {0, 0, -1}};
-    case kNegX: return {{-1, 0, 0}, {0, 0, 1}};
-    case kPosZ: return {{0, 0, 1}, {1, 0, 0}};
-    default: return {{0, 0, -1}, {-1, 0, 0}};
+    case kPosX:
+      return {{1, 0, 0}, {0, 0, -1}};
+    case kNegX:
+      return {{-1, 0, 0}, {0, 0, 1}};
+    case kPosZ:
+      return {{0, 0, 1}, {1, 0, 0}};
+    default:
+      return {{0, 0, -1}, {-1, 0, 0}};
   }
 }
 

@@ -18,8 +18,8 @@ constexpr int kW = 64, kH = 32;
 
 struct BrightPixelCase {
   const char* axis;
-  int x, y;   // the pixel
-  int face;   // the cube face its direction must land on
+  int x, y;  // the pixel
+  int face;  // the cube face its direction must land on
 };
 
 // The pixel-centre direction written out from the convention, not taken
@@ -67,19 +67,18 @@ TEST_P(BrightPixelTest, StaysOnItsFootprint) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Axes, BrightPixelTest,
-    ::testing::Values(BrightPixelCase{"zenith", 10, 0, kPosY},
-                      BrightPixelCase{"nadir", 40, kH - 1, kNegY},
-                      BrightPixelCase{"+X", 3 * kW / 4, kH / 2, kPosX},
-                      BrightPixelCase{"-X", kW / 4, kH / 2 - 1, kNegX},
-                      BrightPixelCase{"-Z", kW / 2, kH / 2, kNegZ},
-                      BrightPixelCase{"+Z", 0, kH / 2 - 1, kPosZ}),
-    [](const auto& info) {
-      const std::string axis = info.param.axis;
-      return axis[0] == '+' ? "Pos" + axis.substr(1)
-                            : (axis[0] == '-' ? "Neg" + axis.substr(1) : axis);
-    });
+INSTANTIATE_TEST_SUITE_P(Axes, BrightPixelTest,
+                         ::testing::Values(BrightPixelCase{"zenith", 10, 0, kPosY},
+                                           BrightPixelCase{"nadir", 40, kH - 1, kNegY},
+                                           BrightPixelCase{"+X", 3 * kW / 4, kH / 2, kPosX},
+                                           BrightPixelCase{"-X", kW / 4, kH / 2 - 1, kNegX},
+                                           BrightPixelCase{"-Z", kW / 2, kH / 2, kNegZ},
+                                           BrightPixelCase{"+Z", 0, kH / 2 - 1, kPosZ}),
+                         [](const auto& info) {
+                           const std::string axis = info.param.axis;
+                           return axis[0] == '+' ? "Pos" + axis.substr(1)
+                                                 : (axis[0] == '-' ? "Neg" + axis.substr(1) : axis);
+                         });
 
 }  // namespace
 }  // namespace wavebake

@@ -28,7 +28,8 @@ EnvMap MakeCross(Value value) {
   EnvMap cross = testing::UniformEnv(3 * kA, 4 * kA, 99);
   for (const Slot& s : kSlots) {
     for (int j = 0; j < kA; ++j) {
-      for (int i = 0; i < kA; ++i) testing::SetPixel(cross, s.col * kA + i, s.row * kA + j, value(s.face, i, j));
+      for (int i = 0; i < kA; ++i)
+        testing::SetPixel(cross, s.col * kA + i, s.row * kA + j, value(s.face, i, j));
     }
   }
   return cross;
@@ -41,8 +42,9 @@ absl::StatusOr<EnvMap> SaveAndLoad(const EnvMap& cross) {
 }
 
 TEST(CrossTest, FacesLandOnTheirCubeFaces) {
-  const absl::StatusOr<EnvMap> env =
-      SaveAndLoad(MakeCross([](int face, int, int) { return Vec3{1.0f + face, 0, 0}; }));
+  const absl::StatusOr<EnvMap> env = SaveAndLoad(MakeCross([](int face, int, int) {
+    return Vec3{1.0f + face, 0, 0};
+  }));
   ASSERT_TRUE(env.ok()) << env.status();
   EXPECT_EQ(env->width, 2 * env->height);
   const Cubemap cube(8);
@@ -51,7 +53,8 @@ TEST(CrossTest, FacesLandOnTheirCubeFaces) {
     const Texel t = cube.TexelOf(m);
     // Texels a whole texel away from the face edges see only their own face.
     if (t.x == 0 || t.y == 0 || t.x == 7 || t.y == 7) continue;
-    ASSERT_NEAR(l[3 * m], 1.0f + t.face, 1e-5) << "face " << t.face << " (" << t.x << ", " << t.y << ")";
+    ASSERT_NEAR(l[3 * m], 1.0f + t.face, 1e-5)
+        << "face " << t.face << " (" << t.x << ", " << t.y << ")";
   }
 }
 
@@ -68,7 +71,8 @@ TEST(CrossTest, BackFaceIsUpsideDown) {
   const std::vector<float> l = ResampleToCubemap(*env, cube);
   int brightest = 0;
   for (int m = 0; m < cube.size(); ++m) {
-    if (l[3 * m] * cube.SolidAngle(m) > l[3 * brightest] * cube.SolidAngle(brightest)) brightest = m;
+    if (l[3 * m] * cube.SolidAngle(m) > l[3 * brightest] * cube.SolidAngle(brightest))
+      brightest = m;
   }
   const float s = 2 * (i + 0.5f) / kA - 1, t = 2 * (j + 0.5f) / kA - 1;
   EXPECT_EQ(brightest, cube.Lookup({s, t, 1}));
@@ -97,8 +101,8 @@ TEST(CrossTest, KeepsTheSphereIntegral) {
   const Cubemap cube(16);
   const std::vector<float> l = ResampleToCubemap(*env, cube);
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(SphereIntegral(*env, c), expected[c], 0.005 * expected[c]) << "channel " << c;
-    EXPECT_NEAR(CubeEnergy(l, cube, c), expected[c], 0.005 * expected[c]) << "channel " << c;
+    EXPECT_NEAR(SphereIntegral(*env, c), expected[c], 1e-5 * expected[c]) << "channel " << c;
+    EXPECT_NEAR(CubeEnergy(l, cube, c), expected[c], 1e-5 * expected[c]) << "channel " << c;
   }
 }
 

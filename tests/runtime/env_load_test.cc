@@ -98,12 +98,11 @@ TEST_P(BadTexelTest, NamesFileAndFirstPixel) {
   EXPECT_THAT(s.message(), HasSubstr("pixel (21, 5) channel G"));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Values, BadTexelTest,
-    ::testing::Values(BadTexel{"nan", std::numeric_limits<float>::quiet_NaN()},
-                      BadTexel{"inf", std::numeric_limits<float>::infinity()},
-                      BadTexel{"negative", -0.5f}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Values, BadTexelTest,
+                         ::testing::Values(BadTexel{"nan", std::numeric_limits<float>::quiet_NaN()},
+                                           BadTexel{"inf", std::numeric_limits<float>::infinity()},
+                                           BadTexel{"negative", -0.5f}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace wavebake

@@ -31,7 +31,8 @@ TEST(ResampleTest, ConstantEnvironmentIsOneInEveryTexel) {
 }
 
 // Σ_m L_m Ω_m is what T·L integrates; area averaging must keep ∫ L dω even
-// for grace's sources, which are smaller than a texel.
+// for grace's sources, which are smaller than a texel. The contract asks for
+// 0.5 %; exact overlaps deliver float rounding, so hold them to that.
 TEST(ResampleTest, ProbesKeepTheSphereIntegral) {
   for (const char* name : {"grace.hdr", "pisa.hdr"}) {
     const absl::StatusOr<EnvMap> env = LoadEnvMap(ProbePath(name));
@@ -41,7 +42,7 @@ TEST(ResampleTest, ProbesKeepTheSphereIntegral) {
       const std::vector<float> l = ResampleToCubemap(*env, cube);
       for (int c = 0; c < 3; ++c) {
         const double expected = SphereIntegral(*env, c);
-        EXPECT_NEAR(CubeEnergy(l, cube, c), expected, 0.005 * expected)
+        EXPECT_NEAR(CubeEnergy(l, cube, c), expected, 1e-5 * expected)
             << name << " N=" << n << " channel " << c;
       }
     }

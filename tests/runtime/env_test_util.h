@@ -28,7 +28,8 @@ inline double CubeEnergy(std::span<const float> rgb, const Cubemap& cube, int ch
                          int face = -1) {
   double total = 0;
   for (int m = 0; m < cube.size(); ++m) {
-    if (face < 0 || cube.TexelOf(m).face == face) total += rgb[3 * m + channel] * cube.SolidAngle(m);
+    if (face < 0 || cube.TexelOf(m).face == face)
+      total += rgb[3 * m + channel] * cube.SolidAngle(m);
   }
   return total;
 }

@@ -6,6 +6,7 @@
 #include <stb/stb_image.h>
 
 #include <bit>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -25,7 +26,7 @@ TEST(ExrTest, FloatRoundTripIsBitExact) {
   std::vector<float> rgb(w * h * 3);
   for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::ldexp(1.0f + 0.37f * i, int(i % 40) - 20);
   rgb[4] = std::numeric_limits<float>::quiet_NaN();  // a masked pixel
-  rgb[5] = 1e-40f;                                    // denormal
+  rgb[5] = 1e-40f;                                   // denormal
   const auto path = testing::ScratchDir() / "round.exr";
   ASSERT_TRUE(WriteExr(path, w, h, rgb).ok());
   const absl::StatusOr<EnvMap> back = ReadExrImage(path);
@@ -64,8 +65,8 @@ Png ReadPng(const std::filesystem::path& path) {
 TEST(PngTest, SizeExposureClampAndBackground) {
   const int w = 4, h = 3;
   std::vector<float> rgb(w * h * 3, 0.0f);
-  rgb[0] = rgb[1] = rgb[2] = 0.25f;  // pixel (0,0): ×2 at +1 stop → 0.5
-  rgb[3] = 10.0f;                    // pixel (1,0): clamps to 1
+  rgb[0] = rgb[1] = rgb[2] = 0.25f;                  // pixel (0,0): ×2 at +1 stop → 0.5
+  rgb[3] = 10.0f;                                    // pixel (1,0): clamps to 1
   rgb[6] = std::numeric_limits<float>::quiet_NaN();  // pixel (2,0): masked
   const auto path = testing::ScratchDir() / "out.png";
   ASSERT_TRUE(WritePng(path, w, h, rgb, 1.0f, {0, 0, 1}).ok());
@@ -138,9 +139,9 @@ TEST(PlyTest, BadTriangleAndColourCountAreNamed) {
   const std::vector<float> rgb(9, 1.0f);
   EXPECT_THAT(WritePlyVertexColors(dir / "m.ply", positions, bad, rgb, 0).message(),
               HasSubstr("triangle 0"));
-  EXPECT_THAT(WritePlyVertexColors(dir / "m.ply", positions, {}, std::span(rgb).first(6), 0)
-                  .message(),
-              HasSubstr("m.ply"));
+  EXPECT_THAT(
+      WritePlyVertexColors(dir / "m.ply", positions, {}, std::span(rgb).first(6), 0).message(),
+      HasSubstr("m.ply"));
   EXPECT_FALSE(std::filesystem::exists(dir / "m.ply"));
 }
 
