@@ -22,6 +22,9 @@ constexpr double kNode[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810
 constexpr double kWeight[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
                                0.3478548451374538};
 
+// Widest azimuth piece one set of nodes covers (radians, ~2°).
+constexpr double kMaxPiece = 0.035;
+
 using Entries = std::vector<std::pair<int, double>>;  // (pixel, area)
 
 struct Grid {
@@ -103,8 +106,9 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
   // Pieces: between kinks and pixel column edges φ = π (2x/W − 1).
   std::vector<double> cuts = kinks;
   const double column = 2 * kPi / g.width;
-  for (double phi = -kPi + column * std::ceil((kinks.front() + kPi) / column); phi < kinks.back();
-       phi += column) {
+  for (int k = static_cast<int>(std::ceil((kinks.front() + kPi) / column));; ++k) {
+    const double phi = -kPi + k * column;
+    if (phi >= kinks.back()) break;
     if (phi > kinks.front()) cuts.push_back(phi);
   }
   std::sort(cuts.begin(), cuts.end());
@@ -113,8 +117,13 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
     const double a = cuts[i], b = cuts[i + 1];
     if (!(a < b)) continue;
     const int x = static_cast<int>(std::floor((0.5 * (a + b) + kPi) / column)) % g.width;
+    // Pieces no wider than kMaxPiece, for maps whose pixels dwarf the texels.
+    const int parts = static_cast<int>(std::ceil((b - a) / kMaxPiece));
     std::vector<double> sub = {a, b};
-    AddRowCrossings(g, texel, a, b, sub);
+    for (int k = 1; k < parts; ++k) sub.push_back(a + (b - a) * k / parts);
+    for (int k = 0; k < parts; ++k) {
+      AddRowCrossings(g, texel, a + (b - a) * k / parts, a + (b - a) * (k + 1) / parts, sub);
+    }
     std::sort(sub.begin(), sub.end());
     for (size_t j = 0; j + 1 < sub.size(); ++j)
       IntegratePiece(g, texel, x, sub[j], sub[j + 1], entries);
@@ -134,8 +143,7 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
 
 }  // namespace
 
-SphereOverlap::SphereOverlap(int width, int height, const Cubemap& cube)
-    : width_(width), height_(height) {
+SphereOverlap::SphereOverlap(int width, int height, const Cubemap& cube) {
   Grid grid{width, height, std::vector<double>(height + 1)};
   for (int y = 0; y <= height; ++y) grid.row_mu[y] = std::cos(kPi * y / height);
   grid.row_mu[0] = 1, grid.row_mu[height] = -1;

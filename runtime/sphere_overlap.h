@@ -33,7 +33,6 @@ class SphereOverlap {
   double PixelArea(int p) const { return pixel_area_[p]; }
 
  private:
-  int width_, height_;
   // CSR by texel: entries first_[m] .. first_[m+1] − 1.
   std::vector<int> first_, pixel_;
   std::vector<double> area_, texel_area_, pixel_area_;

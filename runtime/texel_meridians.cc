@@ -67,19 +67,19 @@ void TexelMeridians::InitSide() {
 }
 
 void TexelMeridians::InitCap() {
-  if (s0_ < 0 && 0 < s1_ && t0_ < 0 && 0 < t1_) {  // the pole inside (N = 1)
-    breaks_ = {-kPi, kPi};
-    return;
-  }
-  // The rectangle then subtends at most π from the pole: unwrap its corners'
-  // azimuths around the first one.
-  const double sign = CapTcSign(face_);
+  // With the pole inside (N = 1) the texel spans every azimuth; otherwise it
+  // subtends at most π from the pole, and its corners' azimuths, unwrapped
+  // around the first one, bound it.
+  const bool pole_inside = s0_ < 0 && 0 < s1_ && t0_ < 0 && 0 < t1_;
   breaks_.clear();
+  if (pole_inside) breaks_ = {-kPi, kPi};
   for (double s : {s0_, s1_}) {
     for (double t : {t0_, t1_}) {
       if (s == 0 && t == 0) continue;  // the pole itself has no azimuth
-      double phi = std::atan2(s, sign * t);
-      if (!breaks_.empty()) phi = breaks_[0] + std::remainder(phi - breaks_[0], 2 * kPi);
+      double phi = std::atan2(s, CapTcSign(face_) * t);
+      if (!pole_inside && !breaks_.empty()) {
+        phi = breaks_[0] + std::remainder(phi - breaks_[0], 2 * kPi);
+      }
       breaks_.push_back(phi);
     }
   }
@@ -87,8 +87,8 @@ void TexelMeridians::InitCap() {
   // Between corners one edge of the rectangle bounds each end of the ray,
   // r = edge / sin φ or edge / cos φ: monotone within a quadrant.
   const double lo = breaks_.front(), hi = breaks_.back();
-  for (double q = std::ceil(lo / (kPi / 2)) * (kPi / 2); q < hi; q += kPi / 2) {
-    if (q > lo) breaks_.push_back(q);
+  for (int q = static_cast<int>(std::floor(lo / (kPi / 2))) + 1; q * (kPi / 2) < hi; ++q) {
+    breaks_.push_back(q * (kPi / 2));
   }
   std::sort(breaks_.begin(), breaks_.end());
 }
