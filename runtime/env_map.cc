@@ -21,6 +21,7 @@ Vec3 EnvRadiance(const EnvMap& env, Vec3 d) {
 EnvMap Rotated(const EnvMap& env, double degrees) {
   // R_y(α) d(φ) = d(φ − α) (latlong.h), so the rotated map at azimuth φ shows
   // the original at φ + α: output column x reads input column x + shift.
+  if (!std::isfinite(degrees)) return env;  // callers validate user input
   double turns = std::fmod(degrees / 360.0, 1.0);
   if (turns < 0) turns += 1;
   const double shift = turns * env.width;

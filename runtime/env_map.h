@@ -47,7 +47,8 @@ Vec3 EnvRadiance(const EnvMap& env, Vec3 d);
 // carries what was at +X to −Z and what was at −Z to −X. In lat-long this is
 // a horizontal shift by −degrees/360 · width pixels; for a fractional shift
 // each output pixel is the exact mean of the shifted map over its footprint
-// (linear interpolation between two columns), which keeps ∫ L dω.
+// (linear interpolation between two columns), which keeps ∫ L dω. A
+// non-finite angle returns the map unchanged.
 EnvMap Rotated(const EnvMap& env, double degrees);
 
 }  // namespace wavebake
