@@ -154,6 +154,10 @@ TEST(SelectForBudgetTest, EdgeBudgets) {
   const Selection s = SelectForBudget(v, {}, 1.5);
   EXPECT_EQ(s.kept, (std::vector<uint32_t>{1, 4}));
   EXPECT_DOUBLE_EQ(s.dropped_energy, 1);
+  // The rule is ≤: a budget exactly equal to the tail's energy lets it go.
+  EXPECT_EQ(SelectForBudget(v, {}, 1.0).kept, (std::vector<uint32_t>{1, 4}));
+  EXPECT_EQ(SelectForBudget(v, {}, 5.0).kept, (std::vector<uint32_t>{1}));
+  EXPECT_EQ(CountForBudget(v, {}, 5.0), 1);
   EXPECT_EQ(SelectForBudget(v, {}, -1).kept.size(), 3u);
   EXPECT_TRUE(SelectForBudget(std::vector<float>{}, {}, 0).kept.empty());
 }
@@ -172,6 +176,9 @@ TEST(SelectForBudgetTest, TiesKeepLowerIndices) {
   // Budget 3.5 lets three of the ten equal entries go: the three highest indices.
   const Selection s = SelectForBudget(v, {}, 3.5);
   EXPECT_EQ(s.kept, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6}));
+  // Exactly 3.0 still lets three go (the rule is ≤).
+  EXPECT_EQ(SelectForBudget(v, {}, 3.0).kept, s.kept);
+  EXPECT_EQ(CountForBudget(v, {}, 3.0), 7);
 }
 
 TEST(SelectForBudgetTest, KeptSetIsATopKPrefix) {
