@@ -100,7 +100,7 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
   if (absl::Status s = array.WriteChunk<float>(index, data); !s.ok()) return s;
   std::error_code ec;
   const uintmax_t bytes = std::filesystem::file_size(array.ChunkPath(index), ec);
-  if (!ec) stats.bytes_written += bytes;  // a concurrent retry may be renaming: not an error
+  if (!ec) stats.bytes_written += bytes;  // progress only: a failed stat fails no task
   return absl::OkStatus();
 }
 
