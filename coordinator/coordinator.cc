@@ -10,8 +10,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "absl/strings/string_view.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 
 namespace wavebake {
 namespace {
@@ -55,7 +55,8 @@ absl::StatusOr<std::unique_ptr<Coordinator>> Coordinator::Start(CoordinatorOptio
   if (options.data_dir.empty()) return absl::InvalidArgumentError("data_dir: required");
   if (!plan_fn) return absl::InvalidArgumentError("plan_fn: required");
   if (!(options.lease_seconds > 0)) {
-    return absl::InvalidArgumentError(absl::StrCat("lease_seconds: ", options.lease_seconds, " is not positive"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("lease_seconds: ", options.lease_seconds, " is not positive"));
   }
   if (options.store_root.empty()) options.store_root = options.data_dir / "store";
   auto c = std::make_unique<Coordinator>(Key{});
@@ -69,10 +70,13 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
   std::error_code ec;
   for (const auto& dir : {o.data_dir, o.store_root}) {
     std::filesystem::create_directories(dir, ec);
-    if (ec) return absl::InvalidArgumentError(absl::StrCat("data_dir: ", dir.string(), ": ", ec.message()));
+    if (ec)
+      return absl::InvalidArgumentError(
+          absl::StrCat("data_dir: ", dir.string(), ": ", ec.message()));
   }
   const Clock* clock = o.clock ? o.clock : SystemClock::Get();
-  absl::StatusOr<std::unique_ptr<JobStore>> store = JobStore::Open((o.data_dir / "state.sqlite").string());
+  absl::StatusOr<std::unique_ptr<JobStore>> store =
+      JobStore::Open((o.data_dir / "state.sqlite").string());
   if (!store.ok()) return store.status();
   store_ = std::move(*store);
   if (!cleanup_fn) cleanup_fn = RemoveStoreDir(o.store_root);

@@ -29,9 +29,9 @@ namespace wavebake {
 
 struct CoordinatorOptions {
   std::string listen_address = "127.0.0.1:0";  // port 0 picks a free one; "" = in-process only
-  std::filesystem::path data_dir;              // required
+  std::filesystem::path data_dir{};            // required
   std::filesystem::path store_root{};          // empty = data_dir / "store"
-  std::string token;                           // empty = no auth
+  std::string token{};                         // empty = no auth
   std::filesystem::path tls_cert_path{}, tls_key_path{};  // both or neither (PEM)
   double lease_seconds = 30;
   int64_t max_upload_bytes = int64_t{1} << 30;

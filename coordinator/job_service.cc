@@ -1,8 +1,9 @@
 // JobService unary methods; the streaming ones are in job_service_streams.cc.
+#include "coordinator/job_service.h"
+
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/job_service.h"
 #include "coordinator/lease_id.h"
 #include "coordinator/proto_convert.h"
 #include "coordinator/request_validation.h"
@@ -74,7 +75,8 @@ grpc::Status JobServiceImpl::List(grpc::ServerContext* context, const v1::ListRe
                                   v1::JobList* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   if (request->limit() < 0) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, absl::StrCat("limit: ", request->limit(), " is negative")};
+    return {grpc::StatusCode::INVALID_ARGUMENT,
+            absl::StrCat("limit: ", request->limit(), " is negative")};
   }
   const int limit = request->limit() == 0 ? 100 : request->limit();
   for (const JobInfo& info : deps_.table->List(limit, request->active_only())) {

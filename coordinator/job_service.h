@@ -12,8 +12,7 @@ class JobServiceImpl final : public v1::JobService::Service {
 
   grpc::Status Submit(grpc::ServerContext* context, const v1::BakeRequest* request,
                       v1::Job* reply) override;
-  grpc::Status Get(grpc::ServerContext* context, const v1::JobId* request,
-                   v1::Job* reply) override;
+  grpc::Status Get(grpc::ServerContext* context, const v1::JobId* request, v1::Job* reply) override;
   grpc::Status List(grpc::ServerContext* context, const v1::ListRequest* request,
                     v1::JobList* reply) override;
   grpc::Status Cancel(grpc::ServerContext* context, const v1::JobId* request,

@@ -105,7 +105,8 @@ grpc::Status JobServiceImpl::ReadStore(grpc::ServerContext* context, const v1::J
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
     if (it->is_regular_file()) files.push_back(it->path());
   }
-  if (ec) return {grpc::StatusCode::INTERNAL, absl::StrCat("store ", dir.string(), ": ", ec.message())};
+  if (ec)
+    return {grpc::StatusCode::INTERNAL, absl::StrCat("store ", dir.string(), ": ", ec.message())};
   std::sort(files.begin(), files.end());
   std::string buffer(static_cast<size_t>(deps_.chunk_bytes), '\0');
   v1::FileChunk chunk;

@@ -142,6 +142,7 @@ absl::Status JobStore::Init(const std::string& path) {
     absl::StatusOr<SqliteDb> r = OpenSqlite(path, /*read_only=*/true);
     if (!r.ok()) return r.status();
     reader_ = std::move(*r);
+    if (absl::Status s = StartCheckpointer(path); !s.ok()) return s;
   }
   struct {
     SqliteStmt* stmt;
@@ -149,8 +150,8 @@ absl::Status JobStore::Init(const std::string& path) {
   } const prepared[] = {
       {&upsert_job_, absl::StrCat("INSERT OR REPLACE INTO jobs(", kJobColumns,
                                   ") VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")},
-      {&upsert_task_,
-       absl::StrCat("INSERT OR REPLACE INTO tasks(", kTaskColumns, ") VALUES(?,?,?,?,?,?,?,?,?,?,?,?)")},
+      {&upsert_task_, absl::StrCat("INSERT OR REPLACE INTO tasks(", kTaskColumns,
+                                   ") VALUES(?,?,?,?,?,?,?,?,?,?,?,?)")},
       {&insert_event_,
        absl::StrCat("INSERT INTO events(", kEventColumns, ") VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?)")},
       {&upsert_worker_,
@@ -163,6 +164,50 @@ absl::Status JobStore::Init(const std::string& path) {
     *p.stmt = std::move(*stmt);
   }
   return absl::OkStatus();
+}
+
+// Past this many WAL pages the checkpointer is woken; past kWalHardPages the
+// committing connection checkpoints itself (the background one is stuck).
+constexpr int kWalCheckpointPages = 1000;
+constexpr int kWalHardPages = 64000;
+
+absl::Status JobStore::StartCheckpointer(const std::string& path) {
+  absl::StatusOr<SqliteDb> db = OpenSqlite(path, /*read_only=*/false);
+  if (!db.ok()) return db.status();
+  checkpointer_ = std::move(*db);
+  if (absl::Status s = ExecSql(writer_.get(), "PRAGMA wal_autocheckpoint=0"); !s.ok()) return s;
+  sqlite3_wal_hook(writer_.get(), &JobStore::OnWalCommit, this);
+  checkpoint_thread_ = std::jthread([this](std::stop_token stop) { CheckpointLoop(stop); });
+  return absl::OkStatus();
+}
+
+int JobStore::OnWalCommit(void* self, sqlite3* db, const char*, int pages) {
+  auto* store = static_cast<JobStore*>(self);
+  if (pages >= kWalHardPages) {
+    sqlite3_wal_checkpoint_v2(db, nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+  } else if (pages >= kWalCheckpointPages) {
+    {
+      std::lock_guard lock(store->checkpoint_mu_);
+      store->checkpoint_due_ = true;
+    }
+    store->checkpoint_cv_.notify_one();
+  }
+  return SQLITE_OK;
+}
+
+void JobStore::CheckpointLoop(std::stop_token stop) {
+  for (;;) {
+    {
+      std::unique_lock lock(checkpoint_mu_);
+      checkpoint_cv_.wait_for(lock, stop, std::chrono::seconds(1),
+                              [this] { return checkpoint_due_; });
+      if (stop.stop_requested()) return;
+      checkpoint_due_ = false;
+    }
+    // PASSIVE: copies what it can without blocking the writer or readers.
+    sqlite3_wal_checkpoint_v2(checkpointer_.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr,
+                              nullptr);
+  }
 }
 
 absl::Status JobStore::UpsertJob(const JobRecord& j) {
@@ -252,11 +297,11 @@ absl::StatusOr<std::vector<EventRecord>> JobStore::ReadEvents(int64_t job_id, in
                                                               int limit) {
   std::lock_guard lock(reader_mu());
   std::vector<EventRecord> out;
-  absl::Status s = ForEachRow(
-      reader(),
-      absl::StrCat("SELECT ", kEventColumns, " FROM events WHERE job_id = ", job_id,
-                   " AND seq > ", after_seq, " ORDER BY seq LIMIT ", limit),
-      [&](const SqliteCursor& c) { out.push_back(EventFromRow(c)); });
+  absl::Status s =
+      ForEachRow(reader(),
+                 absl::StrCat("SELECT ", kEventColumns, " FROM events WHERE job_id = ", job_id,
+                              " AND seq > ", after_seq, " ORDER BY seq LIMIT ", limit),
+                 [&](const SqliteCursor& c) { out.push_back(EventFromRow(c)); });
   if (!s.ok()) return s;
   return out;
 }
@@ -266,8 +311,7 @@ absl::StatusOr<std::vector<TaskRecord>> JobStore::ReadTasks(int64_t job_id) {
   std::vector<TaskRecord> out;
   absl::Status s = ForEachRow(
       reader(),
-      absl::StrCat("SELECT ", kTaskColumns, " FROM tasks WHERE job_id = ", job_id,
-                   " ORDER BY idx"),
+      absl::StrCat("SELECT ", kTaskColumns, " FROM tasks WHERE job_id = ", job_id, " ORDER BY idx"),
       [&](const SqliteCursor& c) { out.push_back(TaskFromRow(c)); });
   if (!s.ok()) return s;
   return out;
@@ -286,8 +330,8 @@ absl::Status JobStore::PutScene(const SceneRecord& scene) {
 
 absl::StatusOr<std::optional<SceneRecord>> JobStore::GetScene(const std::string& sha256) {
   std::lock_guard lock(reader_mu());
-  absl::StatusOr<SqliteStmt> stmt =
-      PrepareSql(reader(), "SELECT sha256, size, file_name, created_ms FROM scenes WHERE sha256 = ?");
+  absl::StatusOr<SqliteStmt> stmt = PrepareSql(
+      reader(), "SELECT sha256, size, file_name, created_ms FROM scenes WHERE sha256 = ?");
   if (!stmt.ok()) return stmt.status();
   SqliteCursor c(stmt->get());
   c.Bind(sha256);

@@ -4,12 +4,14 @@
 // tasks, events, workers, scenes. The store holds no scheduling logic: the
 // LeaseTable decides every transition and commits it here as one Transition
 // = one SQLite transaction, so a crash never leaves half a transition.
+#include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -28,9 +30,9 @@ struct Transition {
 };
 
 struct StoreSnapshot {
-  std::vector<JobRecord> jobs;        // every job, by id
-  std::vector<TaskRecord> tasks;      // tasks of unfinished jobs, by (job, index)
-  std::vector<WorkerRecord> workers;  // by id
+  std::vector<JobRecord> jobs;                // every job, by id
+  std::vector<TaskRecord> tasks;              // tasks of unfinished jobs, by (job, index)
+  std::vector<WorkerRecord> workers;          // by id
   std::map<int64_t, int64_t> last_event_seq;  // job id -> highest event seq
 };
 
@@ -48,8 +50,7 @@ class JobStore {
 
   // Events of a job with seq > after_seq, in order, at most `limit`. Uses its
   // own read connection, so Watch streams do not wait for writers (WAL).
-  absl::StatusOr<std::vector<EventRecord>> ReadEvents(int64_t job_id, int64_t after_seq,
-                                                      int limit);
+  absl::StatusOr<std::vector<EventRecord>> ReadEvents(int64_t job_id, int64_t after_seq, int limit);
   absl::StatusOr<std::vector<TaskRecord>> ReadTasks(int64_t job_id);
 
   // Content-addressed scenes: inserting a known hash is a no-op.
@@ -62,6 +63,9 @@ class JobStore {
   absl::Status UpsertTask(const TaskRecord& t);
   absl::Status InsertEvent(const EventRecord& e);
   absl::Status UpsertWorker(const WorkerRecord& w);
+  absl::Status StartCheckpointer(const std::string& path);
+  void CheckpointLoop(std::stop_token stop);
+  static int OnWalCommit(void* self, sqlite3* db, const char* name, int pages);
   sqlite3* reader() { return reader_ ? reader_.get() : writer_.get(); }
   std::mutex& reader_mu() { return reader_ ? read_mu_ : write_mu_; }
 
@@ -70,6 +74,15 @@ class JobStore {
   SqliteDb writer_;
   SqliteDb reader_;  // null for ":memory:" (a second connection would see another database)
   SqliteStmt upsert_job_, upsert_task_, insert_event_, upsert_worker_;
+
+  // WAL checkpoints run on their own connection and thread: a checkpoint
+  // fsyncs (milliseconds on a VM disk), which would otherwise stall the
+  // commit that happens to trigger it, and with it every lease.
+  SqliteDb checkpointer_;
+  std::mutex checkpoint_mu_;
+  std::condition_variable_any checkpoint_cv_;
+  bool checkpoint_due_ = false;
+  std::jthread checkpoint_thread_;  // last: stopped before the connections close
 };
 
 }  // namespace wavebake

@@ -1,12 +1,13 @@
 // LeaseTable, job side: loading and resuming, submitting, stages, cancel,
 // cleanup, live numbers. The worker side (lease, heartbeat, complete, fail,
 // expiry) is in lease_table_tasks.cc.
+#include "coordinator/lease_table.h"
+
 #include <algorithm>
 #include <utility>
 
-#include "absl/strings/string_view.h"
 #include "absl/strings/str_cat.h"
-#include "coordinator/lease_table.h"
+#include "absl/strings/string_view.h"
 
 namespace wavebake {
 namespace {
@@ -15,10 +16,14 @@ namespace {
 std::pair<int, int> StageRange(const JobRecord& r, Phase phase) {
   switch (phase) {
     case Phase::kQueued:
-    case Phase::kBaking: return {0, r.tiles};
-    case Phase::kTransforming: return {r.tiles, r.tiles + r.groups};
-    case Phase::kFinalizing: return {r.tiles + r.groups, r.tasks_total()};
-    default: return {0, 0};
+    case Phase::kBaking:
+      return {0, r.tiles};
+    case Phase::kTransforming:
+      return {r.tiles, r.tiles + r.groups};
+    case Phase::kFinalizing:
+      return {r.tiles + r.groups, r.tasks_total()};
+    default:
+      return {0, 0};
   }
 }
 

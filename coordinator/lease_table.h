@@ -30,12 +30,12 @@
 #include <set>
 #include <span>
 #include <string>
-#include "absl/strings/string_view.h"
 #include <tuple>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "coordinator/clock.h"
 #include "coordinator/job_store.h"
 #include "coordinator/job_types.h"
@@ -182,8 +182,8 @@ class LeaseTable {
   absl::Status broken_;  // a failed commit stops the table (see above)
   int64_t next_job_id_ = 1;
   int64_t next_worker_id_ = 1;
-  std::map<int64_t, JobState> jobs_;                // by id: oldest first
-  std::set<int64_t> runnable_;                      // jobs with a ready task
+  std::map<int64_t, JobState> jobs_;                       // by id: oldest first
+  std::set<int64_t> runnable_;                             // jobs with a ready task
   std::set<std::tuple<int64_t, int64_t, int>> deadlines_;  // (deadline, job, task)
   std::map<int64_t, WorkerState> workers_;
 };

@@ -1,7 +1,7 @@
 // LeaseTable, worker side (DESIGN.md §4): register, lease, heartbeat,
 // complete, fail, and the expiry of leases that were not renewed in time.
-#include "absl/strings/string_view.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 #include "coordinator/lease_table.h"
 
 namespace wavebake {
@@ -40,7 +40,7 @@ absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
                        w->second.rec.consecutive_failures, " consecutive failures"));
     } else if (!runnable_.empty()) {
       JobState& js = jobs_.at(*runnable_.begin());  // oldest job with a ready task
-      const int idx = *js.ready.begin();             // its lowest ready task
+      const int idx = *js.ready.begin();            // its lowest ready task
       js.ready.erase(js.ready.begin());
       if (js.ready.empty()) runnable_.erase(js.rec.id);
       if (js.rec.phase == Phase::kQueued) {
@@ -76,8 +76,8 @@ absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
   return grant;
 }
 
-absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(
-    int64_t worker_id, std::span<const LeaseProgressReport> leases) {
+absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
+                                                      std::span<const LeaseProgressReport> leases) {
   Cleanups cleanups;
   HeartbeatResult result;
   {
@@ -146,7 +146,8 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
       if (it != js.leases.end() && it->second.attempt == key.attempt) DropLease(js, key.task);
       MaybeCleanup(js, cleanups);
     } else {
-      if (key.task >= static_cast<int>(js.tasks.size()) || key.attempt > js.tasks[key.task].attempts) {
+      if (key.task >= static_cast<int>(js.tasks.size()) ||
+          key.attempt > js.tasks[key.task].attempts) {
         return absl::NotFoundError(
             absl::StrCat("lease_id: lease ", FormatLeaseId(key), " was never granted"));
       }
@@ -278,8 +279,7 @@ void LeaseTable::ChargeTask(JobState& js, int task, EventKind kind, std::string 
   tx.tasks.push_back(t);
   AddEvent(js, tx, kind, &t, reason, worker_id);
   if (t.failures >= js.rec.max_attempts) {
-    EndJob(js,
-           Phase::kFailed,
+    EndJob(js, Phase::kFailed,
            absl::StrCat(TaskKindName(t.kind), " ", t.kind_index, " failed ", t.failures,
                         " times (max_attempts ", js.rec.max_attempts, "); last: ", reason),
            tx);

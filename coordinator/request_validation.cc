@@ -1,13 +1,13 @@
 #include "coordinator/request_validation.h"
 
 #include <cmath>
-#include "absl/strings/string_view.h"
 
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
+#include "absl/strings/string_view.h"
 
 namespace wavebake {
 namespace {
@@ -30,10 +30,12 @@ absl::Status CheckLayout(std::string& layout) {
   if (layout.empty()) layout = "camera";
   const std::vector<absl::string_view> parts = absl::StrSplit(layout, absl::MaxSplits(':', 1));
   if (parts[0] != "camera" && parts[0] != "grid" && parts[0] != "hilbert") {
-    return Bad("layout", absl::StrCat("\"", layout, "\" is not camera[:WxH], grid or hilbert[:WxH]"));
+    return Bad("layout",
+               absl::StrCat("\"", layout, "\" is not camera[:WxH], grid or hilbert[:WxH]"));
   }
   if (parts.size() == 2 && (parts[0] == "grid" || !ParseGridSize(parts[1]))) {
-    return Bad("layout", absl::StrCat("\"", layout, "\": WxH must be powers of two (e.g. camera:256x256)"));
+    return Bad("layout",
+               absl::StrCat("\"", layout, "\": WxH must be powers of two (e.g. camera:256x256)"));
   }
   return absl::OkStatus();
 }
@@ -65,7 +67,8 @@ absl::Status CheckScene(v1::BakeRequest& r) {
       }
       return absl::OkStatus();
     }
-    default: return Bad("scene", "missing: give a builtin:NAME or an uploaded SceneRef");
+    default:
+      return Bad("scene", "missing: give a builtin:NAME or an uploaded SceneRef");
   }
 }
 
@@ -75,8 +78,9 @@ absl::Status CheckOutputName(v1::BakeRequest& r) {
   if (name.size() > 128 || name.front() == '.' ||
       name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") !=
           name.npos) {
-    return Bad("output_name", absl::StrCat("\"", name,
-                                           "\" must be 1..128 of [A-Za-z0-9._-], not starting with '.'"));
+    return Bad(
+        "output_name",
+        absl::StrCat("\"", name, "\" must be 1..128 of [A-Za-z0-9._-], not starting with '.'"));
   }
   return absl::OkStatus();
 }
@@ -126,15 +130,15 @@ std::string BuiltinSceneName(const v1::BakeRequest& request) {
 }
 
 absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
-  for (absl::Status s : {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
-                         CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
-                                     {"adaptive", "full", "2d"}),
-                         CheckChoice("column_filter", *r.mutable_column_filter(), "haar",
-                                     {"haar", "legall53", "cdf97"}),
-                         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
-                         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix",
-                                     {"matrix", "column"}),
-                         CheckOutputName(r)}) {
+  for (absl::Status s :
+       {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
+        CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
+                    {"adaptive", "full", "2d"}),
+        CheckChoice("column_filter", *r.mutable_column_filter(), "haar",
+                    {"haar", "legall53", "cdf97"}),
+        CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
+        CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
+        CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
   return absl::OkStatus();

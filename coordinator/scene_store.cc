@@ -3,9 +3,9 @@
 #include <atomic>
 #include <system_error>
 
-#include "absl/strings/string_view.h"
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 
 namespace wavebake {
 namespace {
@@ -47,12 +47,13 @@ std::filesystem::path SceneStore::BlobPath(absl::string_view sha256) const {
 absl::StatusOr<std::unique_ptr<SceneUpload>> SceneStore::BeginUpload(absl::string_view file_name) {
   const std::string name = std::filesystem::path(std::string(file_name)).filename().string();
   if (name.empty() || name == "." || name == ".." || name.size() > 255) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("file_name: \"", file_name, "\" is not a file name (the first chunk names the file)"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "file_name: \"", file_name, "\" is not a file name (the first chunk names the file)"));
   }
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
-  if (ec) return absl::InternalError(absl::StrCat("scenes dir ", dir_.string(), ": ", ec.message()));
+  if (ec)
+    return absl::InternalError(absl::StrCat("scenes dir ", dir_.string(), ": ", ec.message()));
   static std::atomic<uint64_t> counter{0};
   const std::filesystem::path temp =
       dir_ / absl::StrCat(".upload-", clock_->NowMs(), "-", counter++, ".tmp");
@@ -83,7 +84,8 @@ SceneUpload::~SceneUpload() {
 }
 
 absl::Status SceneUpload::Append(absl::string_view data) {
-  if (!out_ || !sha_) return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
+  if (!out_ || !sha_)
+    return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
   size_ += static_cast<int64_t>(data.size());
   if (size_ > store_->max_bytes_) {
     return absl::InvalidArgumentError(absl::StrCat(
@@ -104,8 +106,8 @@ absl::StatusOr<SceneRecord> SceneUpload::Finish(absl::string_view expected_sha25
                   .file_name = file_name_,
                   .created_ms = store_->clock_->NowMs()};
   if (!expected_sha256.empty() && expected_sha256 != rec.sha256) {
-    return absl::InvalidArgumentError(absl::StrCat("sha256: the upload hashes to ", rec.sha256,
-                                                   ", not ", expected_sha256));
+    return absl::InvalidArgumentError(
+        absl::StrCat("sha256: the upload hashes to ", rec.sha256, ", not ", expected_sha256));
   }
   const std::filesystem::path final_path = store_->BlobPath(rec.sha256);
   std::error_code ec;
@@ -113,7 +115,9 @@ absl::StatusOr<SceneRecord> SceneUpload::Finish(absl::string_view expected_sha25
     std::filesystem::remove(temp_path_, ec);  // same bytes already stored: keep one copy
   } else {
     std::filesystem::rename(temp_path_, final_path, ec);  // atomic: readers see all or nothing
-    if (ec) return absl::InternalError(absl::StrCat("rename to ", final_path.string(), ": ", ec.message()));
+    if (ec)
+      return absl::InternalError(
+          absl::StrCat("rename to ", final_path.string(), ": ", ec.message()));
   }
   finished_ = true;
   if (absl::Status s = store_->db_->PutScene(rec); !s.ok()) return s;

@@ -18,9 +18,9 @@ struct ServiceDeps {
   const TokenAuth* auth = nullptr;
   PlanFn plan;
   std::filesystem::path store_root;
-  int64_t wait_ms = 500;          // LeaseReply.wait_ms when no task is ready
-  int64_t watch_poll_ms = 500;    // Watch: longest wait between checks / progress events
-  int chunk_bytes = 1 << 20;      // ReadStore / FetchScene chunk size
+  int64_t wait_ms = 500;        // LeaseReply.wait_ms when no task is ready
+  int64_t watch_poll_ms = 500;  // Watch: longest wait between checks / progress events
+  int chunk_bytes = 1 << 20;    // ReadStore / FetchScene chunk size
   const std::atomic<bool>* stopping = nullptr;  // ends Watch streams at shutdown
 };
 

@@ -1,7 +1,7 @@
 #include "coordinator/sqlite_util.h"
 
-#include "absl/strings/string_view.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 
 namespace wavebake {
 
@@ -13,8 +13,9 @@ absl::Status SqliteError(sqlite3* db, absl::string_view what) {
 absl::StatusOr<SqliteDb> OpenSqlite(const std::string& path, bool read_only) {
   sqlite3* raw = nullptr;
   // FULLMUTEX: the reader connection serves Watch streams on many threads.
-  const int flags = (read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE) |
-                    SQLITE_OPEN_FULLMUTEX;
+  const int flags =
+      (read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE) |
+      SQLITE_OPEN_FULLMUTEX;
   const int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
   SqliteDb db(raw);
   if (rc != SQLITE_OK) return SqliteError(db.get(), absl::StrCat("open ", path));
@@ -65,8 +66,7 @@ SqliteCursor& SqliteCursor::Bind(absl::string_view text) {
 }
 
 SqliteCursor& SqliteCursor::BindBlob(absl::string_view bytes) {
-  sqlite3_bind_blob(stmt_, next_++, bytes.data(), static_cast<int>(bytes.size()),
-                    SQLITE_TRANSIENT);
+  sqlite3_bind_blob(stmt_, next_++, bytes.data(), static_cast<int>(bytes.size()), SQLITE_TRANSIENT);
   return *this;
 }
 

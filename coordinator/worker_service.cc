@@ -3,8 +3,8 @@
 #include <fstream>
 #include <vector>
 
-#include "absl/strings/string_view.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 #include "coordinator/lease_id.h"
 #include "coordinator/proto_convert.h"
 
@@ -20,20 +20,22 @@ grpc::Status BadField(absl::string_view field, absl::string_view why) {
 
 absl::StatusOr<int64_t> ParseWorkerId(const std::string& id) {
   std::optional<int64_t> v = ParseId(id);
-  if (!v) return absl::InvalidArgumentError(absl::StrCat("worker_id: \"", id, "\" is not a worker id"));
+  if (!v)
+    return absl::InvalidArgumentError(absl::StrCat("worker_id: \"", id, "\" is not a worker id"));
   return *v;
 }
 
 absl::StatusOr<LeaseKey> ParseLease(absl::string_view field, const std::string& id) {
   std::optional<LeaseKey> key = ParseLeaseId(id);
-  if (!key) return absl::InvalidArgumentError(absl::StrCat(field, ": \"", id, "\" is not a lease id"));
+  if (!key)
+    return absl::InvalidArgumentError(absl::StrCat(field, ": \"", id, "\" is not a lease id"));
   return *key;
 }
 
 }  // namespace
 
-grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context, const v1::WorkerInfo* request,
-                                         v1::WorkerId* reply) {
+grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context,
+                                         const v1::WorkerInfo* request, v1::WorkerId* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   if (request->threads() < 1 || request->threads() > 4096) {
     return BadField("threads", absl::StrCat(request->threads(), " is not in 1..4096"));
@@ -57,7 +59,8 @@ grpc::Status WorkerServiceImpl::Lease(grpc::ServerContext* context, const v1::Le
     return grpc::Status::OK;
   }
   if (!ToProto(**grant, reply->mutable_task())) {
-    return {grpc::StatusCode::DATA_LOSS, absl::StrCat("job ", (*grant)->key.job_id, ": stored request does not parse")};
+    return {grpc::StatusCode::DATA_LOSS,
+            absl::StrCat("job ", (*grant)->key.job_id, ": stored request does not parse")};
   }
   return grpc::Status::OK;
 }
@@ -86,8 +89,8 @@ grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context,
   return grpc::Status::OK;
 }
 
-grpc::Status WorkerServiceImpl::Complete(grpc::ServerContext* context, const v1::TaskResult* request,
-                                         v1::CompleteReply* reply) {
+grpc::Status WorkerServiceImpl::Complete(grpc::ServerContext* context,
+                                         const v1::TaskResult* request, v1::CompleteReply* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
   if (!worker.ok()) return ToGrpc(worker.status());
@@ -95,7 +98,8 @@ grpc::Status WorkerServiceImpl::Complete(grpc::ServerContext* context, const v1:
   if (!key.ok()) return ToGrpc(key.status());
   if (request->rays_traced() < 0) return BadField("rays_traced", "negative");
   if (request->bytes_written() < 0) return BadField("bytes_written", "negative");
-  if (request->stats_json().size() > kMaxStatsBytes) return BadField("stats_json", "longer than 1 MiB");
+  if (request->stats_json().size() > kMaxStatsBytes)
+    return BadField("stats_json", "longer than 1 MiB");
   absl::StatusOr<bool> accepted = deps_.table->Complete(
       *worker, *key, {request->rays_traced(), request->bytes_written(), request->stats_json()});
   if (!accepted.ok()) return ToGrpc(accepted.status());
@@ -119,7 +123,8 @@ grpc::Status WorkerServiceImpl::Fail(grpc::ServerContext* context, const v1::Tas
   return grpc::Status::OK;
 }
 
-grpc::Status WorkerServiceImpl::FetchScene(grpc::ServerContext* context, const v1::SceneRef* request,
+grpc::Status WorkerServiceImpl::FetchScene(grpc::ServerContext* context,
+                                           const v1::SceneRef* request,
                                            grpc::ServerWriter<v1::SceneChunk>* writer) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   const std::string& sha = request->sha256();
@@ -128,7 +133,8 @@ grpc::Status WorkerServiceImpl::FetchScene(grpc::ServerContext* context, const v
   }
   absl::StatusOr<std::optional<SceneRecord>> rec = deps_.scenes->Find(sha);
   if (!rec.ok()) return ToGrpc(rec.status());
-  if (!rec->has_value()) return {grpc::StatusCode::NOT_FOUND, absl::StrCat("sha256: no scene ", sha)};
+  if (!rec->has_value())
+    return {grpc::StatusCode::NOT_FOUND, absl::StrCat("sha256: no scene ", sha)};
   std::ifstream in(deps_.scenes->BlobPath(sha), std::ios::binary);
   if (!in) return {grpc::StatusCode::INTERNAL, absl::StrCat("cannot read scene ", sha)};
   std::string buffer(static_cast<size_t>(deps_.chunk_bytes), '\0');

@@ -70,7 +70,8 @@ class FakeWorker {
     p->set_lease_id(task.lease_id());
     p->set_rays_traced(100);
     v1::HeartbeatReply hb_reply;
-    if (grpc::Status s = stub_->Heartbeat(CallContext(token_).get(), hb, &hb_reply); !s.ok()) return s;
+    if (grpc::Status s = stub_->Heartbeat(CallContext(token_).get(), hb, &hb_reply); !s.ok())
+      return s;
     if (hb_reply.renewed_lease_ids_size() != 1) return grpc::Status::OK;  // cancelled: drop it
     v1::TaskResult result;
     result.set_worker_id(worker_id);

@@ -1,8 +1,8 @@
 // The coordinator over gRPC on 127.0.0.1 (and in-process): a job end to end
 // with fake workers, auth, INVALID_ARGUMENT / NOT_FOUND, uploads (§4).
+#include <gmock/gmock.h>
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
-#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <future>
@@ -16,9 +16,9 @@
 namespace wavebake {
 namespace {
 
+using testing::CallContext;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using testing::CallContext;
 
 constexpr int kTiles = 6, kGroups = 3;
 
@@ -55,7 +55,8 @@ class GrpcTest : public ::testing::Test {
     return jobs_->Submit(CallContext(token_).get(), r, job ? job : &ignored);
   }
 
-  absl::StatusOr<v1::SceneRef> Upload(const std::string& bytes, const std::string& name, size_t chunk) {
+  absl::StatusOr<v1::SceneRef> Upload(const std::string& bytes, const std::string& name,
+                                      size_t chunk) {
     auto ctx = CallContext(token_);
     v1::SceneRef ref;
     auto writer = jobs_->UploadScene(ctx.get(), &ref);
@@ -67,13 +68,15 @@ class GrpcTest : public ::testing::Test {
     }
     writer->WritesDone();
     grpc::Status s = writer->Finish();
-    if (!s.ok()) return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
+    if (!s.ok())
+      return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
     return ref;
   }
 
   int SceneFiles() const {
     int n = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir_.path() / "scenes")) n += e.is_regular_file();
+    for (const auto& e : std::filesystem::directory_iterator(dir_.path() / "scenes"))
+      n += e.is_regular_file();
     return n;
   }
 
@@ -162,10 +165,12 @@ TEST_F(GrpcTest, MissingOrWrongTokenIsUnauthenticated) {
   v1::JobId id;
   id.set_id("1");
   v1::Job job;
-  EXPECT_EQ(jobs_->Get(CallContext("").get(), id, &job).error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(jobs_->Get(CallContext("").get(), id, &job).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
   EXPECT_EQ(jobs_->Get(CallContext("wrong").get(), id, &job).error_code(),
             grpc::StatusCode::UNAUTHENTICATED);
-  EXPECT_EQ(jobs_->Get(CallContext("s3cret").get(), id, &job).error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(jobs_->Get(CallContext("s3cret").get(), id, &job).error_code(),
+            grpc::StatusCode::NOT_FOUND);
   v1::WorkerInfo info;
   info.set_threads(1);
   v1::WorkerId wid;
@@ -217,7 +222,8 @@ TEST_F(GrpcTest, BadRequestsNameTheField) {
       {[](auto& r) { r.mutable_scene()->set_builtin("builtin:Bad Name"); }, "scene.builtin:"},
       {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256(std::string(64, 'f')); },
        "scene.uploaded.sha256: no uploaded scene"},
-      {[](auto& r) { r.mutable_scene()->set_builtin("builtin:empty"); }, "scene: the mesh has no vertices"},
+      {[](auto& r) { r.mutable_scene()->set_builtin("builtin:empty"); },
+       "scene: the mesh has no vertices"},
   };
   for (const Case& c : cases) {
     v1::BakeRequest r = testing::BuiltinRequest();
@@ -251,7 +257,8 @@ TEST_F(GrpcTest, UnknownJobOrWorkerIsNotFound) {
   id.set_id("999");
   v1::Job job;
   EXPECT_EQ(jobs_->Get(CallContext("").get(), id, &job).error_code(), grpc::StatusCode::NOT_FOUND);
-  EXPECT_EQ(jobs_->Cancel(CallContext("").get(), id, &job).error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(jobs_->Cancel(CallContext("").get(), id, &job).error_code(),
+            grpc::StatusCode::NOT_FOUND);
   auto ctx = CallContext("");
   auto stream = jobs_->Watch(ctx.get(), id);
   v1::JobEvent e;

@@ -20,9 +20,10 @@ struct Process {
     auto s = JobStore::Open(path);
     EXPECT_TRUE(s.ok()) << s.status();
     store = std::move(*s);
-    auto t = LeaseTable::Create(store.get(), clock, {.lease_ms = 1000}, [cleaned](const JobRecord& j) {
-      if (cleaned) cleaned->push_back(j.id);
-    });
+    auto t =
+        LeaseTable::Create(store.get(), clock, {.lease_ms = 1000}, [cleaned](const JobRecord& j) {
+          if (cleaned) cleaned->push_back(j.id);
+        });
     EXPECT_TRUE(t.ok()) << t.status();
     table = std::move(*t);
   }
@@ -47,8 +48,10 @@ TEST_F(JobStoreTest, RestartResumesJobWithLeasedTasksPending) {
   {
     Process p(DbPath(), &clock_);
     job = p.table->ReserveJobId();
-    ASSERT_TRUE(p.table->AddJob(job, testing::Serialized(testing::BuiltinRequest()), 3,
-                                testing::Plan(4, 1, "resume.wbk")).ok());
+    ASSERT_TRUE(p.table
+                    ->AddJob(job, testing::Serialized(testing::BuiltinRequest()), 3,
+                             testing::Plan(4, 1, "resume.wbk"))
+                    .ok());
     worker = *p.table->RegisterWorker("w", 2);
     const LeaseGrant t0 = p.Lease(worker);
     p.Lease(worker);

@@ -18,7 +18,8 @@ class LeaseTableTest : public ::testing::Test {
   void SetUp() override { table_ = MakeTable(); }
 
   std::unique_ptr<LeaseTable> MakeTable(int failure_limit = 3) {
-    auto table = LeaseTable::Create(nullptr, &clock_, {.lease_ms = 1000, .worker_failure_limit = failure_limit},
+    auto table = LeaseTable::Create(nullptr, &clock_,
+                                    {.lease_ms = 1000, .worker_failure_limit = failure_limit},
                                     [this](const JobRecord& j) { cleaned_.push_back(j.id); });
     EXPECT_TRUE(table.ok()) << table.status();
     return std::move(*table);
@@ -45,7 +46,8 @@ class LeaseTableTest : public ::testing::Test {
   }
 
   bool Done(int64_t worker, const LeaseGrant& g, std::string stats = "{}") {
-    auto ok = table_->Complete(worker, g.key, {.rays_traced = 1000, .bytes_written = 10, .stats_json = stats});
+    auto ok = table_->Complete(worker, g.key,
+                               {.rays_traced = 1000, .bytes_written = 10, .stats_json = stats});
     EXPECT_TRUE(ok.ok()) << ok.status();
     return ok.ok() && *ok;
   }

@@ -30,7 +30,10 @@ class TempDir {
 };
 
 inline JobPlan Plan(int tiles, int groups, std::string store_path = "job.wbk") {
-  return {.tiles = tiles, .groups = groups, .total_rays_estimate = tiles * 1000, .store_path = store_path};
+  return {.tiles = tiles,
+          .groups = groups,
+          .total_rays_estimate = tiles * 1000,
+          .store_path = store_path};
 }
 
 inline v1::BakeRequest BuiltinRequest(std::string name = "builtin:furnace") {
