@@ -5,8 +5,10 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <future>
 #include <map>
+#include <thread>
 
 #include "coordinator/coordinator.h"
 #include "coordinator/scene_store.h"
@@ -33,12 +35,12 @@ absl::StatusOr<JobPlan> FakePlan(const v1::BakeRequest& r) {
 
 class GrpcTest : public ::testing::Test {
  protected:
-  void Start(std::string token = "", int64_t max_upload = 1 << 20) {
+  void Start(std::string token = "", int64_t max_upload = 1 << 20, double lease_seconds = 5) {
     token_ = token;
     CoordinatorOptions o{.listen_address = "127.0.0.1:0",
                          .data_dir = dir_.path(),
                          .token = token,
-                         .lease_seconds = 5,
+                         .lease_seconds = lease_seconds,
                          .max_upload_bytes = max_upload,
                          .wait_ms = 20};
     auto c = Coordinator::Start(o, FakePlan, nullptr);
@@ -71,6 +73,21 @@ class GrpcTest : public ::testing::Test {
     if (!s.ok())
       return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
     return ref;
+  }
+
+  // Registers a worker and leases one task by hand.
+  v1::Task LeaseOne(std::string* worker_id) {
+    v1::WorkerInfo info;
+    info.set_threads(1);
+    v1::WorkerId wid;
+    EXPECT_TRUE(workers_->Register(CallContext(token_).get(), info, &wid).ok());
+    *worker_id = wid.id();
+    v1::LeaseRequest lease;
+    lease.set_worker_id(wid.id());
+    v1::LeaseReply reply;
+    EXPECT_TRUE(workers_->Lease(CallContext(token_).get(), lease, &reply).ok());
+    EXPECT_TRUE(reply.has_task());
+    return reply.task();
   }
 
   int SceneFiles() const {
@@ -375,6 +392,100 @@ TEST_F(GrpcTest, RestartedCoordinatorKnowsItsJobs) {
   v1::Job second;
   ASSERT_TRUE(Submit(testing::BuiltinRequest(), &second).ok());
   EXPECT_NE(second.id(), job.id());
+}
+
+TEST_F(GrpcTest, WatchStreamsLiveProgressAndEndsAtShutdown) {
+  Start();
+  v1::Job job;
+  ASSERT_TRUE(Submit(testing::BuiltinRequest(), &job).ok());
+  v1::JobId id;
+  id.set_id(job.id());
+  auto ctx = CallContext("", 20'000);
+  auto stream = jobs_->Watch(ctx.get(), id);
+  v1::JobEvent event;
+  ASSERT_TRUE(stream->Read(&event));
+  EXPECT_EQ(event.kind(), v1::EVENT_SUBMITTED);
+
+  std::string worker;
+  const v1::Task task = LeaseOne(&worker);
+  v1::HeartbeatRequest hb;
+  hb.set_worker_id(worker);
+  v1::LeaseProgress* p = hb.add_leases();
+  p->set_lease_id(task.lease_id());
+  p->set_rays_traced(777);
+  p->set_bytes_written(55);
+  v1::HeartbeatReply hb_reply;
+  ASSERT_TRUE(workers_->Heartbeat(CallContext("").get(), hb, &hb_reply).ok());
+  EXPECT_EQ(hb_reply.renewed_lease_ids_size(), 1);
+  bool progress = false;
+  while (!progress && stream->Read(&event)) {
+    progress = event.kind() == v1::EVENT_PROGRESS && event.rays_traced() == 777;
+  }
+  ASSERT_TRUE(progress);
+  EXPECT_EQ(event.bytes_written(), 55);
+  EXPECT_EQ(event.phase(), v1::PHASE_BAKING);
+  EXPECT_EQ(event.tasks_total(), kTiles + kGroups + 1);
+
+  // Shutdown ends open Watch streams instead of waiting for the job.
+  const auto start = std::chrono::steady_clock::now();
+  coordinator_->Shutdown();
+  while (stream->Read(&event)) {
+  }
+  EXPECT_FALSE(stream->Finish().ok());
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(3));
+}
+
+TEST_F(GrpcTest, LeaseOfVanishedWorkerExpiresWithoutAnyCall) {
+  Start("", 1 << 20, /*lease_seconds=*/0.2);
+  v1::Job job;
+  ASSERT_TRUE(Submit(testing::BuiltinRequest(), &job).ok());
+  std::string worker;
+  const v1::Task task = LeaseOne(&worker);
+  EXPECT_EQ(task.kind(), v1::BAKE_TILE);
+  EXPECT_EQ(task.index(), 0);
+  EXPECT_EQ(task.attempt(), 1);
+  EXPECT_EQ(task.request().light_res(), 32);
+  v1::JobId id;
+  id.set_id(job.id());
+  v1::Job now;
+  ASSERT_TRUE(jobs_->Get(CallContext("").get(), id, &now).ok());
+  EXPECT_EQ(now.leased_tasks(), 1);
+  // The coordinator's reaper returns the task; nobody calls meanwhile.
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  ASSERT_TRUE(jobs_->Get(CallContext("").get(), id, &now).ok());
+  EXPECT_EQ(now.leased_tasks(), 0);
+  std::string other;
+  const v1::Task again = LeaseOne(&other);
+  EXPECT_EQ(again.index(), 0);
+  EXPECT_EQ(again.attempt(), 2);
+}
+
+TEST_F(GrpcTest, ServesTlsWhenGivenCertAndKey) {
+  const auto cert = dir_.path() / "cert.pem", key = dir_.path() / "key.pem";
+  const std::string cmd =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+      "-addext subjectAltName=DNS:localhost,IP:127.0.0.1 -keyout " +
+      key.string() + " -out " + cert.string() + " >/dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0) GTEST_SKIP() << "no openssl to make a test certificate";
+  auto c = Coordinator::Start({.listen_address = "127.0.0.1:0",
+                               .data_dir = dir_.path() / "data",
+                               .tls_cert_path = cert,
+                               .tls_key_path = key},
+                              FakePlan, nullptr);
+  ASSERT_TRUE(c.ok()) << c.status();
+  std::ifstream in(cert);
+  grpc::SslCredentialsOptions ssl;
+  ssl.pem_root_certs.assign(std::istreambuf_iterator<char>(in), {});
+  auto tls =
+      v1::JobService::NewStub(grpc::CreateChannel((*c)->address(), grpc::SslCredentials(ssl)));
+  v1::JobList list;
+  EXPECT_TRUE(tls->List(CallContext("").get(), v1::ListRequest(), &list).ok());
+  auto plain = v1::JobService::NewStub(
+      grpc::CreateChannel((*c)->address(), grpc::InsecureChannelCredentials()));
+  EXPECT_FALSE(plain->List(CallContext("", 2000).get(), v1::ListRequest(), &list).ok());
+  auto half = Coordinator::Start({.data_dir = dir_.path() / "d2", .tls_cert_path = cert}, FakePlan,
+                                 nullptr);
+  EXPECT_EQ(half.status().code(), absl::StatusCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -68,7 +68,11 @@ TEST_F(LeaseTableTest, TilesThenGroupsThenFinalize) {
   EXPECT_EQ(PhaseOf(job), Phase::kBaking);
   EXPECT_EQ(Next(w, &t1), "BAKE_TILE 1");
   EXPECT_EQ(Next(w), "-");  // groups wait for every tile (§2)
+  clock_.Advance(500);
   EXPECT_TRUE(Done(w, t1));
+  auto mid = table_->Get(job);
+  EXPECT_DOUBLE_EQ(mid->rays_per_second, 2000);  // 1000 rays in 0.5 s
+  EXPECT_GT(mid->eta_seconds, 0);
   EXPECT_EQ(Next(w), "-");  // tile 0 still out
   EXPECT_TRUE(Done(w, t0));
   EXPECT_EQ(PhaseOf(job), Phase::kTransforming);
