@@ -168,6 +168,8 @@ class LeaseTable {
   void ChargeTask(JobState& js, int task, EventKind kind, std::string reason, int64_t worker_id,
                   Transition& tx);
   void ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups);
+  absl::StatusOr<bool> CompleteLocked(JobState& js, int64_t worker_id, const LeaseKey& key,
+                                      const TaskReport& report);
   absl::Status CommitLocked(Transition& tx);
   void RunCleanups(const Cleanups& cleanups);
 

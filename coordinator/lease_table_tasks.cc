@@ -132,8 +132,7 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
   {
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
-    auto w = workers_.find(worker_id);
-    if (w == workers_.end()) {
+    if (!workers_.contains(worker_id)) {
       return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
     }
     auto job = jobs_.find(key.job_id);
@@ -141,48 +140,50 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
       return absl::NotFoundError(absl::StrCat("lease_id: job ", key.job_id, " not found"));
     }
     JobState& js = job->second;
-    if (IsTerminal(js.rec.phase)) {
-      auto it = js.leases.find(key.task);
-      if (it != js.leases.end() && it->second.attempt == key.attempt) DropLease(js, key.task);
-      MaybeCleanup(js, cleanups);
-    } else {
-      if (key.task >= static_cast<int>(js.tasks.size()) ||
-          key.attempt > js.tasks[key.task].attempts) {
-        return absl::NotFoundError(
-            absl::StrCat("lease_id: lease ", FormatLeaseId(key), " was never granted"));
-      }
-      TaskRecord& t = js.tasks[key.task];
-      if (t.state == TaskState::kDone) return false;
-      if (js.leases.contains(key.task)) DropLease(js, key.task);  // ours or a later grant's
-      if (t.state == TaskState::kPending && js.ready.erase(key.task) && js.ready.empty()) {
-        runnable_.erase(js.rec.id);  // a late result of an expired lease
-      }
-      t.state = TaskState::kDone;
-      t.worker_id = absl::StrCat(worker_id);
-      t.rays_traced = report.rays_traced;
-      t.bytes_written = report.bytes_written;
-      t.stats_json = report.stats_json;
-      ++js.tasks_done;
-      if (t.kind == TaskKind::kBakeTile) ++js.tiles_done;
-      if (t.kind == TaskKind::kTransformColumns) ++js.groups_done;
-      if (t.kind == TaskKind::kFinalize) js.rec.stats_json = report.stats_json;
-      js.rec.rays_traced += report.rays_traced;
-      js.rec.bytes_written += report.bytes_written;
-      Transition tx;
-      tx.tasks.push_back(t);
-      if (w->second.rec.consecutive_failures != 0) {
-        w->second.rec.consecutive_failures = 0;
-        tx.workers.push_back(w->second.rec);
-      }
-      AddEvent(js, tx, EventKind::kTaskDone, &t, {}, worker_id);
-      AdvanceStage(js, tx);  // may free js.tasks (job DONE): t is not used below
-      tx.jobs.push_back(js.rec);
-      if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
-      return true;
-    }
+    if (!IsTerminal(js.rec.phase)) return CompleteLocked(js, worker_id, key, report);
+    auto it = js.leases.find(key.task);  // a cancelled or failed job's straggler
+    if (it != js.leases.end() && it->second.attempt == key.attempt) DropLease(js, key.task);
+    MaybeCleanup(js, cleanups);
   }
   RunCleanups(cleanups);
   return false;
+}
+
+absl::StatusOr<bool> LeaseTable::CompleteLocked(JobState& js, int64_t worker_id,
+                                                const LeaseKey& key, const TaskReport& report) {
+  if (key.task >= static_cast<int>(js.tasks.size()) || key.attempt > js.tasks[key.task].attempts) {
+    return absl::NotFoundError(
+        absl::StrCat("lease_id: lease ", FormatLeaseId(key), " was never granted"));
+  }
+  TaskRecord& t = js.tasks[key.task];
+  if (t.state == TaskState::kDone) return false;
+  if (js.leases.contains(key.task)) DropLease(js, key.task);  // ours or a later grant's
+  if (t.state == TaskState::kPending && js.ready.erase(key.task) && js.ready.empty()) {
+    runnable_.erase(js.rec.id);  // a late result of an expired lease
+  }
+  t.state = TaskState::kDone;
+  t.worker_id = absl::StrCat(worker_id);
+  t.rays_traced = report.rays_traced;
+  t.bytes_written = report.bytes_written;
+  t.stats_json = report.stats_json;
+  ++js.tasks_done;
+  if (t.kind == TaskKind::kBakeTile) ++js.tiles_done;
+  if (t.kind == TaskKind::kTransformColumns) ++js.groups_done;
+  if (t.kind == TaskKind::kFinalize) js.rec.stats_json = report.stats_json;  // final error stats
+  js.rec.rays_traced += report.rays_traced;
+  js.rec.bytes_written += report.bytes_written;
+  Transition tx;
+  tx.tasks.push_back(t);
+  WorkerRecord& w = workers_.at(worker_id).rec;
+  if (w.consecutive_failures != 0) {  // a success ends a run of failures
+    w.consecutive_failures = 0;
+    tx.workers.push_back(w);
+  }
+  AddEvent(js, tx, EventKind::kTaskDone, &t, {}, worker_id);
+  AdvanceStage(js, tx);  // may free js.tasks (job DONE): t is not used below
+  tx.jobs.push_back(js.rec);
+  if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+  return true;
 }
 
 absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
