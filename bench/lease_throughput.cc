@@ -100,7 +100,7 @@ void LeaseAndComplete(benchmark::State& state, JobStore* store) {
   for (auto _ : state) {
     auto table = LeaseTable::Create(store, nullptr, {.lease_ms = 60'000}, nullptr);
     const int64_t job = (*table)->ReserveJobId();
-    JobPlan plan{
+    PlannedJob plan{
         .tiles = threads * ops + 1, .groups = 1, .store_path = "bench" + std::to_string(job)};
     if (!(*table)->AddJob(job, "", 3, plan).ok()) return state.SkipWithError("AddJob failed");
     std::vector<int64_t> workers;
@@ -181,8 +181,8 @@ void BM_GrpcLoopback(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const int ops = static_cast<int>(state.range(1));
   TempDir dir;
-  auto plan = [&](const v1::BakeRequest&) -> absl::StatusOr<JobPlan> {
-    return JobPlan{.tiles = threads * ops + 1, .groups = 1};
+  auto plan = [&](const v1::BakeRequest&) -> absl::StatusOr<PlannedJob> {
+    return PlannedJob{.tiles = threads * ops + 1, .groups = 1};
   };
   CoordinatorOptions options{.data_dir = dir.path(), .lease_seconds = 60};
   auto coordinator = Coordinator::Start(options, plan, nullptr);

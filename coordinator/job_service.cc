@@ -52,7 +52,7 @@ absl::StatusOr<JobInfo> JobServiceImpl::PlanAndAdd(v1::BakeRequest request) {
     return absl::AlreadyExistsError(absl::StrCat("output_name: \"", request.output_name(),
                                                  "\" already exists in the store root"));
   }
-  absl::StatusOr<JobPlan> plan = deps_.plan(request);
+  absl::StatusOr<PlannedJob> plan = deps_.plan(request);
   if (!plan.ok()) return plan.status();
   if (plan->store_path.empty()) plan->store_path = request.output_name();
   std::string bytes;

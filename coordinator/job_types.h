@@ -46,15 +46,17 @@ enum class EventKind : int {
   kResumed = 9,
 };
 
-// What the planning callback returns for a request (the lead wires the real
-// planner: scene loading and layout live outside the coordinator).
-struct JobPlan {
+// What the planning callback returns for a request (coordinator/job_planner.h
+// is the real planner). Not core/job_plan.h's JobPlan, which describes the
+// tiles and groups themselves: both live in namespace wavebake and meet in
+// the planner and in wb_cli.
+struct PlannedJob {
   int tiles = 0;
   int groups = 0;
   int64_t total_rays_estimate = 0;
   std::string store_path{};  // relative to the store root; empty = the request's output_name
 };
-using PlanFn = std::function<absl::StatusOr<JobPlan>(const v1::BakeRequest&)>;
+using PlanFn = std::function<absl::StatusOr<PlannedJob>(const v1::BakeRequest&)>;
 
 struct JobRecord {
   int64_t id = 0;

@@ -125,7 +125,7 @@ int64_t LeaseTable::ReserveJobId() {
 }
 
 absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int max_attempts,
-                                           const JobPlan& plan) {
+                                           const PlannedJob& plan) {
   // The plan comes from the caller's planner: its mistakes are internal errors.
   if (plan.tiles < 1 || plan.groups < 1 ||
       int64_t{plan.tiles} + plan.groups + 1 > options_.max_tasks_per_job) {

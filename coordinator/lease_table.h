@@ -105,7 +105,7 @@ class LeaseTable {
   // job) + AddJob; the planner runs in between without any lock held.
   int64_t ReserveJobId();
   absl::StatusOr<JobInfo> AddJob(int64_t id, std::string request, int max_attempts,
-                                 const JobPlan& plan);
+                                 const PlannedJob& plan);
   absl::StatusOr<JobInfo> Get(int64_t id) const;
   std::vector<JobInfo> List(int limit, bool active_only) const;  // newest first
   absl::StatusOr<JobInfo> Cancel(int64_t id);

@@ -26,11 +26,11 @@ constexpr int kTiles = 6, kGroups = 3;
 
 // Stands in for the real planner: a fixed shape; "builtin:empty" is a scene
 // the planner rejects the way a mesh loader would.
-absl::StatusOr<JobPlan> FakePlan(const v1::BakeRequest& r) {
+absl::StatusOr<PlannedJob> FakePlan(const v1::BakeRequest& r) {
   if (r.scene().builtin() == "builtin:empty") {
     return absl::InvalidArgumentError("scene: the mesh has no vertices");
   }
-  return JobPlan{.tiles = kTiles, .groups = kGroups, .total_rays_estimate = kTiles * 1000};
+  return PlannedJob{.tiles = kTiles, .groups = kGroups, .total_rays_estimate = kTiles * 1000};
 }
 
 class GrpcTest : public ::testing::Test {

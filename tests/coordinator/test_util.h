@@ -29,7 +29,7 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-inline JobPlan Plan(int tiles, int groups, std::string store_path = "job.wbk") {
+inline PlannedJob Plan(int tiles, int groups, std::string store_path = "job.wbk") {
   return {.tiles = tiles,
           .groups = groups,
           .total_rays_estimate = tiles * 1000,
