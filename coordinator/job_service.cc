@@ -6,7 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "coordinator/lease_id.h"
 #include "coordinator/proto_convert.h"
-#include "coordinator/request_validation.h"
+#include "proto/bake_request.h"
 
 namespace wavebake {
 

@@ -1,9 +1,8 @@
 // BakeRequest defaults and field-naming errors (DESIGN.md §4, §5).
-#include "coordinator/request_validation.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "proto/bake_request.h"
 #include "tests/coordinator/test_util.h"
 
 namespace wavebake {
@@ -71,6 +70,11 @@ TEST(RequestValidationTest, ErrorsStartWithTheField) {
       {[](auto& r) { r.set_output_name(".hidden"); }, "output_name: "},
       {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256("abc"); },
        "scene.uploaded.sha256: "},
+      // The core's rules apply too: what Submit accepts, every worker can bake.
+      {[](auto& r) { r.set_layout("hilbert"); }, "layout: "},
+      {[](auto& r) { r.set_layout("camera:8192x8192"); }, "layout: "},
+      {[](auto& r) { r.set_tile_size(512); }, "tile_size: "},
+      {[](auto& r) { r.set_column_filter("daub4"); }, "column_filter: "},
   };
   for (const auto& [edit, prefix] : cases) {
     v1::BakeRequest r = testing::BuiltinRequest();
@@ -79,6 +83,47 @@ TEST(RequestValidationTest, ErrorsStartWithTheField) {
     EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << prefix;
     EXPECT_THAT(std::string(s.message()), StartsWith(prefix));
   }
+}
+
+// Every BakeParams field a request carries survives the trip through the
+// request (clients build requests from flags, workers read them back).
+TEST(RequestValidationTest, ParamsRoundTripThroughTheRequest) {
+  BakeParams p;
+  p.light_res = 16;
+  p.layout = "hilbert:64x32";
+  p.supersample = 9;
+  p.row_filter = WaveletFilter::kDaub4;
+  p.column_mode = ColumnMode::kFull;
+  p.column_filter = WaveletFilter::kLeGall53;
+  p.target_error = 0.05;
+  p.error_scope = ErrorScope::kColumn;
+  p.column_terms = 7;
+  p.bits = 11;
+  p.seed = 0;
+  p.tile_size = 8;
+  p.column_group = 100;
+  v1::BakeRequest r = ToBakeRequest(p);
+  r.mutable_scene()->set_builtin("builtin:furnace");
+  absl::StatusOr<BakeParams> back = ToBakeParams(r);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->light_res, p.light_res);
+  EXPECT_EQ(back->layout, p.layout);
+  EXPECT_EQ(back->supersample, p.supersample);
+  EXPECT_EQ(back->row_filter, p.row_filter);
+  EXPECT_EQ(back->column_mode, p.column_mode);
+  EXPECT_EQ(back->column_filter, p.column_filter);
+  EXPECT_EQ(back->target_error, p.target_error);
+  EXPECT_EQ(back->error_scope, p.error_scope);
+  EXPECT_EQ(back->column_terms, p.column_terms);
+  EXPECT_EQ(back->bits, p.bits);
+  EXPECT_EQ(back->seed, p.seed);
+  EXPECT_EQ(back->tile_size, p.tile_size);
+  EXPECT_EQ(back->column_group, p.column_group);
+}
+
+TEST(RequestValidationTest, PartialStoreIsHiddenBesideTheStore) {
+  EXPECT_EQ(PartialStorePath("cubes.wbk"), ".cubes.wbk.partial");
+  EXPECT_EQ(PartialStorePath("team/cubes.wbk"), "team/.cubes.wbk.partial");
 }
 
 }  // namespace

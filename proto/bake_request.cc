@@ -1,43 +1,28 @@
-#include "coordinator/request_validation.h"
+#include "proto/bake_request.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "absl/strings/match.h"
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
-#include "absl/strings/str_split.h"
 #include "absl/strings/string_view.h"
+#include "absl/strings/strip.h"
+#include "core/bake_params_io.h"
+#include "core/layout.h"
 
 namespace wavebake {
 namespace {
-
-bool IsPowerOfTwo(int64_t v) { return v > 0 && (v & (v - 1)) == 0; }
 
 absl::Status Bad(absl::string_view field, absl::string_view why) {
   return absl::InvalidArgumentError(absl::StrCat(field, ": ", why));
 }
 
-// "WxH" with W, H powers of two up to 65536.
-bool ParseGridSize(absl::string_view s) {
-  const std::vector<absl::string_view> wh = absl::StrSplit(s, 'x');
-  int w = 0, h = 0;
-  return wh.size() == 2 && absl::SimpleAtoi(wh[0], &w) && absl::SimpleAtoi(wh[1], &h) &&
-         IsPowerOfTwo(w) && IsPowerOfTwo(h) && w <= 65536 && h <= 65536;
-}
-
+// The spelling is the core's (core/layout.h); the request keeps it as given
+// ("camera" stays "camera", not "camera:64x64"), since the store records it.
 absl::Status CheckLayout(std::string& layout) {
   if (layout.empty()) layout = "camera";
-  const std::vector<absl::string_view> parts = absl::StrSplit(layout, absl::MaxSplits(':', 1));
-  if (parts[0] != "camera" && parts[0] != "grid" && parts[0] != "hilbert") {
-    return Bad("layout",
-               absl::StrCat("\"", layout, "\" is not camera[:WxH], grid or hilbert[:WxH]"));
-  }
-  if (parts.size() == 2 && (parts[0] == "grid" || !ParseGridSize(parts[1]))) {
-    return Bad("layout",
-               absl::StrCat("\"", layout, "\": WxH must be powers of two (e.g. camera:256x256)"));
-  }
-  return absl::OkStatus();
+  return ParseLayout(layout).status();
 }
 
 absl::Status CheckChoice(absl::string_view field, std::string& value, absl::string_view fallback,
@@ -106,8 +91,8 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
   }
   if (!r.has_seed()) r.set_seed(1);
   if (r.tile_size() == 0) r.set_tile_size(32);
-  if (!IsPowerOfTwo(r.tile_size()) || r.tile_size() < 4 || r.tile_size() > 1024) {
-    return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..1024"));
+  if (!IsPowerOfTwo(r.tile_size()) || r.tile_size() < 4 || r.tile_size() > 256) {
+    return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..256"));
   }
   if (r.column_group() == 0) r.set_column_group(256);
   if (r.column_group() < 1 || r.column_group() > 65536) {
@@ -118,6 +103,29 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
     return Bad("max_attempts", absl::StrCat(r.max_attempts(), " is not in 1..100"));
   }
   return absl::OkStatus();
+}
+
+// The core parameters of a request whose fields are each in range.
+BakeParams ParamsOf(const v1::BakeRequest& r) {
+  BakeParams p;
+  p.light_res = r.light_res();
+  p.layout = r.layout();
+  p.supersample = r.supersample();
+  p.row_filter = r.row_filter() == "daub4" ? WaveletFilter::kDaub4 : WaveletFilter::kHaar;
+  p.column_mode = r.column_mode() == "2d"     ? ColumnMode::k2d
+                  : r.column_mode() == "full" ? ColumnMode::kFull
+                                              : ColumnMode::kAdaptive;
+  p.column_filter = r.column_filter() == "legall53" ? WaveletFilter::kLeGall53
+                    : r.column_filter() == "cdf97"  ? WaveletFilter::kCdf97
+                                                    : WaveletFilter::kHaar;
+  p.target_error = r.target_error();
+  p.error_scope = r.error_scope() == "column" ? ErrorScope::kColumn : ErrorScope::kMatrix;
+  p.column_terms = r.column_terms();
+  p.bits = r.bits();
+  p.seed = r.seed();
+  p.tile_size = r.tile_size();
+  p.column_group = r.column_group();
+  return p;
 }
 
 }  // namespace
@@ -141,31 +149,37 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
-  return absl::OkStatus();
+  // The fields one by one are fine; the core's own rules have the last word.
+  return ValidateBakeParams(ParamsOf(r));
 }
 
 absl::StatusOr<BakeParams> ToBakeParams(const v1::BakeRequest& request) {
   v1::BakeRequest r = request;
   if (absl::Status s = NormalizeBakeRequest(r); !s.ok()) return s;
-  BakeParams p;
-  p.light_res = r.light_res();
-  p.layout = r.layout();
-  p.supersample = r.supersample();
-  p.row_filter = r.row_filter() == "daub4" ? WaveletFilter::kDaub4 : WaveletFilter::kHaar;
-  p.column_mode = r.column_mode() == "2d"     ? ColumnMode::k2d
-                  : r.column_mode() == "full" ? ColumnMode::kFull
-                                              : ColumnMode::kAdaptive;
-  p.column_filter = r.column_filter() == "legall53" ? WaveletFilter::kLeGall53
-                    : r.column_filter() == "cdf97"  ? WaveletFilter::kCdf97
-                                                    : WaveletFilter::kHaar;
-  p.target_error = r.target_error();
-  p.error_scope = r.error_scope() == "column" ? ErrorScope::kColumn : ErrorScope::kMatrix;
-  p.column_terms = r.column_terms();
-  p.bits = r.bits();
-  p.seed = r.seed();
-  p.tile_size = r.tile_size();
-  p.column_group = r.column_group();
-  return p;
+  return ParamsOf(r);
+}
+
+v1::BakeRequest ToBakeRequest(const BakeParams& p) {
+  v1::BakeRequest r;
+  r.set_light_res(p.light_res);
+  r.set_layout(p.layout);
+  r.set_supersample(p.supersample);
+  r.set_column_mode(std::string(ToString(p.column_mode)));
+  r.set_column_filter(std::string(ToString(p.column_filter)));
+  r.set_target_error(p.target_error);
+  r.set_error_scope(std::string(ToString(p.error_scope)));
+  r.set_column_terms(p.column_terms);
+  r.set_bits(p.bits);
+  r.set_seed(p.seed);
+  r.set_row_filter(std::string(ToString(p.row_filter)));
+  r.set_tile_size(p.tile_size);
+  r.set_column_group(p.column_group);
+  return r;
+}
+
+std::string PartialStorePath(const std::string& store_path) {
+  const std::filesystem::path p(store_path);
+  return (p.parent_path() / absl::StrCat(".", p.filename().string(), ".partial")).string();
 }
 
 }  // namespace wavebake
