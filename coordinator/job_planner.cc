@@ -1,0 +1,135 @@
+#include "coordinator/job_planner.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <fstream>
+#include <system_error>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "coordinator/scene_store.h"
+#include "core/job_plan.h"
+#include "core/layout.h"
+#include "core/sample_layout.h"
+#include "proto/bake_request.h"
+#include "storage/scene_loader.h"
+
+namespace wavebake {
+namespace {
+
+// The loaders pick the format by the file's extension, but an uploaded scene
+// is stored under its hash alone: plan it through a link that carries the
+// uploaded file name, <data dir>/scene-names/<sha256>/<file name>.
+absl::StatusOr<std::string> NamedBlob(const v1::SceneRef& ref, const PlannerOptions& options) {
+  std::string name = std::filesystem::path(ref.file_name()).filename().string();
+  if (name.empty() || name == "." || name == "..") name = "scene";
+  const std::filesystem::path blob = SceneStore::BlobPath(options.data_dir, ref.sha256());
+  const std::filesystem::path dir = options.data_dir / "scene-names" / ref.sha256();
+  const std::filesystem::path link = dir / name;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!ec && !std::filesystem::is_symlink(link, ec)) {
+    std::filesystem::create_symlink(std::filesystem::absolute(blob), link, ec);
+    if (ec && std::filesystem::is_symlink(link)) ec.clear();  // a concurrent plan made it
+  }
+  if (ec)
+    return absl::InternalError(absl::StrCat("scene link ", link.string(), ": ", ec.message()));
+  return link.string();
+}
+
+absl::Status SceneError(const char* field, const absl::Status& s) {
+  return absl::InvalidArgumentError(absl::StrCat(field, ": ", s.message()));
+}
+
+// Reserves the job's partial directory and marks it (proto/bake_request.h
+// kPartialMarker). A directory already there belongs to another job.
+absl::Status ReservePartialStore(const std::filesystem::path& store_root,
+                                 const std::string& output_name) {
+  const std::filesystem::path partial = store_root / PartialStorePath(output_name);
+  std::error_code ec;
+  std::filesystem::create_directories(partial.parent_path(), ec);
+  const bool created = !ec && std::filesystem::create_directory(partial, ec);
+  if (!ec && !created) {
+    return absl::AlreadyExistsError(
+        absl::StrCat("output_name: \"", output_name, "\" is being built by another job"));
+  }
+  if (ec)
+    return absl::InternalError(absl::StrCat("store root: ", partial.string(), ": ", ec.message()));
+  const std::filesystem::path marker = partial / kPartialMarker;
+  if (!(std::ofstream(marker) << "wavebake partial store\n")) {
+    return absl::InternalError(absl::StrCat("store root: cannot write ", marker.string()));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
+                                       const PlannerOptions& options) {
+  if (request.scene().has_builtin()) {
+    absl::StatusOr<Scene> scene = LoadScene(absl::StrCat("builtin:", BuiltinSceneName(request)));
+    if (!scene.ok()) return SceneError("scene.builtin", scene.status());
+    return scene;
+  }
+  const v1::SceneRef& ref = request.scene().uploaded();
+  std::string spec;
+  if (auto local = options.local_scenes.find(ref.sha256()); local != options.local_scenes.end()) {
+    spec = local->second;
+  } else {
+    absl::StatusOr<std::string> named = NamedBlob(ref, options);
+    if (!named.ok()) return named.status();
+    spec = *named;
+  }
+  absl::StatusOr<Scene> scene = LoadScene(spec);
+  if (!scene.ok()) {
+    return SceneError(
+        "scene.uploaded",
+        absl::Status(scene.status().code(),
+                     absl::StrCat("\"", ref.file_name(), "\" (sha256 ", ref.sha256().substr(0, 12),
+                                  "…): ", scene.status().message())));
+  }
+  return scene;
+}
+
+int64_t EstimateRays(int width, int height, int light_res, int supersample) {
+  // K is rounded up to a square (worker/jitter_pattern.h).
+  const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
+  return int64_t{width} * height * 6 * light_res * light_res * strata * strata / 2;
+}
+
+PlanFn MakeJobPlanner(PlannerOptions options) {
+  return [options =
+              std::move(options)](const v1::BakeRequest& request) -> absl::StatusOr<PlannedJob> {
+    absl::StatusOr<BakeParams> params = ToBakeParams(request);
+    if (!params.ok()) return params.status();
+    absl::StatusOr<LayoutSpec> layout = ParseLayout(params->layout);
+    if (!layout.ok()) return layout.status();
+    absl::StatusOr<Scene> scene = LoadRequestScene(request, options);
+    if (!scene.ok()) return scene.status();
+    absl::StatusOr<std::pair<int, int>> grid = LayoutGridSize(*scene, *layout);
+    if (!grid.ok()) return grid.status();
+    const auto [width, height] = *grid;
+    const JobPlan plan = MakeJobPlan(*params, width, height);
+    if (absl::Status s = ReservePartialStore(options.store_root, request.output_name()); !s.ok())
+      return s;
+    return PlannedJob{
+        .tiles = plan.tiles(),
+        .groups = plan.groups,
+        .total_rays_estimate = EstimateRays(width, height, params->light_res, params->supersample),
+        .store_path = {}};  // the request's output_name
+  };
+}
+
+CleanupFn MakeJobCleanup(std::filesystem::path store_root) {
+  return [root = std::move(store_root)](const JobRecord& job) {
+    for (const std::filesystem::path& dir :
+         {root / PartialStorePath(job.store_path), root / job.store_path}) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+      if (ec) spdlog::warn("job {}: cannot remove {}: {}", job.id, dir.string(), ec.message());
+    }
+  };
+}
+
+}  // namespace wavebake
