@@ -29,6 +29,11 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "keep exactly K coefficients per column instead of --target-error");
   cmd.add_option("--bits", f.bits, "quantization bits 2..16, or auto")->capture_default_str();
   cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
+  cmd.add_option("--tile-size", f.tile_size,
+                 "spatial tile edge of one BAKE_TILE task (power of two)")
+      ->capture_default_str();
+  cmd.add_option("--column-group", f.column_group, "columns per TRANSFORM_COLUMNS task")
+      ->capture_default_str();
 }
 
 absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
@@ -51,6 +56,8 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   p.target_error = f.target_error;
   p.column_terms = f.column_terms;
   p.seed = f.seed;
+  p.tile_size = f.tile_size;
+  p.column_group = f.column_group;
   if (f.bits != "auto") {
     const char* end = f.bits.data() + f.bits.size();
     auto [ptr, ec] = std::from_chars(f.bits.data(), end, p.bits);

@@ -28,8 +28,12 @@ void ProgressReporter::Update(const ProgressState& s) {
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double in_phase = std::chrono::duration<double>(now - phase_start_).count();
   const double frac = s.total > 0 ? double(s.done) / double(s.total) : 0;
-  const double eta = frac > 0 ? in_phase * (1 - frac) / frac : 0;
-  const double mrays = elapsed > 0 ? s.rays / elapsed / 1e6 : 0;
+  const double eta = s.eta_seconds >= 0 ? s.eta_seconds
+                     : frac > 0         ? in_phase * (1 - frac) / frac
+                                        : 0;
+  const double mrays = s.rays_per_second >= 0 ? s.rays_per_second / 1e6
+                       : elapsed > 0          ? s.rays / elapsed / 1e6
+                                              : 0;
   char bar[31];
   const int filled = static_cast<int>(frac * 30);
   for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '.';
