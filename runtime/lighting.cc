@@ -4,7 +4,10 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/cubemap.h"
 #include "core/nla.h"
+#include "runtime/env_map.h"
+#include "runtime/env_resample.h"
 #include "runtime/row_basis.h"
 
 namespace wavebake {
@@ -17,6 +20,20 @@ LightingCoefficients ProjectLighting(std::span<const float> cube_rgb, int light_
   out.rgb.assign(cube_rgb.begin(), cube_rgb.end());
   RowTransformCube(row_filter, light_res, out.rgb);
   return out;
+}
+
+absl::StatusOr<LightingCoefficients> LightingFromEnv(const EnvMap& env, int light_res,
+                                                     WaveletFilter row_filter) {
+  if (light_res < 1 || light_res > 256 || (light_res & (light_res - 1)) != 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("light_res: ", light_res, " is not a power of two in [1, 256]"));
+  }
+  if (env.height <= 0 || env.width != 2 * env.height ||
+      env.rgb.size() != static_cast<size_t>(env.width) * env.height * 3) {
+    return absl::InvalidArgumentError(absl::StrCat("env: ", env.width, "x", env.height,
+                                                   " is not a lat-long map (width = 2 height)"));
+  }
+  return ProjectLighting(ResampleToCubemap(env, Cubemap(light_res)), light_res, row_filter);
 }
 
 std::vector<float> LightImportance(const LightingCoefficients& lighting,
