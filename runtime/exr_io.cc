@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/atomic_write.h"
+#include "storage/atomic_file.h"
 #include "runtime/image_io.h"
 
 namespace wavebake {
@@ -72,7 +72,7 @@ absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
   } catch (const std::exception& e) {
     return absl::InternalError(absl::StrCat(path.string(), ": writing EXR failed: ", e.what()));
   }
-  return WriteFileAtomically(path, stream.bytes());
+  return AtomicWriteFile(path, stream.bytes());
 }
 
 absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path) {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/atomic_write.h"
+#include "storage/atomic_file.h"
 #include "runtime/image_io.h"
 #include "runtime/tonemap.h"
 
@@ -73,7 +73,7 @@ absl::Status WritePlyVertexColors(const std::filesystem::path& path,
     Append(out, uint8_t{3});
     for (uint32_t v : t) Append(out, static_cast<int32_t>(v));
   }
-  return WriteFileAtomically(path, out);
+  return AtomicWriteFile(path, out);
 }
 
 absl::Status WritePlyVertexColors(const std::filesystem::path& path, const Scene& scene,

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/atomic_write.h"
+#include "storage/atomic_file.h"
 #include "runtime/image_io.h"
 #include "runtime/tonemap.h"
 
@@ -36,7 +36,7 @@ absl::Status WritePng(const std::filesystem::path& path, int width, int height,
   if (!stbi_write_png_to_func(AppendBytes, &png, width, height, 3, pixels.data(), width * 3)) {
     return absl::InternalError(absl::StrCat(path.string(), ": PNG encoding failed"));
   }
-  return WriteFileAtomically(path, png);
+  return AtomicWriteFile(path, png);
 }
 
 }  // namespace wavebake
