@@ -5,12 +5,35 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <random>
 
 #include "core/wavelet2d.h"
 #include "runtime/relight_oracles.h"
 #include "tests/runtime/relight_fixtures.h"
+
+namespace wavebake {
+// Counts every heap allocation of this test binary, so a test can assert
+// that a frame allocates nothing (the replacement is global but harmless).
+std::atomic<int64_t> g_allocations{0};
+
+}  // namespace wavebake
+
+// GCC sees malloc'd memory reach the replaced delete after inlining and
+// warns; the pair is consistent (both malloc/free).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t n) {
+  ++wavebake::g_allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace wavebake {
 namespace {
@@ -149,6 +172,25 @@ TEST(Relighter, AllLightsEqualDenseProduct) {
   relighter->Relight(AllWaveletLights(l), eq8);
   DenseRelight(Densify(t), l.rgb, CellAlbedo(samples), dense);
   EXPECT_LT(Compare(eq8, dense).rel_rms, 1e-5);
+}
+
+// "No allocation per frame": once the scratch has grown (first frame), a
+// frame with as many lights allocates nothing, for every filter.
+TEST(Relighter, SteadyStateFramesDoNotAllocate) {
+  for (WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4, WaveletFilter::kLeGall53,
+                          WaveletFilter::kCdf97}) {
+    const CompressedColumns t = RandomColumns(64, 32, 4, f, 50, 3);
+    const SampleSet samples = RandomSamples(64, 32, 0.1, 5);
+    auto relighter = Relighter::Create(t, samples);
+    ASSERT_TRUE(relighter.ok());
+    const WaveletLights a = RandomLights(4, 90, 1), b = RandomLights(4, 90, 2);
+    std::vector<float> out(3 * samples.cells());
+    relighter->Relight(a, out);
+    const int64_t before = g_allocations.load();
+    relighter->Relight(b, out);
+    relighter->Relight(a, out);
+    EXPECT_EQ(g_allocations.load(), before) << static_cast<int>(f);
+  }
 }
 
 TEST(Relighter, NoLightsGiveBlackAndMaskedNaN) {
