@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/layout_hilbert_curve.h"
 #include "runtime/latlong.h"
 
 namespace wavebake {
@@ -45,7 +46,9 @@ EnvSampler::EnvSampler(const EnvMap& env) : env_(&env) {
   replicate_ = std::max(1, (kMinWidth + env.width - 1) / std::max(env.width, 1));
   width_ = env.width * replicate_;
   height_ = env.height * replicate_;
-  const int bx_count = std::min(kBlockColumns, width_), by_count = std::min(kBlockRows, height_);
+  // width_ ≥ 128 and height_ ≥ 64 after refinement: always 64 × 32 blocks.
+  const int bx_count = kBlockColumns, by_count = kBlockRows;
+  curve_ = HilbertCurveCells(bx_count, by_count);
   for (int i = 0; i <= bx_count; ++i)
     block_x_.push_back(static_cast<int>(int64_t{i} * width_ / bx_count));
   for (int j = 0; j <= by_count; ++j)
@@ -82,11 +85,12 @@ EnvSampler::EnvSampler(const EnvMap& env) : env_(&env) {
 
 double EnvSampler::ReceiverCdf(Vec3 normal, std::span<double> cdf) const {
   cdf[0] = 0;
-  for (int b = 0; b < blocks(); ++b) {
+  for (int k = 0; k < blocks(); ++k) {
+    const int b = curve_[k];
     const double p = block_light_[b] > 0
                          ? block_light_[b] * CosineBound(normal, block_centre_[b], block_radius_[b])
                          : 0.0;
-    cdf[b + 1] = cdf[b] + p;
+    cdf[k + 1] = cdf[k] + p;
   }
   return cdf[blocks()];
 }
@@ -97,10 +101,11 @@ EnvSampler::Draw EnvSampler::Sample(std::span<const double> cdf,
   // Block: the first whose cumulative probability exceeds u·total, so blocks
   // of probability 0 are never drawn.
   const double total = cdf[blocks()];
-  int b = static_cast<int>(std::upper_bound(cdf.begin() + 1, cdf.end(), u[0] * total) -
+  int k = static_cast<int>(std::upper_bound(cdf.begin() + 1, cdf.end(), u[0] * total) -
                            (cdf.begin() + 1));
   // u·total can round up to total: fall back to the last block with light.
-  for (b = std::min(b, blocks() - 1); cdf[b + 1] == cdf[b];) --b;
+  for (k = std::min(k, blocks() - 1); cdf[k + 1] == cdf[k];) --k;
+  const int b = curve_[k];
   const int bx = b % bx_count, by = b / bx_count;
   // Row inside the block ∝ its light, then column inside the row segment.
   const double row_target = u[1] * block_light_[b];
@@ -121,7 +126,7 @@ EnvSampler::Draw EnvSampler::Sample(std::span<const double> cdf,
   // pdf = P(block) · (Y_p Ω_p / light_b) / Ω_p, so L_c / pdf =
   // L_c · light_b / (P(block) · Y_p) with P(block) = (cdf[b+1] − cdf[b]) / total.
   const Vec3 radiance = env_->Pixel(x / replicate_, y / replicate_);
-  const double scale = block_light_[b] * total / ((cdf[b + 1] - cdf[b]) * MeanRgb(radiance));
+  const double scale = block_light_[b] * total / ((cdf[k + 1] - cdf[k]) * MeanRgb(radiance));
   return {Direction(theta, phi), {radiance.x * scale, radiance.y * scale, radiance.z * scale}};
 }
 

@@ -18,6 +18,11 @@
 // the pixel is still drawn ∝ Y_p Ω_p. Because the bound is ≥ the cosine
 // everywhere in the block, every direction with n·ω > 0 and Y > 0 keeps a
 // positive pdf: the estimator stays unbiased.
+//
+// The blocks enter the receiver CDF in the order of a Hilbert curve over the
+// 64 × 32 block grid (core/layout_hilbert_curve.h), so an interval of the
+// first uniform is a compact patch of sky: stratifying that uniform (as the
+// reference does) stratifies directions.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -38,9 +43,10 @@ class EnvSampler {
 
   int blocks() const { return static_cast<int>(block_light_.size()); }
 
-  // The block distribution for a receiver with unit normal n: cdf[0] = 0,
-  // cdf[b+1] = Σ_{b' ≤ b} light_b'·bound_b'(n); cdf.size() must be
-  // blocks() + 1. Returns the total (0: no light above the horizon).
+  // The block distribution for a receiver with unit normal n, in curve
+  // order: cdf[0] = 0, cdf[k+1] = Σ_{k' ≤ k} light·bound(n) of the k'-th
+  // block along the curve; cdf.size() must be blocks() + 1. Returns the
+  // total (0: no light above the horizon).
   double ReceiverCdf(Vec3 normal, std::span<double> cdf) const;
 
   struct Draw {
@@ -62,6 +68,7 @@ class EnvSampler {
   std::vector<double> block_light_;     // Σ Y Ω per block [BY][BX]
   std::vector<Vec3> block_centre_;      // unit direction of each block's (θ, φ) centre
   std::vector<float> block_radius_;     // angular radius bound of each block
+  std::vector<int32_t> curve_;          // block id of the k-th block along the Hilbert curve
 };
 
 }  // namespace wavebake

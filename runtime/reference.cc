@@ -17,7 +17,8 @@
 namespace wavebake {
 namespace {
 
-constexpr int kBatch = 256;  // rays per Embree call and per stopping check
+constexpr int kBatch = 128;     // draws per Embree call, per stratified batch, per check
+constexpr int kMinBatches = 8;  // fewer batch means give no usable standard error
 constexpr uint64_t kReferenceDomain = 0x7265662d72617973ull;  // "ref-rays"
 
 uint64_t Mix64(uint64_t z) {  // SplitMix64 output step (Steele, Lea, Flood 2014)
@@ -37,17 +38,21 @@ class Rng {
   uint64_t state_;
 };
 
-// Running sums of one sample's estimator f_c = V · L_c · max(0, n·ω)/π / pdf.
+// One sample's estimate by batch means: each batch of kBatch draws, stratified
+// in the first uniform, is an unbiased estimate of B; batches are independent,
+// so their spread gives the standard error (stratified draws inside a batch
+// are not independent, so the per-draw variance would overstate it).
 struct Estimate {
-  std::array<double, 3> sum{}, sum_sq{};
-  int64_t rays = 0;  // estimator draws (traced or below the horizon)
+  std::array<double, 3> sum{}, sum_sq{};  // of the batch means
+  int64_t batches = 0;
   int64_t traced = 0;
 
-  double Mean(int c) const { return rays ? sum[c] / rays : 0; }
+  int64_t rays() const { return batches * kBatch; }
+  double Mean(int c) const { return batches ? sum[c] / batches : 0; }
   double StdErr(int c) const {
-    if (rays < 2) return std::numeric_limits<double>::infinity();
-    const double var = std::max(0.0, (sum_sq[c] - sum[c] * sum[c] / rays) / (rays - 1));
-    return std::sqrt(var / rays);
+    if (batches < 2) return std::numeric_limits<double>::infinity();
+    const double var = std::max(0.0, (sum_sq[c] - sum[c] * sum[c] / batches) / (batches - 1));
+    return std::sqrt(var / batches);
   }
 };
 
@@ -55,7 +60,8 @@ struct Receiver {
   Vec3 origin, normal;
 };
 
-// One batch of kBatch draws for one receiver.
+// One batch of kBatch draws for one receiver: draw i takes its block-curve
+// uniform from the stratum [i, i+1)/kBatch (jittered), the rest at random.
 void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<const double> cdf,
                 const Receiver& r, Rng& rng, Estimate& e) {
   alignas(64) float x[kBatch], y[kBatch], z[kBatch];
@@ -65,6 +71,7 @@ void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<co
   for (int i = 0; i < kBatch; ++i) {
     std::array<double, 5> u;
     for (double& v : u) v = rng.Next01();
+    u[0] = (i + u[0]) / kBatch;
     const EnvSampler::Draw d = sampler.Sample(cdf, u);
     const double cosine = Dot(r.normal, d.direction);
     if (!(cosine > 0)) continue;  // f = 0: counted, not traced
@@ -75,14 +82,17 @@ void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<co
   const size_t n = static_cast<size_t>(count);
   caster.OccludedFan(r.origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
                      {occluded, n});
+  std::array<double, 3> batch{};
   for (int i = 0; i < count; ++i) {
     if (occluded[i]) continue;
-    for (int c = 0; c < 3; ++c) {
-      e.sum[c] += f[i][c];
-      e.sum_sq[c] += f[i][c] * f[i][c];
-    }
+    for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
   }
-  e.rays += kBatch;
+  for (int c = 0; c < 3; ++c) {
+    const double mean = batch[c] / kBatch;
+    e.sum[c] += mean;
+    e.sum_sq[c] += mean * mean;
+  }
+  ++e.batches;
   e.traced += count;
 }
 
@@ -144,9 +154,10 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
     if (cdf_total[s] == 0) return;  // no light above the horizon: B = 0 exactly
     while (keep_going(est[s])) TraceBatch(caster, sampler, cdf, receiver(s), rng[s], est[s]);
   };
-  // Pass 1, the pilot: min_rays for everyone (rounded up to whole batches).
-  ForEachIndex(count, threads,
-               [&](int s) { run(s, [&](const Estimate& e) { return e.rays < o.min_rays; }); });
+  // Pass 1, the pilot: min_rays for everyone (whole batches, at least 8).
+  ForEachIndex(count, threads, [&](int s) {
+    run(s, [&](const Estimate& e) { return e.rays() < o.min_rays || e.batches < kMinBatches; });
+  });
   double sum_sq = 0;
   int64_t terms = 0;
   for (int s = 0; s < count; ++s) {
@@ -160,7 +171,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
   ForEachIndex(count, threads, [&](int s) {
     const Vec3 a = samples.albedo[s];
     run(s, [&](const Estimate& e) {
-      if (e.rays >= o.max_rays) return false;
+      if (e.rays() >= o.max_rays) return false;
       for (int c = 0; c < 3; ++c) {
         if (e.StdErr(c) * a[c] > target) return true;
       }
@@ -187,7 +198,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
       b_sq += b * b;
     }
     r.rays += e.traced;
-    if (cdf_total[s] > 0 && e.rays >= o.max_rays) r.converged = false;
+    if (cdf_total[s] > 0 && e.rays() >= o.max_rays) r.converged = false;
   }
   r.rel_se = b_sq > 0 ? std::sqrt(se_sq / b_sq) : 0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -11,13 +11,19 @@
 // Y·Ω per pixel, blocks weighted by a cosine bound per receiver), so tiny,
 // very bright sources (grace.hdr) are found.
 //
+// Draws come in batches of 128 whose first uniform (the block-curve CDF of
+// the sampler) is stratified, one jittered stratum per draw: a batch covers
+// the receiver's light evenly instead of by chance, which cuts the variance
+// several-fold on broad skies. Each batch mean is an independent unbiased
+// estimate; the standard error is that of the batch means.
+//
 // Stopping rule: the reference's own error in the metric eval reports,
 // rel_se = sqrt(Σ SE²) / sqrt(Σ B²) over all samples and channels, must be
-// below target_rel_se (0.2 %). Every sample first gets min_rays (a pilot that
-// estimates R = RMS of B); then each sample continues in fixed batches until
-// SE_c ≤ target · R for each channel c, or max_rays. Since every sample ends
-// with SE ≤ target·R, the aggregate meets the target (unless max_rays stops a
-// sample first; `converged` says).
+// below target_rel_se (0.2 %). Every sample first gets min_rays (at least 8
+// batches: a pilot that estimates R = RMS of B); then each sample continues
+// batch by batch until SE_c ≤ target · R for each channel c, or max_rays.
+// Since every sample ends with SE ≤ target·R, the aggregate meets the target
+// (unless max_rays stops a sample first; `converged` says).
 //
 // Deterministic: each sample has its own random stream seeded by (seed,
 // sample id) and fixed batch and check points, so the result is bit-identical
