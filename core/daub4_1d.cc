@@ -1,7 +1,10 @@
 #include "core/daub4_1d.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
+
+#include "core/thread_scratch.h"
 
 namespace wavebake {
 namespace {
@@ -52,6 +55,50 @@ void Daub4Inverse1d(std::span<float> line, std::span<float> scratch) {
     scratch[2 * m + 1] = hk[1] * lo + gk[1] * hi + hk[3] * lo_p + gk[3] * hi_p;
   }
   std::memcpy(line.data(), scratch.data(), n * sizeof(float));
+}
+
+namespace {
+
+float* Row(std::span<float> img, int width, int r) {
+  return img.data() + static_cast<size_t>(r) * width;
+}
+
+// out = a·p + b·q + c·r + d·s over bw floats.
+void Combine4(float* out, float a, const float* p, float b, const float* q, float c, const float* r,
+              float d, const float* s, int bw) {
+  for (int x = 0; x < bw; ++x) out[x] = a * p[x] + b * q[x] + c * r[x] + d * s[x];
+}
+
+}  // namespace
+
+void Daub4ForwardRows(std::span<float> img, int width, int bw, int bh) {
+  const int h = bh / 2;
+  if (h == 0) return;
+  std::span<float> buf = ThreadScratch(ScratchSlot::kBlock, static_cast<size_t>(bw) * bh);
+  const auto& [hk, gk] = kTaps;
+  for (int i = 0; i < h; ++i) {
+    const int j = i + 1 < h ? 2 * i + 2 : 0;
+    const float *x0 = Row(img, width, 2 * i), *x1 = Row(img, width, 2 * i + 1);
+    const float *x2 = Row(img, width, j), *x3 = Row(img, width, j + 1);
+    Combine4(Row(buf, bw, i), hk[0], x0, hk[1], x1, hk[2], x2, hk[3], x3, bw);
+    Combine4(Row(buf, bw, h + i), gk[0], x0, gk[1], x1, gk[2], x2, gk[3], x3, bw);
+  }
+  for (int r = 0; r < bh; ++r) std::memcpy(Row(img, width, r), Row(buf, bw, r), bw * sizeof(float));
+}
+
+void Daub4InverseRows(std::span<float> img, int width, int bw, int bh) {
+  const int h = bh / 2;
+  if (h == 0) return;
+  std::span<float> buf = ThreadScratch(ScratchSlot::kBlock, static_cast<size_t>(bw) * bh);
+  const auto& [hk, gk] = kTaps;
+  for (int m = 0; m < h; ++m) {
+    const int p = m > 0 ? m - 1 : h - 1;
+    const float *lo = Row(img, width, m), *hi = Row(img, width, h + m);
+    const float *lo_p = Row(img, width, p), *hi_p = Row(img, width, h + p);
+    Combine4(Row(buf, bw, 2 * m), hk[0], lo, gk[0], hi, hk[2], lo_p, gk[2], hi_p, bw);
+    Combine4(Row(buf, bw, 2 * m + 1), hk[1], lo, gk[1], hi, hk[3], lo_p, gk[3], hi_p, bw);
+  }
+  for (int r = 0; r < bh; ++r) std::memcpy(Row(img, width, r), Row(buf, bw, r), bw * sizeof(float));
 }
 
 }  // namespace wavebake

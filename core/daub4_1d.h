@@ -13,4 +13,9 @@ namespace wavebake {
 void Daub4Forward1d(std::span<float> line, std::span<float> scratch);
 void Daub4Inverse1d(std::span<float> line, std::span<float> scratch);
 
+// The same step along y for columns 0..bw−1 of rows 0..bh−1 of a row-major
+// image, each row acting as one sample (unit-stride, vectorizable loops).
+void Daub4ForwardRows(std::span<float> img, int width, int bw, int bh);
+void Daub4InverseRows(std::span<float> img, int width, int bw, int bh);
+
 }  // namespace wavebake

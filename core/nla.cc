@@ -1,8 +1,9 @@
 #include "core/nla.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
-#include <numeric>
 
 namespace wavebake {
 namespace {
@@ -24,35 +25,35 @@ bool LessImportant(const Entry& a, const Entry& b) {
   return a.mag < b.mag || (a.mag == b.mag && a.index > b.index);
 }
 
+// Magnitudes are binned by the top 15 bits of their double representation
+// (exponent + 4 mantissa bits: bins 2^(1/16) wide), relative to the largest
+// one. The bit pattern of a positive double is monotone in its value, so bins
+// are ordered like the magnitudes; everything 64 binades below the maximum
+// shares bin 0. Binning is only a coarse pre-sort: the one bin where the
+// budget runs out is resolved exactly below.
+constexpr int kBins = 1024;
+
+int BinOf(double mag, uint64_t max_top) {
+  const uint64_t rel = max_top - (std::bit_cast<uint64_t>(mag) >> 48);
+  return rel >= kBins - 1 ? 0 : kBins - 1 - static_cast<int>(rel);
+}
+
 struct Cut {
-  size_t kept = 0;  // how many of the nonzero entries are kept
+  int bin = kBins;  // entries in higher bins are kept, lower ones dropped
+  uint64_t max_top = 0;
+  size_t kept = 0;         // total kept (nonzero) entries
+  size_t kept_in_bin = 0;  // kept entries inside `bin`
+  Entry least_kept{0, 0};  // least important kept entry of `bin` (if kept_in_bin > 0)
   double dropped_energy = 0;
-  Entry least_kept{0, 0};  // valid when kept > 0
 };
 
-// Drops the least important nonzero entries while their energy fits the
-// budget. Invariant: entries[0, lo) are dropped and the least important of all,
-// entries[hi, n) are kept and the most important; each round splits [lo, hi) at
-// its median (std::nth_element), drops the lower half plus the median if they
-// still fit, else keeps the median and everything above it. O(n) expected.
-Cut FindCut(std::span<const float> v, std::span<const float> w, double budget,
-            std::vector<Entry>& entries) {
-  entries.clear();
-  double total = 0;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const double m = Magnitude(v, w, i);
-    if (m > 0) {
-      entries.push_back({m, static_cast<uint32_t>(i)});
-      total += m * m;
-    }
-  }
-  Cut cut;
-  if (total <= budget) {
-    cut.dropped_energy = total;
-    return cut;
-  }
+// Inside one bin: drops the least important entries while their energy fits.
+// Invariant: entries[0, lo) are dropped and the least important, entries[hi, n)
+// kept and the most important; each round splits [lo, hi) at its median
+// (std::nth_element) and drops the lower half plus the median if they still
+// fit, else keeps the median and everything above it. O(n).
+size_t DropWithinBin(std::vector<Entry>& entries, double budget, double& dropped) {
   size_t lo = 0, hi = entries.size();
-  double dropped = 0;
   while (lo < hi) {
     const size_t mid = lo + (hi - lo) / 2;
     std::nth_element(entries.begin() + lo, entries.begin() + mid, entries.begin() + hi,
@@ -66,17 +67,53 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget,
       hi = mid;
     }
   }
-  cut.kept = entries.size() - lo;
-  cut.dropped_energy = dropped;
-  if (cut.kept > 0) {
-    cut.least_kept = *std::min_element(entries.begin() + lo, entries.end(), LessImportant);
-  }
-  return cut;
+  return lo;
 }
 
-std::vector<Entry>& Scratch() {
+Cut FindCut(std::span<const float> v, std::span<const float> w, double budget) {
+  Cut cut;
+  double max_mag = 0, total = 0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const double m = Magnitude(v, w, i);
+    max_mag = std::max(max_mag, m);
+    total += m * m;
+  }
+  if (total <= budget) {
+    cut.dropped_energy = total;
+    return cut;
+  }
+  cut.max_top = std::bit_cast<uint64_t>(max_mag) >> 48;
+  thread_local std::array<double, kBins> energy;
+  thread_local std::array<uint32_t, kBins> count;
+  energy.fill(0);
+  count.fill(0);
+  for (size_t i = 0; i < v.size(); ++i) {
+    const double m = Magnitude(v, w, i);
+    if (m == 0) continue;
+    const int b = BinOf(m, cut.max_top);
+    energy[b] += m * m;
+    ++count[b];
+  }
+  // Whole bins go while they fit; the first that does not is the cut bin.
+  double dropped = 0;
+  int b = 0;
+  while (b < kBins && dropped + energy[b] <= budget) dropped += energy[b++];
+  cut.bin = b;  // < kBins, since total > budget
   thread_local std::vector<Entry> entries;
-  return entries;
+  entries.clear();
+  for (size_t i = 0; i < v.size(); ++i) {
+    const double m = Magnitude(v, w, i);
+    if (m > 0 && BinOf(m, cut.max_top) == b) entries.push_back({m, static_cast<uint32_t>(i)});
+  }
+  const size_t lo = DropWithinBin(entries, budget, dropped);
+  cut.kept_in_bin = entries.size() - lo;
+  if (cut.kept_in_bin > 0) {
+    cut.least_kept = *std::min_element(entries.begin() + lo, entries.end(), LessImportant);
+  }
+  cut.kept = cut.kept_in_bin;
+  for (int k = b + 1; k < kBins; ++k) cut.kept += count[k];
+  cut.dropped_energy = dropped;
+  return cut;
 }
 
 }  // namespace
@@ -95,22 +132,27 @@ std::vector<uint32_t> TopK(std::span<const float> v, std::span<const float> w, i
 
 Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
                           double energy_budget) {
-  const Cut cut = FindCut(v, w, energy_budget, Scratch());
+  const Cut cut = FindCut(v, w, energy_budget);
   Selection sel;
   sel.dropped_energy = cut.dropped_energy;
   if (cut.kept == 0) return sel;
-  // Everything at least as important as the least important kept entry is
-  // kept; scanning in index order gives the list sorted without a sort.
+  // Kept: every entry in a bin above the cut bin, and those of the cut bin at
+  // least as important as its least important kept entry. Scanning in index
+  // order gives the list sorted without a sort.
   sel.kept.reserve(cut.kept);
   for (size_t i = 0; i < v.size(); ++i) {
     const Entry e{Magnitude(v, w, i), static_cast<uint32_t>(i)};
-    if (e.mag > 0 && !LessImportant(e, cut.least_kept)) sel.kept.push_back(e.index);
+    if (e.mag == 0) continue;
+    const int b = BinOf(e.mag, cut.max_top);
+    if (b > cut.bin || (b == cut.bin && cut.kept_in_bin > 0 && !LessImportant(e, cut.least_kept))) {
+      sel.kept.push_back(e.index);
+    }
   }
   return sel;
 }
 
 int CountForBudget(std::span<const float> v, std::span<const float> w, double energy_budget) {
-  return static_cast<int>(FindCut(v, w, energy_budget, Scratch()).kept);
+  return static_cast<int>(FindCut(v, w, energy_budget).kept);
 }
 
 }  // namespace wavebake

@@ -24,7 +24,9 @@ struct Selection {
 // important coefficients first (so S is the top-|S| in the total order above).
 // Zero coefficients are never kept (a negative budget keeps every nonzero one).
 // Energies and their sums are in double.
-// Linear expected time: quickselect-style halving, no full sort.
+// Linear time, no sort: magnitudes are binned by exponent, whole bins are
+// dropped while they fit, and only the bin where the budget runs out is
+// resolved exactly (median halving).
 Selection SelectForBudget(std::span<const float> v, std::span<const float> w, double energy_budget);
 // |SelectForBudget(v, w, energy_budget).kept| without building the list (for
 // the adaptive depth search, which only compares counts).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "core/daub4_1d.h"
 #include "core/lifting_rows.h"
 #include "core/thread_scratch.h"
 #include "core/wavelet1d.h"
@@ -10,9 +11,11 @@
 namespace wavebake {
 namespace {
 
-// Columns of non-lifting filters are gathered this many at a time into
-// contiguous lines so the 1D kernels read unit-stride memory and each image
-// row is touched once per chunk (16 floats = one 64-byte cache line).
+// Columns of Haar (used here only for 1-wide blocks) are gathered this many
+// at a time into contiguous lines so the 1D kernel reads unit-stride memory
+// (16 floats = one 64-byte cache line). Daubechies-4 and the lifting filters
+// instead run along y with each row as one sample (core/daub4_1d.h,
+// core/lifting_rows.h): unit stride and no gather.
 constexpr int kColumnChunk = 16;
 
 using LineKernel = void (*)(WaveletFilter, std::span<float>, std::span<float>);
@@ -60,6 +63,8 @@ void SeparableForwardStep(WaveletFilter f, std::span<float> img, int width, int 
   if (bh < 2) return;
   if (IsLifting(f)) {
     LiftingForwardRows(SchemeOf(f), img, width, bw, bh);
+  } else if (f == WaveletFilter::kDaub4) {
+    Daub4ForwardRows(img, width, bw, bh);
   } else {
     GatheredColumnPass(Forward1d, f, img, width, bw, bh);
   }
@@ -70,6 +75,8 @@ void SeparableInverseStep(WaveletFilter f, std::span<float> img, int width, int 
   if (bh >= 2) {
     if (IsLifting(f)) {
       LiftingInverseRows(SchemeOf(f), img, width, bw, bh);
+    } else if (f == WaveletFilter::kDaub4) {
+      Daub4InverseRows(img, width, bw, bh);
     } else {
       GatheredColumnPass(Inverse1d, f, img, width, bw, bh);
     }

@@ -90,7 +90,7 @@ absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir
     // by other users' processes (mkstemp's 0600 would hide it).
     Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
     if (fd.get() < 0 && errno == EEXIST && attempt < 8) continue;
-    if (fd.get() < 0) return ErrnoError("cannot create", tmp, errno);
+    if (fd.get() < 0) return ErrnoError("cannot create a temp file for", path, errno);
     if (absl::Status s = WriteAndClose(fd, tmp, data); !s.ok()) {
       ::unlink(tmp.c_str());  // best effort; the write error is the one to report
       return s;

@@ -103,6 +103,22 @@ TEST(SelectForBudgetTest, MatchesBruteForceRule) {
   }
 }
 
+TEST(SelectForBudgetTest, WideDynamicRangeMatchesBruteForceRule) {
+  // Magnitudes over 2^0..2^−120: far more binades than the implementation's
+  // coarse bins (core/nla.cc), so the cut can land in the catch-all lowest bin.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> mant(1.0f, 2.0f);
+  std::uniform_int_distribution<int> expo(-120, 0);
+  std::vector<float> v(3000);
+  for (float& x : v) x = std::ldexp(mant(rng), expo(rng)) * (rng() % 2 ? 1 : -1);
+  double total = 0;
+  for (float x : v) total += double(x) * x;
+  for (const double frac : {1e-70, 1e-40, 1e-20, 1e-6, 0.3}) {
+    EXPECT_EQ(SelectForBudget(v, {}, frac * total).kept, BruteSelect(v, {}, frac * total)) << frac;
+    EXPECT_EQ(CountForBudget(v, {}, frac * total), int(BruteSelect(v, {}, frac * total).size()));
+  }
+}
+
 TEST(SelectForBudgetTest, DroppedEnergyWithinBudgetAndSelectionMinimal) {
   const std::vector<float> v = Smooth(4096, 9);
   double total = 0;
@@ -138,6 +154,10 @@ TEST(SelectForBudgetTest, EdgeBudgets) {
   const Selection s = SelectForBudget(v, {}, 1.5);
   EXPECT_EQ(s.kept, (std::vector<uint32_t>{1, 4}));
   EXPECT_DOUBLE_EQ(s.dropped_energy, 1);
+  // The rule is ≤: a budget exactly equal to the tail's energy lets it go.
+  EXPECT_EQ(SelectForBudget(v, {}, 1.0).kept, (std::vector<uint32_t>{1, 4}));
+  EXPECT_EQ(SelectForBudget(v, {}, 5.0).kept, (std::vector<uint32_t>{1}));
+  EXPECT_EQ(CountForBudget(v, {}, 5.0), 1);
   EXPECT_EQ(SelectForBudget(v, {}, -1).kept.size(), 3u);
   EXPECT_TRUE(SelectForBudget(std::vector<float>{}, {}, 0).kept.empty());
 }
@@ -156,6 +176,9 @@ TEST(SelectForBudgetTest, TiesKeepLowerIndices) {
   // Budget 3.5 lets three of the ten equal entries go: the three highest indices.
   const Selection s = SelectForBudget(v, {}, 3.5);
   EXPECT_EQ(s.kept, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6}));
+  // Exactly 3.0 still lets three go (the rule is ≤).
+  EXPECT_EQ(SelectForBudget(v, {}, 3.0).kept, s.kept);
+  EXPECT_EQ(CountForBudget(v, {}, 3.0), 7);
 }
 
 TEST(SelectForBudgetTest, KeptSetIsATopKPrefix) {

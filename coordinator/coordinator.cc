@@ -1,0 +1,163 @@
+#include "coordinator/coordinator.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/security/server_credentials.h>
+#include <grpcpp/server_builder.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+
+namespace wavebake {
+namespace {
+
+absl::StatusOr<std::string> ReadFile(const std::filesystem::path& path, absl::string_view field) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::InvalidArgumentError(absl::StrCat(field, ": cannot read ", path.string()));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(const CoordinatorOptions& o) {
+  if (o.tls_cert_path.empty() != o.tls_key_path.empty()) {
+    return absl::InvalidArgumentError("tls_cert/tls_key: give both or neither");
+  }
+  if (o.tls_cert_path.empty()) return grpc::InsecureServerCredentials();
+  absl::StatusOr<std::string> cert = ReadFile(o.tls_cert_path, "tls_cert");
+  if (!cert.ok()) return cert.status();
+  absl::StatusOr<std::string> key = ReadFile(o.tls_key_path, "tls_key");
+  if (!key.ok()) return key.status();
+  grpc::SslServerCredentialsOptions ssl;
+  ssl.pem_key_cert_pairs.push_back({*key, *cert});
+  return grpc::SslServerCredentials(ssl);
+}
+
+// The default cleanup: remove the job's (partial) store directory.
+CleanupFn RemoveStoreDir(std::filesystem::path store_root) {
+  return [root = std::move(store_root)](const JobRecord& job) {
+    std::error_code ec;
+    std::filesystem::remove_all(root / job.store_path, ec);
+    if (ec) spdlog::warn("job {}: cannot remove {}: {}", job.id, job.store_path, ec.message());
+  };
+}
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<Coordinator>> Coordinator::Start(CoordinatorOptions options,
+                                                                PlanFn plan_fn,
+                                                                CleanupFn cleanup_fn) {
+  if (options.data_dir.empty()) return absl::InvalidArgumentError("data_dir: required");
+  if (!plan_fn) return absl::InvalidArgumentError("plan_fn: required");
+  if (!(options.lease_seconds > 0)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("lease_seconds: ", options.lease_seconds, " is not positive"));
+  }
+  if (options.store_root.empty()) options.store_root = options.data_dir / "store";
+  auto c = std::make_unique<Coordinator>(Key{});
+  c->options_ = std::move(options);
+  if (absl::Status s = c->Init(std::move(plan_fn), std::move(cleanup_fn)); !s.ok()) return s;
+  return c;
+}
+
+absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
+  const CoordinatorOptions& o = options_;
+  std::error_code ec;
+  for (const auto& dir : {o.data_dir, o.store_root}) {
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      return absl::InvalidArgumentError(
+          absl::StrCat("data_dir: ", dir.string(), ": ", ec.message()));
+  }
+  const Clock* clock = o.clock ? o.clock : SystemClock::Get();
+  absl::StatusOr<std::unique_ptr<JobStore>> store =
+      JobStore::Open((o.data_dir / "state.sqlite").string());
+  if (!store.ok()) return store.status();
+  store_ = std::move(*store);
+  if (!cleanup_fn) cleanup_fn = RemoveStoreDir(o.store_root);
+  LeaseTableOptions lease_options{.lease_ms = static_cast<int64_t>(o.lease_seconds * 1000),
+                                  .worker_failure_limit = o.worker_failure_limit};
+  absl::StatusOr<std::unique_ptr<LeaseTable>> table =
+      LeaseTable::Create(store_.get(), clock, lease_options, std::move(cleanup_fn));
+  if (!table.ok()) return table.status();
+  table_ = std::move(*table);
+  scenes_ = std::make_unique<SceneStore>(o.data_dir, store_.get(), clock, o.max_upload_bytes);
+  auth_ = std::make_unique<TokenAuth>(o.token);
+  ServiceDeps deps{.table = table_.get(),
+                   .scenes = scenes_.get(),
+                   .auth = auth_.get(),
+                   .plan = std::move(plan_fn),
+                   .store_root = o.store_root,
+                   .wait_ms = o.wait_ms,
+                   .stopping = &stopping_};
+  job_service_ = std::make_unique<JobServiceImpl>(deps);
+  worker_service_ = std::make_unique<WorkerServiceImpl>(deps);
+  if (absl::Status s = BuildServer(); !s.ok()) return s;
+  reaper_ = std::jthread([this](std::stop_token stop) { ReapLoop(stop); });
+  return absl::OkStatus();
+}
+
+absl::Status Coordinator::BuildServer() {
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  if (!options_.listen_address.empty()) {
+    absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> creds = Credentials(options_);
+    if (!creds.ok()) return creds.status();
+    builder.AddListeningPort(options_.listen_address, *creds, &port_);
+  }
+  builder.SetMaxReceiveMessageSize(options_.max_message_bytes);
+  builder.SetMaxSendMessageSize(options_.max_message_bytes);
+  builder.RegisterService(job_service_.get());
+  builder.RegisterService(worker_service_.get());
+  server_ = builder.BuildAndStart();
+  if (!server_ || (!options_.listen_address.empty() && port_ == 0)) {
+    return absl::UnavailableError(
+        absl::StrCat("listen_address: cannot listen on \"", options_.listen_address, "\""));
+  }
+  spdlog::info("coordinator: listening on {} (data {})", address(), options_.data_dir.string());
+  return absl::OkStatus();
+}
+
+// Expires leases even when no worker calls (Lease and Heartbeat expire too),
+// so watchers see requeues promptly.
+void Coordinator::ReapLoop(std::stop_token stop) {
+  const int64_t period_ms = std::clamp<int64_t>(table_->options().lease_ms / 4, 10, 1000);
+  std::unique_lock lock(reap_mu_);
+  while (!stop.stop_requested()) {
+    reap_cv_.wait_for(lock, stop, std::chrono::milliseconds(period_ms), [] { return false; });
+    if (stop.stop_requested()) break;
+    if (absl::Status s = table_->ExpireLeases(); !s.ok()) {
+      spdlog::error("coordinator: {}", s.ToString());
+    }
+  }
+}
+
+std::string Coordinator::address() const {
+  if (port_ == 0) return "in-process";
+  const std::string& a = options_.listen_address;
+  return absl::StrCat(a.substr(0, a.rfind(':')), ":", port_);
+}
+
+std::shared_ptr<grpc::Channel> Coordinator::InProcessChannel() {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(options_.max_message_bytes);
+  args.SetMaxSendMessageSize(options_.max_message_bytes);
+  return server_->InProcessChannel(args);
+}
+
+void Coordinator::Shutdown() {
+  if (stopping_.exchange(true)) return;
+  reaper_.request_stop();
+  if (server_) server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  if (reaper_.joinable()) reaper_.join();
+}
+
+Coordinator::~Coordinator() { Shutdown(); }
+
+}  // namespace wavebake

@@ -1,0 +1,361 @@
+// LeaseTable, job side: loading and resuming, submitting, stages, cancel,
+// cleanup, live numbers. The worker side (lease, heartbeat, complete, fail,
+// expiry) is in lease_table_tasks.cc.
+#include "coordinator/lease_table.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+
+namespace wavebake {
+namespace {
+
+// Task index range [begin, end) of the stage a phase stands for (§2).
+std::pair<int, int> StageRange(const JobRecord& r, Phase phase) {
+  switch (phase) {
+    case Phase::kQueued:
+    case Phase::kBaking:
+      return {0, r.tiles};
+    case Phase::kTransforming:
+      return {r.tiles, r.tiles + r.groups};
+    case Phase::kFinalizing:
+      return {r.tiles + r.groups, r.tasks_total()};
+    default:
+      return {0, 0};
+  }
+}
+
+bool SafeRelativePath(const std::string& p) {
+  if (p.empty() || p.front() == '/' || p.find('\\') != p.npos) return false;
+  for (size_t start = 0; start <= p.size();) {
+    const size_t end = std::min(p.find('/', start), p.size());
+    const absl::string_view part(p.data() + start, end - start);
+    if (part.empty() || part == "." || part == "..") return false;
+    start = end + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<LeaseTable>> LeaseTable::Create(JobStore* store, const Clock* clock,
+                                                               LeaseTableOptions options,
+                                                               CleanupFn cleanup) {
+  if (options.lease_ms <= 0) return absl::InvalidArgumentError("lease_ms: must be positive");
+  auto table =
+      std::make_unique<LeaseTable>(Key{}, store, clock, std::move(options), std::move(cleanup));
+  if (store) {
+    if (absl::Status s = table->Load(); !s.ok()) return s;
+  }
+  return table;
+}
+
+LeaseTable::LeaseTable(Key, JobStore* store, const Clock* clock, LeaseTableOptions options,
+                       CleanupFn cleanup)
+    : store_(store),
+      clock_(clock ? clock : SystemClock::Get()),
+      options_(std::move(options)),
+      cleanup_(std::move(cleanup)) {}
+
+absl::Status LeaseTable::Load() {
+  absl::StatusOr<StoreSnapshot> snap = store_->Load();
+  if (!snap.ok()) return snap.status();
+  Transition tx;
+  Cleanups cleanups;
+  {
+    std::lock_guard lock(mu_);
+    for (WorkerRecord& w : snap->workers) {
+      next_worker_id_ = std::max(next_worker_id_, w.id + 1);
+      workers_[w.id].rec = std::move(w);
+    }
+    for (JobRecord& rec : snap->jobs) {
+      next_job_id_ = std::max(next_job_id_, rec.id + 1);
+      JobState& js = jobs_[rec.id];
+      js.rec = std::move(rec);
+      js.last_event_seq = snap->last_event_seq[js.rec.id];
+    }
+    for (TaskRecord& t : snap->tasks) jobs_[t.job_id].tasks.push_back(std::move(t));
+    for (auto& [id, js] : jobs_) {
+      if (!IsTerminal(js.rec.phase)) {
+        if (absl::Status s = ResumeJob(js, tx); !s.ok()) return s;
+      }
+      MaybeCleanup(js, cleanups);  // a cleanup the previous run did not finish
+    }
+    if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+  }
+  RunCleanups(cleanups);
+  return absl::OkStatus();
+}
+
+// A job of a previous coordinator: its leases are void, so leased tasks are
+// pending again without being charged an attempt (§4 "resumes after a restart").
+absl::Status LeaseTable::ResumeJob(JobState& js, Transition& tx) {
+  if (static_cast<int>(js.tasks.size()) != js.rec.tasks_total()) {
+    return absl::DataLossError(absl::StrCat("job ", js.rec.id, ": ", js.tasks.size(),
+                                            " task rows, expected ", js.rec.tasks_total()));
+  }
+  int requeued = 0;
+  for (TaskRecord& t : js.tasks) {
+    if (t.state == TaskState::kLeased) {
+      t.state = TaskState::kPending;
+      t.worker_id.clear();
+      tx.tasks.push_back(t);
+      ++requeued;
+    }
+    if (t.state != TaskState::kDone) continue;
+    ++js.tasks_done;
+    if (t.kind == TaskKind::kBakeTile) ++js.tiles_done;
+    if (t.kind == TaskKind::kTransformColumns) ++js.groups_done;
+  }
+  const auto [begin, end] = StageRange(js.rec, js.rec.phase);
+  for (int i = begin; i < end; ++i) {
+    if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
+  }
+  if (!js.ready.empty()) runnable_.insert(js.rec.id);
+  AddEvent(js, tx, EventKind::kResumed, nullptr,
+           absl::StrCat("coordinator restarted; ", requeued, " leased tasks back to pending"));
+  return absl::OkStatus();
+}
+
+int64_t LeaseTable::ReserveJobId() {
+  std::lock_guard lock(mu_);
+  return next_job_id_++;
+}
+
+absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int max_attempts,
+                                           const JobPlan& plan) {
+  // The plan comes from the caller's planner: its mistakes are internal errors.
+  if (plan.tiles < 1 || plan.groups < 1 ||
+      int64_t{plan.tiles} + plan.groups + 1 > options_.max_tasks_per_job) {
+    return absl::InternalError(absl::StrCat("plan: ", plan.tiles, " tiles and ", plan.groups,
+                                            " groups is not a valid plan"));
+  }
+  if (!SafeRelativePath(plan.store_path)) {
+    return absl::InternalError(
+        absl::StrCat("plan: store_path \"", plan.store_path, "\" is not a relative path"));
+  }
+  std::lock_guard lock(mu_);
+  if (!broken_.ok()) return broken_;
+  if (jobs_.contains(id) || id <= 0 || id >= next_job_id_) {
+    return absl::InternalError(absl::StrCat("job id ", id, " was not reserved"));
+  }
+  for (const auto& [other_id, other] : jobs_) {
+    if (!IsTerminal(other.rec.phase) && other.rec.store_path == plan.store_path) {
+      return absl::AlreadyExistsError(absl::StrCat("output_name: \"", plan.store_path,
+                                                   "\" is the store of running job ", other_id));
+    }
+  }
+  JobState& js = jobs_[id];
+  js.rec = {.id = id,
+            .request = std::move(request),
+            .phase = Phase::kQueued,
+            .tiles = plan.tiles,
+            .groups = plan.groups,
+            .rays_estimate = plan.total_rays_estimate,
+            .store_path = plan.store_path,
+            .max_attempts = max_attempts,
+            .created_ms = clock_->NowMs()};
+  js.tasks.resize(js.rec.tasks_total());
+  for (int i = 0; i < js.rec.tasks_total(); ++i) {
+    TaskRecord& t = js.tasks[i];
+    t.job_id = id;
+    t.index = i;
+    t.kind = i < plan.tiles                 ? TaskKind::kBakeTile
+             : i < plan.tiles + plan.groups ? TaskKind::kTransformColumns
+                                            : TaskKind::kFinalize;
+    t.kind_index = t.kind == TaskKind::kBakeTile           ? i
+                   : t.kind == TaskKind::kTransformColumns ? i - plan.tiles
+                                                           : 0;
+    if (t.kind == TaskKind::kBakeTile) js.ready.insert(i);
+  }
+  runnable_.insert(id);
+  Transition tx;
+  tx.jobs.push_back(js.rec);
+  tx.tasks = js.tasks;
+  AddEvent(js, tx, EventKind::kSubmitted);
+  if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+  return InfoLocked(js);
+}
+
+absl::StatusOr<JobInfo> LeaseTable::Get(int64_t id) const {
+  std::lock_guard lock(mu_);
+  auto it = jobs_.find(id);
+  if (it == jobs_.end()) return absl::NotFoundError(absl::StrCat("job ", id, " not found"));
+  return InfoLocked(it->second);
+}
+
+std::vector<JobInfo> LeaseTable::List(int limit, bool active_only) const {
+  std::lock_guard lock(mu_);
+  std::vector<JobInfo> out;
+  for (auto it = jobs_.rbegin(); it != jobs_.rend() && static_cast<int>(out.size()) < limit; ++it) {
+    if (!active_only || !IsTerminal(it->second.rec.phase)) out.push_back(InfoLocked(it->second));
+  }
+  return out;
+}
+
+absl::StatusOr<JobInfo> LeaseTable::Cancel(int64_t id) {
+  Cleanups cleanups;
+  JobInfo info;
+  {
+    std::lock_guard lock(mu_);
+    if (!broken_.ok()) return broken_;
+    auto it = jobs_.find(id);
+    if (it == jobs_.end()) return absl::NotFoundError(absl::StrCat("job ", id, " not found"));
+    JobState& js = it->second;
+    if (js.rec.phase == Phase::kDone || js.rec.phase == Phase::kFailed) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("job ", id, " already ended ", PhaseName(js.rec.phase)));
+    }
+    if (js.rec.phase != Phase::kCancelled) {
+      Transition tx;
+      EndJob(js, Phase::kCancelled, "cancelled", tx);
+      tx.jobs.push_back(js.rec);
+      if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+      MaybeCleanup(js, cleanups);
+    }
+    info = InfoLocked(js);
+  }
+  RunCleanups(cleanups);
+  return info;
+}
+
+// Opens the stage of `phase`: its pending tasks become leasable.
+void LeaseTable::OpenStage(JobState& js, Phase phase, Transition& tx) {
+  js.rec.phase = phase;
+  const auto [begin, end] = StageRange(js.rec, phase);
+  for (int i = begin; i < end; ++i) {
+    if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
+  }
+  if (!js.ready.empty()) runnable_.insert(js.rec.id);
+  AddEvent(js, tx, EventKind::kPhase);
+}
+
+// After a task is done: groups only once every tile is done, FINALIZE once
+// every group is (§2: the blocked transpose needs every tile's chunks).
+void LeaseTable::AdvanceStage(JobState& js, Transition& tx) {
+  const JobRecord& r = js.rec;
+  if ((r.phase == Phase::kBaking || r.phase == Phase::kQueued) && js.tiles_done == r.tiles) {
+    OpenStage(js, Phase::kTransforming, tx);
+  }
+  if (r.phase == Phase::kTransforming && js.groups_done == r.groups) {
+    OpenStage(js, Phase::kFinalizing, tx);
+  }
+  if (r.phase == Phase::kFinalizing && js.tasks_done == r.tasks_total()) {
+    EndJob(js, Phase::kDone, {}, tx);
+  }
+}
+
+void LeaseTable::EndJob(JobState& js, Phase phase, std::string error, Transition& tx) {
+  js.rec.phase = phase;
+  js.rec.error = std::move(error);
+  js.rec.finished_ms = clock_->NowMs();
+  js.ready.clear();
+  runnable_.erase(js.rec.id);
+  AddEvent(js, tx, EventKind::kPhase, nullptr, js.rec.error);
+  std::vector<TaskRecord>().swap(js.tasks);  // an ended job needs no tasks in memory
+}
+
+void LeaseTable::AddEvent(JobState& js, Transition& tx, EventKind kind, const TaskRecord* task,
+                          std::string message, int64_t worker_id) {
+  const JobInfo info = InfoLocked(js);
+  EventRecord e{.job_id = js.rec.id,
+                .seq = ++js.last_event_seq,
+                .unix_ms = clock_->NowMs(),
+                .kind = kind,
+                .phase = js.rec.phase,
+                .message = std::move(message),
+                .tasks_done = info.tasks_done,
+                .tasks_total = js.rec.tasks_total(),
+                .rays_traced = info.rays_traced,
+                .bytes_written = info.bytes_written};
+  if (task) {
+    e.task_kind = task->kind;
+    e.task_index = task->kind_index;
+  }
+  if (worker_id > 0) e.worker_id = absl::StrCat(worker_id);
+  if (kind == EventKind::kPhase && js.rec.phase == Phase::kDone) e.stats_json = js.rec.stats_json;
+  tx.events.push_back(std::move(e));
+}
+
+JobInfo LeaseTable::InfoLocked(const JobState& js) const {
+  const JobRecord& r = js.rec;
+  JobInfo info{.record = r,
+               .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
+               .leased_tasks = static_cast<int>(js.leases.size()),
+               .rays_traced = r.rays_traced,
+               .bytes_written = r.bytes_written};
+  for (const auto& [task, lease] : js.leases) {
+    info.rays_traced += lease.rays_traced;
+    info.bytes_written += lease.bytes_written;
+  }
+  if (r.started_ms <= 0) return info;
+  const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : clock_->NowMs();
+  const double elapsed = std::max<int64_t>(end_ms - r.started_ms, 1) / 1000.0;
+  info.rays_per_second = info.rays_traced / elapsed;
+  if (r.phase == Phase::kDone) info.eta_seconds = 0;
+  if (IsTerminal(r.phase)) return info;
+  // Tracing dominates a bake: with an estimate, 90 % of the progress is the
+  // ray count and 10 % the transform and finalize tasks; else task counts.
+  double f = static_cast<double>(info.tasks_done) / r.tasks_total();
+  if (r.rays_estimate > 0) {
+    const double rays = std::min(1.0, static_cast<double>(info.rays_traced) / r.rays_estimate);
+    f = 0.9 * rays + 0.1 * (info.tasks_done - js.tiles_done) / (r.groups + 1.0);
+  }
+  if (f > 0) info.eta_seconds = elapsed * (1 - f) / f;
+  return info;
+}
+
+void LeaseTable::MaybeCleanup(JobState& js, Cleanups& cleanups) {
+  const Phase p = js.rec.phase;
+  if ((p == Phase::kFailed || p == Phase::kCancelled) && js.leases.empty() && !js.rec.cleaned &&
+      !js.cleanup_scheduled) {
+    js.cleanup_scheduled = true;
+    cleanups.push_back(js.rec);
+  }
+}
+
+// Outside the lock: a cleanup removes files and may take a while.
+void LeaseTable::RunCleanups(const Cleanups& cleanups) {
+  for (const JobRecord& rec : cleanups) {
+    if (cleanup_) cleanup_(rec);
+    std::lock_guard lock(mu_);
+    if (!broken_.ok()) return;
+    JobState& js = jobs_[rec.id];
+    js.rec.cleaned = true;
+    Transition tx;
+    tx.jobs.push_back(js.rec);
+    (void)CommitLocked(tx);  // on failure the table is stopped; the next start cleans again
+  }
+}
+
+absl::Status LeaseTable::CommitLocked(Transition& tx) {
+  ++generation_;
+  changed_.notify_all();
+  if (!store_ || (tx.jobs.empty() && tx.tasks.empty() && tx.events.empty() && tx.workers.empty())) {
+    return absl::OkStatus();
+  }
+  broken_ = store_->Commit(tx);
+  return broken_;
+}
+
+uint64_t LeaseTable::generation() const {
+  std::lock_guard lock(mu_);
+  return generation_;
+}
+
+uint64_t LeaseTable::WaitForChange(uint64_t seen, int64_t timeout_ms) const {
+  std::unique_lock lock(mu_);
+  changed_.wait_for(lock, std::chrono::milliseconds(timeout_ms),
+                    [&] { return generation_ != seen; });
+  return generation_;
+}
+
+absl::StatusOr<std::vector<EventRecord>> LeaseTable::ReadEvents(int64_t job_id, int64_t after_seq,
+                                                                int limit) const {
+  if (!store_) return std::vector<EventRecord>{};
+  return store_->ReadEvents(job_id, after_seq, limit);
+}
+
+}  // namespace wavebake

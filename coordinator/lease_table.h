@@ -1,0 +1,193 @@
+#pragma once
+// The scheduler of the coordinator (DESIGN.md §2, §4), pure logic without
+// RPC: jobs, their staged tasks, the leases workers hold and their deadlines.
+//
+// * Lease hands out the lowest pending task of the oldest job that has one;
+//   a job's TRANSFORM_COLUMNS tasks become pending only when every BAKE_TILE
+//   is done, FINALIZE only when every group is done (§2).
+// * A lease lasts lease_ms; Heartbeat renews it. An expired lease returns its
+//   task to pending (§4). Fail calls and expiries both count as failures of
+//   the task: at max_attempts failures the job FAILS with the last reason.
+// * worker_failure_limit failures in a row (Fail or expiry; a Complete resets
+//   the count) exclude a worker: Lease refuses it from then on.
+// * Cancel ends a job at once; its outstanding leases are answered
+//   "cancelled" by Heartbeat. Once none is outstanding, the cleanup callback
+//   removes the partial store (FAILED jobs too), so no worker writes into a
+//   directory that was just removed.
+//
+// Every transition is applied in memory and committed to the JobStore (if
+// any) as one transaction together with its events. If a commit fails the
+// table stops (fail-stop): memory is ahead of the database, and a restart
+// reloads the last committed state, in which the leases of the dead
+// coordinator are void and their tasks pending again (a restart is nobody's
+// failure: attempts are not charged).
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "coordinator/clock.h"
+#include "coordinator/job_store.h"
+#include "coordinator/job_types.h"
+#include "coordinator/lease_id.h"
+
+namespace wavebake {
+
+struct LeaseTableOptions {
+  int64_t lease_ms = 30'000;
+  int worker_failure_limit = 3;
+  int64_t max_tasks_per_job = 10'000'000;
+};
+
+// A job with its live numbers (done tasks plus what leases reported).
+struct JobInfo {
+  JobRecord record;
+  int tasks_done = 0;
+  int leased_tasks = 0;
+  int64_t rays_traced = 0;
+  int64_t bytes_written = 0;
+  double rays_per_second = 0;
+  double eta_seconds = -1;  // unknown
+};
+
+struct LeaseGrant {
+  std::string lease_id{};
+  LeaseKey key;
+  TaskKind kind = TaskKind::kBakeTile;
+  int kind_index = 0;  // tile or group number
+  int64_t deadline_ms = 0;
+  std::string request{};  // serialized v1::BakeRequest
+  std::string store_path{};
+  int tiles = 0, groups = 0;
+};
+
+struct LeaseProgressReport {
+  LeaseKey key;
+  int64_t rays_traced = 0;  // cumulative for the lease
+  int64_t bytes_written = 0;
+};
+
+struct HeartbeatResult {
+  std::vector<LeaseKey> renewed;
+  std::vector<LeaseKey> cancelled;
+  int64_t deadline_ms = 0;
+};
+
+struct TaskReport {
+  int64_t rays_traced = 0;
+  int64_t bytes_written = 0;
+  std::string stats_json{};
+};
+
+class LeaseTable {
+  struct Key {};
+
+ public:
+  // store may be null: memory only (tests, benchmark baseline). Otherwise the
+  // store's state is loaded and unfinished jobs resume.
+  static absl::StatusOr<std::unique_ptr<LeaseTable>> Create(JobStore* store, const Clock* clock,
+                                                            LeaseTableOptions options,
+                                                            CleanupFn cleanup);
+  LeaseTable(Key, JobStore* store, const Clock* clock, LeaseTableOptions options,
+             CleanupFn cleanup);
+
+  // Jobs. Submit = ReserveJobId (so the planner can name the store after the
+  // job) + AddJob; the planner runs in between without any lock held.
+  int64_t ReserveJobId();
+  absl::StatusOr<JobInfo> AddJob(int64_t id, std::string request, int max_attempts,
+                                 const JobPlan& plan);
+  absl::StatusOr<JobInfo> Get(int64_t id) const;
+  std::vector<JobInfo> List(int limit, bool active_only) const;  // newest first
+  absl::StatusOr<JobInfo> Cancel(int64_t id);
+
+  // Workers.
+  absl::StatusOr<int64_t> RegisterWorker(std::string name, int threads);
+  absl::StatusOr<std::optional<LeaseGrant>> Lease(int64_t worker_id);  // nullopt: wait
+  absl::StatusOr<HeartbeatResult> Heartbeat(int64_t worker_id,
+                                            std::span<const LeaseProgressReport> leases);
+  // true: accepted. A late result of an earlier lease of a task that is not
+  // done yet is accepted too: task output is deterministic (§1).
+  absl::StatusOr<bool> Complete(int64_t worker_id, const LeaseKey& key, const TaskReport& report);
+  // true: counted; false: the lease was stale (expired, superseded, job ended).
+  absl::StatusOr<bool> Fail(int64_t worker_id, const LeaseKey& key, absl::string_view reason);
+  // Returns expired leases to the queue; also run at every Lease/Heartbeat.
+  absl::Status ExpireLeases();
+
+  // Watch support: every change bumps the generation.
+  uint64_t generation() const;
+  // Waits until generation() != seen or the timeout passes; returns generation().
+  uint64_t WaitForChange(uint64_t seen, int64_t timeout_ms) const;
+  absl::StatusOr<std::vector<EventRecord>> ReadEvents(int64_t job_id, int64_t after_seq,
+                                                      int limit) const;
+
+  const LeaseTableOptions& options() const { return options_; }
+
+ private:
+  struct LiveLease {
+    int64_t worker_id = 0;
+    int attempt = 0;
+    int64_t deadline_ms = 0;
+    int64_t rays_traced = 0, bytes_written = 0;
+  };
+  struct JobState {
+    JobRecord rec;
+    std::vector<TaskRecord> tasks;  // freed once the job has ended
+    std::set<int> ready;            // pending tasks of the current stage
+    std::map<int, LiveLease> leases;
+    int tiles_done = 0, groups_done = 0, tasks_done = 0;
+    int64_t last_event_seq = 0;
+    bool cleanup_scheduled = false;
+  };
+  struct WorkerState {
+    WorkerRecord rec;
+    int64_t last_seen_ms = 0;
+  };
+  using Cleanups = std::vector<JobRecord>;
+
+  absl::Status Load();
+  absl::Status ResumeJob(JobState& js, Transition& tx);
+  JobInfo InfoLocked(const JobState& js) const;
+  void OpenStage(JobState& js, Phase phase, Transition& tx);
+  void AdvanceStage(JobState& js, Transition& tx);
+  void EndJob(JobState& js, Phase phase, std::string error, Transition& tx);
+  void AddEvent(JobState& js, Transition& tx, EventKind kind, const TaskRecord* task = nullptr,
+                std::string message = {}, int64_t worker_id = 0);
+  void DropLease(JobState& js, int task);
+  void MaybeCleanup(JobState& js, Cleanups& cleanups);
+  void ChargeWorker(int64_t worker_id, JobState& js, Transition& tx);
+  void ChargeTask(JobState& js, int task, EventKind kind, std::string reason, int64_t worker_id,
+                  Transition& tx);
+  void ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups);
+  absl::StatusOr<bool> CompleteLocked(JobState& js, int64_t worker_id, const LeaseKey& key,
+                                      const TaskReport& report);
+  absl::Status CommitLocked(Transition& tx);
+  void RunCleanups(const Cleanups& cleanups);
+
+  JobStore* const store_;
+  const Clock* const clock_;
+  const LeaseTableOptions options_;
+  const CleanupFn cleanup_;
+
+  mutable std::mutex mu_;
+  mutable std::condition_variable changed_;
+  uint64_t generation_ = 0;
+  absl::Status broken_;  // a failed commit stops the table (see above)
+  int64_t next_job_id_ = 1;
+  int64_t next_worker_id_ = 1;
+  std::map<int64_t, JobState> jobs_;                       // by id: oldest first
+  std::set<int64_t> runnable_;                             // jobs with a ready task
+  std::set<std::tuple<int64_t, int64_t, int>> deadlines_;  // (deadline, job, task)
+  std::map<int64_t, WorkerState> workers_;
+};
+
+}  // namespace wavebake

@@ -1,0 +1,171 @@
+#include "coordinator/request_validation.h"
+
+#include <cmath>
+
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+#include "absl/strings/string_view.h"
+
+namespace wavebake {
+namespace {
+
+bool IsPowerOfTwo(int64_t v) { return v > 0 && (v & (v - 1)) == 0; }
+
+absl::Status Bad(absl::string_view field, absl::string_view why) {
+  return absl::InvalidArgumentError(absl::StrCat(field, ": ", why));
+}
+
+// "WxH" with W, H powers of two up to 65536.
+bool ParseGridSize(absl::string_view s) {
+  const std::vector<absl::string_view> wh = absl::StrSplit(s, 'x');
+  int w = 0, h = 0;
+  return wh.size() == 2 && absl::SimpleAtoi(wh[0], &w) && absl::SimpleAtoi(wh[1], &h) &&
+         IsPowerOfTwo(w) && IsPowerOfTwo(h) && w <= 65536 && h <= 65536;
+}
+
+absl::Status CheckLayout(std::string& layout) {
+  if (layout.empty()) layout = "camera";
+  const std::vector<absl::string_view> parts = absl::StrSplit(layout, absl::MaxSplits(':', 1));
+  if (parts[0] != "camera" && parts[0] != "grid" && parts[0] != "hilbert") {
+    return Bad("layout",
+               absl::StrCat("\"", layout, "\" is not camera[:WxH], grid or hilbert[:WxH]"));
+  }
+  if (parts.size() == 2 && (parts[0] == "grid" || !ParseGridSize(parts[1]))) {
+    return Bad("layout",
+               absl::StrCat("\"", layout, "\": WxH must be powers of two (e.g. camera:256x256)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckChoice(absl::string_view field, std::string& value, absl::string_view fallback,
+                         std::initializer_list<absl::string_view> choices) {
+  if (value.empty()) value = std::string(fallback);
+  for (absl::string_view c : choices) {
+    if (value == c) return absl::OkStatus();
+  }
+  return Bad(field, absl::StrCat("\"", value, "\" is not one of ", absl::StrJoin(choices, ", ")));
+}
+
+absl::Status CheckScene(v1::BakeRequest& r) {
+  const v1::SceneSource& scene = r.scene();
+  switch (scene.source_case()) {
+    case v1::SceneSource::kBuiltin: {
+      const std::string name = BuiltinSceneName(r);
+      if (name.empty() || name.size() > 64 ||
+          name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != name.npos) {
+        return Bad("scene.builtin", absl::StrCat("\"", scene.builtin(), "\" is not builtin:NAME"));
+      }
+      return absl::OkStatus();
+    }
+    case v1::SceneSource::kUploaded: {
+      const std::string& sha = scene.uploaded().sha256();
+      if (sha.size() != 64 || sha.find_first_not_of("0123456789abcdef") != sha.npos) {
+        return Bad("scene.uploaded.sha256", "must be 64 lowercase hex digits");
+      }
+      return absl::OkStatus();
+    }
+    default:
+      return Bad("scene", "missing: give a builtin:NAME or an uploaded SceneRef");
+  }
+}
+
+absl::Status CheckOutputName(v1::BakeRequest& r) {
+  const std::string& name = r.output_name();
+  if (name.empty()) return absl::OkStatus();  // the coordinator names it after the job
+  if (name.size() > 128 || name.front() == '.' ||
+      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") !=
+          name.npos) {
+    return Bad(
+        "output_name",
+        absl::StrCat("\"", name, "\" must be 1..128 of [A-Za-z0-9._-], not starting with '.'"));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckNumbers(v1::BakeRequest& r) {
+  if (r.light_res() == 0) r.set_light_res(32);
+  if (!IsPowerOfTwo(r.light_res()) || r.light_res() < 8 || r.light_res() > 256) {
+    return Bad("light_res", absl::StrCat(r.light_res(), " is not a power of two in 8..256"));
+  }
+  if (r.supersample() == 0) r.set_supersample(4);
+  if (r.supersample() < 1 || r.supersample() > 256) {
+    return Bad("supersample", absl::StrCat(r.supersample(), " is not in 1..256"));
+  }
+  if (r.target_error() == 0) r.set_target_error(0.01);
+  if (!std::isfinite(r.target_error()) || r.target_error() < 0 || r.target_error() > 1) {
+    return Bad("target_error", absl::StrCat(r.target_error(), " is not in (0, 1]"));
+  }
+  if (r.column_terms() < 0) {
+    return Bad("column_terms", absl::StrCat(r.column_terms(), " is negative"));
+  }
+  if (r.bits() != 0 && (r.bits() < 2 || r.bits() > 16)) {
+    return Bad("bits", absl::StrCat(r.bits(), " is not 0 (auto) or 2..16"));
+  }
+  if (!r.has_seed()) r.set_seed(1);
+  if (r.tile_size() == 0) r.set_tile_size(32);
+  if (!IsPowerOfTwo(r.tile_size()) || r.tile_size() < 4 || r.tile_size() > 1024) {
+    return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..1024"));
+  }
+  if (r.column_group() == 0) r.set_column_group(256);
+  if (r.column_group() < 1 || r.column_group() > 65536) {
+    return Bad("column_group", absl::StrCat(r.column_group(), " is not in 1..65536"));
+  }
+  if (r.max_attempts() == 0) r.set_max_attempts(kDefaultMaxAttempts);
+  if (r.max_attempts() < 1 || r.max_attempts() > 100) {
+    return Bad("max_attempts", absl::StrCat(r.max_attempts(), " is not in 1..100"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+std::string BuiltinSceneName(const v1::BakeRequest& request) {
+  if (!request.scene().has_builtin()) return {};
+  absl::string_view name = request.scene().builtin();
+  absl::ConsumePrefix(&name, "builtin:");
+  return std::string(name);
+}
+
+absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
+  for (absl::Status s :
+       {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
+        CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
+                    {"adaptive", "full", "2d"}),
+        CheckChoice("column_filter", *r.mutable_column_filter(), "haar",
+                    {"haar", "legall53", "cdf97"}),
+        CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
+        CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
+        CheckOutputName(r)}) {
+    if (!s.ok()) return s;
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<BakeParams> ToBakeParams(const v1::BakeRequest& request) {
+  v1::BakeRequest r = request;
+  if (absl::Status s = NormalizeBakeRequest(r); !s.ok()) return s;
+  BakeParams p;
+  p.light_res = r.light_res();
+  p.layout = r.layout();
+  p.supersample = r.supersample();
+  p.row_filter = r.row_filter() == "daub4" ? WaveletFilter::kDaub4 : WaveletFilter::kHaar;
+  p.column_mode = r.column_mode() == "2d"     ? ColumnMode::k2d
+                  : r.column_mode() == "full" ? ColumnMode::kFull
+                                              : ColumnMode::kAdaptive;
+  p.column_filter = r.column_filter() == "legall53" ? WaveletFilter::kLeGall53
+                    : r.column_filter() == "cdf97"  ? WaveletFilter::kCdf97
+                                                    : WaveletFilter::kHaar;
+  p.target_error = r.target_error();
+  p.error_scope = r.error_scope() == "column" ? ErrorScope::kColumn : ErrorScope::kMatrix;
+  p.column_terms = r.column_terms();
+  p.bits = r.bits();
+  p.seed = r.seed();
+  p.tile_size = r.tile_size();
+  p.column_group = r.column_group();
+  return p;
+}
+
+}  // namespace wavebake

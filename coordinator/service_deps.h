@@ -1,0 +1,27 @@
+#pragma once
+// What the two gRPC services share: the scheduler, the scenes, auth, the
+// planner, and where stores live. Owned by the Coordinator.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+
+#include "coordinator/auth.h"
+#include "coordinator/job_types.h"
+#include "coordinator/lease_table.h"
+#include "coordinator/scene_store.h"
+
+namespace wavebake {
+
+struct ServiceDeps {
+  LeaseTable* table = nullptr;
+  SceneStore* scenes = nullptr;
+  const TokenAuth* auth = nullptr;
+  PlanFn plan;
+  std::filesystem::path store_root;
+  int64_t wait_ms = 500;        // LeaseReply.wait_ms when no task is ready
+  int64_t watch_poll_ms = 500;  // Watch: longest wait between checks / progress events
+  int chunk_bytes = 1 << 20;    // ReadStore / FetchScene chunk size
+  const std::atomic<bool>* stopping = nullptr;  // ends Watch streams at shutdown
+};
+
+}  // namespace wavebake

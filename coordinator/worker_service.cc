@@ -1,0 +1,161 @@
+#include "coordinator/worker_service.h"
+
+#include <fstream>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+#include "coordinator/lease_id.h"
+#include "coordinator/proto_convert.h"
+
+namespace wavebake {
+namespace {
+
+constexpr size_t kMaxReasonBytes = 4096;
+constexpr size_t kMaxStatsBytes = 1 << 20;
+
+grpc::Status BadField(absl::string_view field, absl::string_view why) {
+  return {grpc::StatusCode::INVALID_ARGUMENT, absl::StrCat(field, ": ", why)};
+}
+
+absl::StatusOr<int64_t> ParseWorkerId(const std::string& id) {
+  std::optional<int64_t> v = ParseId(id);
+  if (!v)
+    return absl::InvalidArgumentError(absl::StrCat("worker_id: \"", id, "\" is not a worker id"));
+  return *v;
+}
+
+absl::StatusOr<LeaseKey> ParseLease(absl::string_view field, const std::string& id) {
+  std::optional<LeaseKey> key = ParseLeaseId(id);
+  if (!key)
+    return absl::InvalidArgumentError(absl::StrCat(field, ": \"", id, "\" is not a lease id"));
+  return *key;
+}
+
+}  // namespace
+
+grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context,
+                                         const v1::WorkerInfo* request, v1::WorkerId* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  if (request->threads() < 1 || request->threads() > 4096) {
+    return BadField("threads", absl::StrCat(request->threads(), " is not in 1..4096"));
+  }
+  if (request->name().size() > 256) return BadField("name", "longer than 256 bytes");
+  absl::StatusOr<int64_t> id = deps_.table->RegisterWorker(request->name(), request->threads());
+  if (!id.ok()) return ToGrpc(id.status());
+  reply->set_id(absl::StrCat(*id));
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::Lease(grpc::ServerContext* context, const v1::LeaseRequest* request,
+                                      v1::LeaseReply* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
+  if (!worker.ok()) return ToGrpc(worker.status());
+  absl::StatusOr<std::optional<LeaseGrant>> grant = deps_.table->Lease(*worker);
+  if (!grant.ok()) return ToGrpc(grant.status());
+  if (!grant->has_value()) {
+    reply->set_wait_ms(static_cast<int32_t>(deps_.wait_ms));
+    return grpc::Status::OK;
+  }
+  if (!ToProto(**grant, reply->mutable_task())) {
+    return {grpc::StatusCode::DATA_LOSS,
+            absl::StrCat("job ", (*grant)->key.job_id, ": stored request does not parse")};
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::Heartbeat(grpc::ServerContext* context,
+                                          const v1::HeartbeatRequest* request,
+                                          v1::HeartbeatReply* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
+  if (!worker.ok()) return ToGrpc(worker.status());
+  std::vector<LeaseProgressReport> reports;
+  reports.reserve(request->leases_size());
+  for (int i = 0; i < request->leases_size(); ++i) {
+    const v1::LeaseProgress& p = request->leases(i);
+    const std::string field = absl::StrCat("leases[", i, "]");
+    absl::StatusOr<LeaseKey> key = ParseLease(field + ".lease_id", p.lease_id());
+    if (!key.ok()) return ToGrpc(key.status());
+    if (p.rays_traced() < 0 || p.bytes_written() < 0) return BadField(field, "negative counter");
+    reports.push_back({*key, p.rays_traced(), p.bytes_written()});
+  }
+  absl::StatusOr<HeartbeatResult> result = deps_.table->Heartbeat(*worker, reports);
+  if (!result.ok()) return ToGrpc(result.status());
+  for (const LeaseKey& k : result->renewed) reply->add_renewed_lease_ids(FormatLeaseId(k));
+  for (const LeaseKey& k : result->cancelled) reply->add_cancelled_lease_ids(FormatLeaseId(k));
+  reply->set_lease_deadline_ms(result->deadline_ms);
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::Complete(grpc::ServerContext* context,
+                                         const v1::TaskResult* request, v1::CompleteReply* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
+  if (!worker.ok()) return ToGrpc(worker.status());
+  absl::StatusOr<LeaseKey> key = ParseLease("lease_id", request->lease_id());
+  if (!key.ok()) return ToGrpc(key.status());
+  if (request->rays_traced() < 0) return BadField("rays_traced", "negative");
+  if (request->bytes_written() < 0) return BadField("bytes_written", "negative");
+  if (request->stats_json().size() > kMaxStatsBytes)
+    return BadField("stats_json", "longer than 1 MiB");
+  absl::StatusOr<bool> accepted = deps_.table->Complete(
+      *worker, *key, {request->rays_traced(), request->bytes_written(), request->stats_json()});
+  if (!accepted.ok()) return ToGrpc(accepted.status());
+  reply->set_accepted(*accepted);
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::Fail(grpc::ServerContext* context, const v1::TaskFailure* request,
+                                     v1::FailReply* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
+  if (!worker.ok()) return ToGrpc(worker.status());
+  absl::StatusOr<LeaseKey> key = ParseLease("lease_id", request->lease_id());
+  if (!key.ok()) return ToGrpc(key.status());
+  absl::string_view reason = request->reason();
+  if (reason.empty()) reason = "no reason given";
+  absl::StatusOr<bool> counted =
+      deps_.table->Fail(*worker, *key, reason.substr(0, kMaxReasonBytes));
+  if (!counted.ok()) return ToGrpc(counted.status());
+  reply->set_accepted(*counted);
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::FetchScene(grpc::ServerContext* context,
+                                           const v1::SceneRef* request,
+                                           grpc::ServerWriter<v1::SceneChunk>* writer) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  const std::string& sha = request->sha256();
+  if (sha.size() != 64 || sha.find_first_not_of("0123456789abcdef") != sha.npos) {
+    return BadField("sha256", "must be 64 lowercase hex digits");
+  }
+  absl::StatusOr<std::optional<SceneRecord>> rec = deps_.scenes->Find(sha);
+  if (!rec.ok()) return ToGrpc(rec.status());
+  if (!rec->has_value())
+    return {grpc::StatusCode::NOT_FOUND, absl::StrCat("sha256: no scene ", sha)};
+  std::ifstream in(deps_.scenes->BlobPath(sha), std::ios::binary);
+  if (!in) return {grpc::StatusCode::INTERNAL, absl::StrCat("cannot read scene ", sha)};
+  std::string buffer(static_cast<size_t>(deps_.chunk_bytes), '\0');
+  v1::SceneChunk chunk;
+  chunk.set_sha256(sha);
+  chunk.set_size((*rec)->size);
+  chunk.set_file_name((*rec)->file_name);
+  int64_t offset = 0;
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const int64_t n = in.gcount();
+    if (n == 0) break;
+    chunk.set_offset(offset);
+    chunk.set_data(buffer.data(), static_cast<size_t>(n));
+    if (context->IsCancelled() || !writer->Write(chunk)) return grpc::Status::OK;
+    offset += n;
+    chunk.clear_sha256();  // only the first chunk names the scene
+    chunk.clear_size();
+    chunk.clear_file_name();
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace wavebake

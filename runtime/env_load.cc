@@ -1,0 +1,92 @@
+// LoadEnvMap (env_map.h): files, layouts, validation, built-ins.
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "runtime/env_builtin.h"
+#include "runtime/env_cross.h"
+#include "runtime/env_map.h"
+#include "runtime/image_io.h"
+
+namespace wavebake {
+
+namespace {
+
+absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path) {
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<float, void (*)(void*)> data(stbi_loadf(path.c_str(), &w, &h, &channels, 3),
+                                               stbi_image_free);
+  if (!data) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(path.string(), ": unreadable Radiance HDR: ", stbi_failure_reason()));
+  }
+  return EnvMap{w, h, std::vector<float>(data.get(), data.get() + size_t(w) * h * 3)};
+}
+
+// Radiance must be finite and non-negative: one bad texel would poison every
+// relit pixel through T·L.
+absl::Status CheckRadiance(const std::filesystem::path& path, const EnvMap& image) {
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const Vec3 p = image.Pixel(x, y);
+      for (int c = 0; c < 3; ++c) {
+        if (std::isfinite(p[c]) && p[c] >= 0) continue;
+        return absl::InvalidArgumentError(absl::StrCat(
+            path.string(), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]), " is ",
+            std::to_string(p[c]), "; radiance must be finite and non-negative"));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<EnvMap> ToLatLong(const std::filesystem::path& path, EnvMap image) {
+  const int w = image.width, h = image.height;
+  if (w > 0 && w == 2 * h) return image;
+  if (w > 0 && w % 3 == 0 && 4 * w == 3 * h) return VerticalCrossToLatLong(image);
+  return absl::InvalidArgumentError(
+      absl::StrCat(path.string(), ": image is ", w, "x", h,
+                   "; expected a 2:1 lat-long map or a 3:4 vertical cross"));
+}
+
+std::string Lowercase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+}  // namespace
+
+absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec) {
+  if (spec == "builtin:constant") return MakeConstantEnv();
+  if (spec == "builtin:sky") return MakeSkyEnv();
+  const std::filesystem::path path(spec);
+  if (spec.starts_with("builtin:")) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("environment '", path.string(), "': unknown built-in (constant|sky)"));
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    return absl::NotFoundError(absl::StrCat(path.string(), ": no such environment file"));
+  }
+  const std::string ext = Lowercase(path.extension().string());
+  absl::StatusOr<EnvMap> image;
+  if (ext == ".hdr") {
+    image = ReadHdrImage(path);
+  } else if (ext == ".exr") {
+    image = ReadExrImage(path);
+  } else {
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": unknown environment format '",
+                                                   ext, "' (expected .hdr or .exr)"));
+  }
+  if (!image.ok()) return image.status();
+  if (absl::Status s = CheckRadiance(path, *image); !s.ok()) return s;
+  return ToLatLong(path, *std::move(image));
+}
+
+}  // namespace wavebake

@@ -1,0 +1,114 @@
+// OpenEXR half of image_io.h.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "storage/atomic_file.h"
+#include "runtime/image_io.h"
+
+namespace wavebake {
+
+namespace {
+
+// OpenEXR writes through a seekable stream; collecting the bytes in memory
+// lets the file appear atomically (and only when complete).
+class MemoryOStream : public Imf::OStream {
+ public:
+  MemoryOStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (pos_ + n > bytes_.size()) bytes_.resize(pos_ + n);
+    std::memcpy(bytes_.data() + pos_, c, n);
+    pos_ += n;
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = pos; }
+  std::span<const std::byte> bytes() const { return bytes_; }
+
+ private:
+  std::vector<std::byte> bytes_;
+  uint64_t pos_ = 0;
+};
+
+absl::Status CheckImageSize(const std::filesystem::path& path, int width, int height,
+                            size_t values) {
+  if (width <= 0 || height <= 0 || values != size_t(width) * height * 3) {
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": image ", width, "x", height,
+                                                   " needs ", size_t(width) * height * 3,
+                                                   " floats, got ", values));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
+                      std::span<const float> rgb) {
+  if (absl::Status s = CheckImageSize(path, width, height, rgb.size()); !s.ok()) return s;
+  MemoryOStream stream;
+  try {
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer fb;
+    // Slices want a mutable pointer though writing only reads through it.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(rgb.data()));
+    const size_t xs = 3 * sizeof(float), ys = xs * width;
+    for (int c = 0; c < 3; ++c) {
+      const char* name = c == 0 ? "R" : (c == 1 ? "G" : "B");
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+    }
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(fb);
+    file.writePixels(height);
+  } catch (const std::exception& e) {
+    return absl::InternalError(absl::StrCat(path.string(), ": writing EXR failed: ", e.what()));
+  }
+  return AtomicWriteFile(path, stream.bytes());
+}
+
+absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    return absl::NotFoundError(absl::StrCat(path.string(), ": no such file"));
+  }
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool has_rgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!has_rgb && !channels.findChannel("Y")) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(path.string(), ": EXR has neither R, G, B nor Y channels"));
+    }
+    EnvMap image{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
+    image.rgb.resize(size_t(image.width) * image.height * 3);
+    Imf::FrameBuffer fb;
+    const size_t xs = 3 * sizeof(float), ys = xs * image.width;
+    for (int c = 0; c < 3; ++c) {
+      const char* name = has_rgb ? (c == 0 ? "R" : (c == 1 ? "G" : "B")) : "Y";
+      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, &image.rgb[c], dw, xs, ys));
+      if (!has_rgb) break;  // Y goes to red, then is copied below.
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    if (!has_rgb) {
+      for (size_t i = 0; i < image.rgb.size(); i += 3)
+        image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
+    }
+    return image;
+  } catch (const std::exception& e) {
+    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": unreadable EXR: ", e.what()));
+  }
+}
+
+}  // namespace wavebake

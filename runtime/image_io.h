@@ -1,0 +1,47 @@
+#pragma once
+// Image and mesh outputs of `wavebake relight` (DESIGN.md §5) and the EXR
+// reader behind LoadEnvMap. Every write is atomic (storage/atomic_file.h).
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/scene.h"
+#include "core/vec3.h"
+#include "runtime/env_map.h"
+
+namespace wavebake {
+
+// rgb: [height * width * 3] linear floats, row-major, row 0 at the top.
+// Written losslessly as 32-bit float R, G, B channels (ZIP compression);
+// NaN (masked) pixels are kept as NaN.
+absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
+                      std::span<const float> rgb);
+
+// Reads R, G, B (or a luminance-only Y, copied to all three) of any scanline
+// or tiled OpenEXR file as float, whatever the stored pixel type. The image
+// may have any size; LoadEnvMap checks layouts.
+absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
+
+// 8-bit sRGB PNG: linear × 2^exposure_stops, clamped to [0, 1], sRGB OETF.
+// A pixel with any NaN channel (a masked cell) gets `background`, a linear
+// colour in [0, 1] encoded the same way but not exposed.
+absl::Status WritePng(const std::filesystem::path& path, int width, int height,
+                      std::span<const float> rgb, float exposure_stops, Vec3 background);
+
+// Binary little-endian PLY: vertices with float x, y, z and uchar red, green,
+// blue (tone-mapped as in WritePng, NaN → black), faces as `list uchar int
+// vertex_indices`. rgb_per_vertex: [positions.size() * 3] linear floats.
+absl::Status WritePlyVertexColors(const std::filesystem::path& path,
+                                  std::span<const Vec3> positions,
+                                  std::span<const std::array<uint32_t, 3>> triangles,
+                                  std::span<const float> rgb_per_vertex, float exposure_stops);
+
+// The scene's meshes concatenated in order (vertex ids offset by the vertex
+// counts of the meshes before, as in samples/vertex).
+absl::Status WritePlyVertexColors(const std::filesystem::path& path, const Scene& scene,
+                                  std::span<const float> rgb_per_vertex, float exposure_stops);
+
+}  // namespace wavebake

@@ -1,0 +1,85 @@
+// BakeRequest defaults and field-naming errors (DESIGN.md §4, §5).
+#include "coordinator/request_validation.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/coordinator/test_util.h"
+
+namespace wavebake {
+namespace {
+
+using ::testing::StartsWith;
+
+TEST(RequestValidationTest, FillsDefaultsOfDesignSection5) {
+  v1::BakeRequest r = testing::BuiltinRequest();
+  ASSERT_TRUE(NormalizeBakeRequest(r).ok());
+  EXPECT_EQ(r.light_res(), 32);
+  EXPECT_EQ(r.layout(), "camera");
+  EXPECT_EQ(r.supersample(), 4);
+  EXPECT_EQ(r.column_mode(), "adaptive");
+  EXPECT_EQ(r.column_filter(), "haar");
+  EXPECT_EQ(r.row_filter(), "haar");
+  EXPECT_EQ(r.error_scope(), "matrix");
+  EXPECT_DOUBLE_EQ(r.target_error(), 0.01);
+  EXPECT_EQ(r.bits(), 0);
+  EXPECT_EQ(r.seed(), 1u);
+  EXPECT_EQ(r.max_attempts(), 3);
+  EXPECT_EQ(BuiltinSceneName(r), "furnace");
+}
+
+TEST(RequestValidationTest, KeepsExplicitValuesAndSeedZero) {
+  v1::BakeRequest r = testing::BuiltinRequest("cubes-wall");
+  r.set_light_res(64);
+  r.set_layout("hilbert:256x128");
+  r.set_column_mode("2d");
+  r.set_column_filter("cdf97");
+  r.set_row_filter("daub4");
+  r.set_error_scope("column");
+  r.set_column_terms(64);
+  r.set_bits(12);
+  r.set_seed(0);
+  ASSERT_TRUE(NormalizeBakeRequest(r).ok());
+  EXPECT_EQ(r.seed(), 0u);
+  auto p = ToBakeParams(r);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(p->light_res, 64);
+  EXPECT_EQ(p->layout, "hilbert:256x128");
+  EXPECT_EQ(p->column_mode, ColumnMode::k2d);
+  EXPECT_EQ(p->column_filter, WaveletFilter::kCdf97);
+  EXPECT_EQ(p->row_filter, WaveletFilter::kDaub4);
+  EXPECT_EQ(p->error_scope, ErrorScope::kColumn);
+  EXPECT_EQ(p->column_terms, 64);
+  EXPECT_EQ(p->bits, 12);
+  EXPECT_EQ(p->seed, 0u);
+  EXPECT_EQ(BuiltinSceneName(r), "cubes-wall");
+}
+
+TEST(RequestValidationTest, ErrorsStartWithTheField) {
+  const std::vector<std::pair<std::function<void(v1::BakeRequest&)>, std::string>> cases = {
+      {[](auto& r) { r.set_light_res(512); }, "light_res: "},
+      {[](auto& r) { r.set_light_res(4); }, "light_res: "},
+      {[](auto& r) { r.set_layout("grid:64x64"); }, "layout: "},
+      {[](auto& r) { r.set_layout("camera:0x64"); }, "layout: "},
+      {[](auto& r) { r.set_target_error(1.5); }, "target_error: "},
+      {[](auto& r) { r.set_column_terms(-1); }, "column_terms: "},
+      {[](auto& r) { r.set_bits(1); }, "bits: "},
+      {[](auto& r) { r.set_tile_size(48); }, "tile_size: "},
+      {[](auto& r) { r.set_column_group(100000); }, "column_group: "},
+      {[](auto& r) { r.set_error_scope("row"); }, "error_scope: "},
+      {[](auto& r) { r.set_row_filter("cdf97"); }, "row_filter: "},
+      {[](auto& r) { r.set_output_name(".hidden"); }, "output_name: "},
+      {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256("abc"); },
+       "scene.uploaded.sha256: "},
+  };
+  for (const auto& [edit, prefix] : cases) {
+    v1::BakeRequest r = testing::BuiltinRequest();
+    edit(r);
+    absl::Status s = NormalizeBakeRequest(r);
+    EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << prefix;
+    EXPECT_THAT(std::string(s.message()), StartsWith(prefix));
+  }
+}
+
+}  // namespace
+}  // namespace wavebake

@@ -1,0 +1,51 @@
+#pragma once
+// Shared helpers of the coordinator tests: a temporary directory, a fake
+// planner, a job request.
+#include <stdlib.h>
+
+#include <filesystem>
+#include <string>
+
+#include "coordinator/job_types.h"
+#include "wavebake.pb.h"
+
+namespace wavebake::testing {
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "wb_coord_XXXXXX").string();
+    path_ = mkdtemp(tmpl.data());
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline JobPlan Plan(int tiles, int groups, std::string store_path = "job.wbk") {
+  return {.tiles = tiles,
+          .groups = groups,
+          .total_rays_estimate = tiles * 1000,
+          .store_path = store_path};
+}
+
+inline v1::BakeRequest BuiltinRequest(std::string name = "builtin:furnace") {
+  v1::BakeRequest r;
+  r.mutable_scene()->set_builtin(std::move(name));
+  return r;
+}
+
+inline std::string Serialized(const v1::BakeRequest& r) {
+  std::string s;
+  r.SerializeToString(&s);
+  return s;
+}
+
+}  // namespace wavebake::testing

@@ -1,0 +1,108 @@
+// LoadEnvMap: formats, layouts and errors that name the file and pixel.
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "env_test_util.h"
+#include "gmock/gmock.h"
+#include "runtime/image_io.h"
+
+namespace wavebake {
+namespace {
+
+using ::testing::HasSubstr;
+
+absl::Status LoadExr(const EnvMap& image, const std::string& name) {
+  const auto path = testing::ScratchDir() / name;
+  if (absl::Status s = WriteExr(path, image.width, image.height, image.rgb); !s.ok()) return s;
+  absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
+  return env.status();
+}
+
+TEST(LoadEnvTest, ProbesAreLatLong) {
+  const absl::StatusOr<EnvMap> env = LoadEnvMap(testing::ProbePath("grace.hdr"));
+  ASSERT_TRUE(env.ok()) << env.status();
+  EXPECT_EQ(env->width, 256);
+  EXPECT_EQ(env->height, 128);
+  EXPECT_EQ(env->rgb.size(), 256u * 128 * 3);
+}
+
+TEST(LoadEnvTest, RadianceHdrRoundTripsWithinRgbePrecision) {
+  EnvMap image = testing::UniformEnv(16, 8, 0.25f);
+  testing::SetPixel(image, 3, 2, {100, 7, 0.5f});
+  const auto path = testing::ScratchDir() / "small.hdr";
+  ASSERT_TRUE(stbi_write_hdr(path.c_str(), image.width, image.height, 3, image.rgb.data()));
+  const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
+  ASSERT_TRUE(env.ok()) << env.status();
+  ASSERT_EQ(env->rgb.size(), image.rgb.size());
+  // RGBE keeps 8 mantissa bits relative to the largest channel.
+  for (size_t i = 0; i < image.rgb.size(); ++i) {
+    const float max_channel = i / 3 == 2 * 16 + 3 ? 100.0f : 0.25f;
+    EXPECT_NEAR(env->rgb[i], image.rgb[i], max_channel / 64) << i;
+  }
+}
+
+TEST(LoadEnvTest, MissingFileIsNamed) {
+  const absl::StatusOr<EnvMap> env = LoadEnvMap("/nonexistent/dir/probe.hdr");
+  EXPECT_EQ(env.status().code(), absl::StatusCode::kNotFound);
+  EXPECT_THAT(env.status().message(), HasSubstr("/nonexistent/dir/probe.hdr"));
+}
+
+TEST(LoadEnvTest, CorruptHdrIsNamed) {
+  const auto path = testing::ScratchDir() / "corrupt.hdr";
+  std::ofstream(path) << "#?RADIANCE\nnot really\n";
+  const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
+  EXPECT_EQ(env.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(env.status().message(), HasSubstr(path.string()));
+}
+
+TEST(LoadEnvTest, CorruptExrIsNamed) {
+  const auto path = testing::ScratchDir() / "corrupt.exr";
+  std::ofstream(path) << "v/1\x01 garbage";
+  const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
+  EXPECT_FALSE(env.ok());
+  EXPECT_THAT(env.status().message(), HasSubstr(path.string()));
+}
+
+TEST(LoadEnvTest, UnknownFormatAndBuiltinAreRejected) {
+  const auto path = testing::ScratchDir() / "probe.png";
+  std::ofstream(path) << "x";
+  EXPECT_THAT(LoadEnvMap(path.string()).status().message(), HasSubstr("probe.png"));
+  EXPECT_THAT(LoadEnvMap("builtin:moon").status().message(), HasSubstr("builtin:moon"));
+}
+
+TEST(LoadEnvTest, WrongAspectRatioIsNamed) {
+  const absl::Status s = LoadExr(testing::UniformEnv(30, 20, 1), "square-ish.exr");
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(s.message(), HasSubstr("square-ish.exr"));
+  EXPECT_THAT(s.message(), HasSubstr("30x20"));
+}
+
+struct BadTexel {
+  const char* name;
+  float value;
+};
+
+class BadTexelTest : public ::testing::TestWithParam<BadTexel> {};
+
+TEST_P(BadTexelTest, NamesFileAndFirstPixel) {
+  EnvMap image = testing::UniformEnv(32, 16, 1);
+  testing::SetPixel(image, 21, 5, {1, GetParam().value, 1});
+  testing::SetPixel(image, 2, 9, {GetParam().value, 1, 1});  // a later row: not the first
+  const absl::Status s = LoadExr(image, std::string(GetParam().name) + ".exr");
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(s.message(), HasSubstr(std::string(GetParam().name) + ".exr"));
+  EXPECT_THAT(s.message(), HasSubstr("pixel (21, 5) channel G"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Values, BadTexelTest,
+                         ::testing::Values(BadTexel{"nan", std::numeric_limits<float>::quiet_NaN()},
+                                           BadTexel{"inf", std::numeric_limits<float>::infinity()},
+                                           BadTexel{"negative", -0.5f}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace wavebake

@@ -1,0 +1,36 @@
+#pragma once
+// BAKE_TILE, the map half of the bake (DESIGN.md §2): for one spatial tile,
+// trace every sample's row of T (worker/transport_row.h), row-transform it
+// (worker/row_transform.h), transpose the tile's samples × M block in memory
+// and write one staging chunk per column group, plus the tile's energy.
+#include <cstdint>
+#include <filesystem>
+
+#include "absl/status/status.h"
+#include "worker/bake_context.h"
+
+namespace wavebake {
+
+// Counters that add up over tiles (the job's progress, DESIGN.md §4 Watch).
+struct TileStats {
+  uint64_t rays_traced = 0;    // occlusion rays handed to Embree
+  uint64_t bytes_written = 0;  // compressed chunk bytes on disk (staging/transport + tile_energy)
+  uint64_t samples = 0;        // non-masked cells of the tile
+};
+
+// Writes chunks (g, tile) of staging/transport for every group g and chunk
+// `tile` of staging/tile_energy (worker/staging.h; CreateStaging must have
+// run: NotFound otherwise, FailedPrecondition if the arrays do not match the
+// context's plan). Staged values are the row-transformed rows, albedo factored
+// out; masked cells and the last group's padding rows are 0. The energy is
+// Σ staged², summed in double in a fixed order and stored as float32.
+//
+// Memory: one tile (M × tile_cells floats) and one tile row of rows, never
+// S×M. Single-threaded; tiles may run concurrently on one context, in any
+// order, and a retried tile rewrites the same bytes: the chunks depend only on
+// (context, tile). `tile` outside [0, plan.tiles()) is InvalidArgument naming
+// "tile". stats (may be null) is added to.
+absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
+                      TileStats* stats);
+
+}  // namespace wavebake

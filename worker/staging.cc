@@ -1,0 +1,37 @@
+#include "worker/staging.h"
+
+#include "storage/store_layout.h"
+#include "storage/zarr_array.h"
+
+namespace wavebake {
+
+ArraySpec StagingTransportSpec(const JobPlan& plan) {
+  ArraySpec spec;
+  spec.shape = {plan.columns, int64_t{plan.width} * plan.height};
+  spec.chunks = {plan.group_size, plan.tile_cells()};
+  spec.dtype = DType::kFloat32;
+  spec.fill_value = 0;
+  return spec;
+}
+
+ArraySpec TileEnergySpec(const JobPlan& plan) {
+  ArraySpec spec;
+  spec.shape = {plan.tiles()};
+  spec.chunks = {1};
+  spec.dtype = DType::kFloat32;
+  spec.fill_value = 0;
+  return spec;
+}
+
+absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store) {
+  // Groups first, so a Zarr reader sees the hierarchy (DESIGN.md §3).
+  if (absl::Status s = WriteGroup(store); !s.ok()) return s;
+  if (absl::Status s = WriteGroup(store::Path(store, store::kStaging)); !s.ok()) return s;
+  absl::StatusOr<ZarrArray> transport =
+      ZarrArray::Create(store::Path(store, store::kStagingTransport), StagingTransportSpec(plan));
+  if (!transport.ok()) return transport.status();
+  return ZarrArray::Create(store::Path(store, store::kStagingTileEnergy), TileEnergySpec(plan))
+      .status();
+}
+
+}  // namespace wavebake

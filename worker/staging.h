@@ -1,0 +1,28 @@
+#pragma once
+// The staging arrays of a running job (DESIGN.md §2 "the blocked transpose",
+// storage/store_layout.h): BAKE_TILE writes them, TRANSFORM_COLUMNS reads
+// them, FINALIZE drops them.
+#include <filesystem>
+
+#include "absl/status/status.h"
+#include "core/job_plan.h"
+#include "storage/array_spec.h"
+
+namespace wavebake {
+
+// staging/transport: float32 [M, W*H] chunked [group_size, tile_cells], fill
+// 0. Chunk (g, t) holds columns GroupFirst(g).. of group g over the cells of
+// tile t (tile-major second axis, JobPlan::StagingCell); the last group's
+// chunks are padded with zero rows.
+ArraySpec StagingTransportSpec(const JobPlan& plan);
+// staging/tile_energy: float32 [tiles] chunked [1], fill 0: Σ of the squared
+// staged values of each tile.
+ArraySpec TileEnergySpec(const JobPlan& plan);
+
+// Creates the store's root group, the staging group and both arrays.
+// Idempotent: several workers (or a retried task) may call it, concurrently
+// too; arrays already there with the same spec are kept with their chunks.
+// A staging array with another spec (another plan) is AlreadyExists.
+absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store);
+
+}  // namespace wavebake
