@@ -2,92 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <map>
+#include <tuple>
 
 #include "core/nla.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
+#include "worker/depth_search.h"
 
 namespace wavebake {
 namespace {
 
-// Reused by every column a thread codes: the adaptive search transforms each
-// column at every depth, and allocating per column would cost more than the
-// search (the brief of issue "Column stage").
-struct ColumnScratch {
-  std::vector<float> work;       // the column, transformed step by step
-  std::vector<float> best;       // the best depth seen so far (adaptive only)
-  std::vector<double> energies;  // weighted squared magnitudes (fixed-K search)
-};
-
-ColumnScratch& ThreadColumnScratch() {
-  thread_local ColumnScratch scratch;
-  return scratch;
-}
+double WeightOf(std::span<const float> w, size_t i) { return w.empty() ? 1.0 : w[i]; }
 
 bool IsOrthonormal(WaveletFilter f) {
   return f == WaveletFilter::kHaar || f == WaveletFilter::kDaub4;
-}
-
-// The ranking weights of a depth-d layout; empty means all ones (core/nla.h),
-// which spares the multiply for the orthonormal filters.
-std::span<const float> Weights(const ColumnCodingParams& p, int depth) {
-  if (IsOrthonormal(p.filter) || depth == 0) return {};
-  return SynthesisNormsRef(p.filter, p.width, p.height, depth);
-}
-
-double WeightOf(std::span<const float> w, size_t i) { return w.empty() ? 1.0 : w[i]; }
-
-// Σ (v_i·w_i)² over the coefficients a top-K selection leaves out: the
-// n − K smallest weighted energies (ties have equal energy, so which of them
-// TopK keeps does not change the sum).
-double DroppedByTopK(std::span<const float> v, std::span<const float> w, int k,
-                     std::vector<double>& energies) {
-  energies.clear();
-  for (size_t i = 0; i < v.size(); ++i) {
-    const double m = static_cast<double>(v[i]) * WeightOf(w, i);
-    if (m != 0) energies.push_back(m * m);
-  }
-  if (energies.size() <= static_cast<size_t>(k)) return 0;
-  const auto cut = energies.end() - k;
-  std::nth_element(energies.begin(), cut, energies.end());
-  return std::accumulate(energies.begin(), cut, 0.0);
-}
-
-// What the depth search minimizes: kept coefficients for the budget, or the
-// dropped energy for a fixed K (DESIGN.md §1).
-double SearchCost(const ColumnCodingParams& p, std::span<const float> coeffs,
-                  std::span<const float> w, double budget, ColumnScratch& scratch) {
-  if (p.column_terms > 0) return DroppedByTopK(coeffs, w, p.column_terms, scratch.energies);
-  return CountForBudget(coeffs, w, budget);
-}
-
-// Transforms scratch.work to every depth the mode allows and returns the
-// winning depth; its coefficients are left in the returned span.
-std::span<const float> SearchDepth(const ColumnCodingParams& p, double budget,
-                                   ColumnScratch& scratch, int* depth) {
-  const int max_depth = MaxDepth(p.width, p.height);
-  const int first = p.mode == ColumnMode::kFull ? max_depth : 0;
-  const int last = p.mode == ColumnMode::k2d ? 0 : max_depth;
-  std::span<float> work(scratch.work);
-  int best_depth = -1;
-  double best_cost = 0;
-  for (int d = 0; d <= last; ++d) {
-    if (d > 0) ForwardStep(p.filter, work, p.width, p.height, d - 1);
-    if (d < first) continue;
-    const double cost = SearchCost(p, work, Weights(p, d), budget, scratch);
-    // Ties keep the shallower depth (4D paper §4.2: fewer steps for the same size).
-    if (best_depth >= 0 && !(cost < best_cost)) continue;
-    best_depth = d;
-    best_cost = cost;
-    if (first == last) break;
-    scratch.best.assign(work.begin(), work.end());
-    // Keeping nothing cannot be beaten, and deeper ties lose.
-    if (p.column_terms == 0 && cost == 0) break;
-  }
-  *depth = best_depth;
-  return first == last ? std::span<const float>(scratch.work)
-                       : std::span<const float>(scratch.best);
 }
 
 // The kept set at the chosen depth, increasing positions, and its dropped energy.
@@ -117,22 +46,21 @@ void Select(const ColumnCodingParams& p, std::span<const float> coeffs, std::spa
 }
 
 // Σ_i (scale·2^−l_i·w_i)²/12 with scale = max_i |v_i·2^l_i| rounded up to
-// float exactly as core/quantizer.h Quantize stores it.
+// float exactly as core/quantizer.h Quantize stores it. Powers of two are
+// exact, so multiplying by them is ldexp.
 double QuantizationUnit(const ColumnCodingParams& p, std::span<const float> w,
                         const CodedColumn& c) {
-  auto level = [&](uint32_t pos) {
-    return SubbandAt(static_cast<int>(pos % p.width), static_cast<int>(pos / p.width), p.width,
-                     p.height, c.depth)
-        .level;
-  };
+  const std::vector<uint8_t>& levels = SubbandLevels(p.width, p.height, c.depth);
   double scale = 0;
-  for (size_t i = 0; i < c.positions.size(); ++i)
-    scale = std::max(scale, std::fabs(std::ldexp(double{c.values[i]}, level(c.positions[i]))));
+  for (size_t i = 0; i < c.positions.size(); ++i) {
+    const double pow2 = double(uint64_t{1} << levels[c.positions[i]]);
+    scale = std::max(scale, std::fabs(double{c.values[i]}) * pow2);
+  }
   float stored = static_cast<float>(scale);
   if (stored < scale) stored = std::nextafter(stored, INFINITY);
   double unit = 0;
   for (uint32_t pos : c.positions) {
-    const double step = std::ldexp(double{stored}, -level(pos)) * WeightOf(w, pos);
+    const double step = double{stored} / double(uint64_t{1} << levels[pos]) * WeightOf(w, pos);
     unit += step * step / 12;
   }
   return unit;
@@ -152,6 +80,24 @@ ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, i
           .matrix_energy = matrix_energy};
 }
 
+std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth) {
+  if (IsOrthonormal(p.filter) || depth == 0) return {};
+  return SynthesisNormsRef(p.filter, p.width, p.height, depth);
+}
+
+const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth) {
+  using Key = std::tuple<int, int, int>;
+  thread_local std::map<Key, std::vector<uint8_t>> cache;
+  std::vector<uint8_t>& levels = cache[Key{width, height, depth}];
+  if (levels.empty()) {
+    levels.resize(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        levels[size_t(y) * width + x] = uint8_t(SubbandAt(x, y, width, height, depth).level);
+  }
+  return levels;
+}
+
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out) {
   *out = CodedColumn{};
   for (float v : image) out->energy += static_cast<double>(v) * v;
@@ -161,13 +107,12 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     return;
   }
   const double budget = p.target_error * p.target_error * out->reference_energy;
-  ColumnScratch& scratch = ThreadColumnScratch();
-  scratch.work.assign(image.begin(), image.end());
-  const std::span<const float> coeffs = SearchDepth(p, budget, scratch, &out->depth);
-  const std::span<const float> w = Weights(p, out->depth);
-  Select(p, coeffs, w, budget, out);
+  const DepthChoice choice = ChooseDepth(p, image, budget);
+  out->depth = choice.depth;
+  const std::span<const float> w = RankingWeights(p, out->depth);
+  Select(p, choice.coefficients, w, budget, out);
   out->values.reserve(out->positions.size());
-  for (uint32_t pos : out->positions) out->values.push_back(coeffs[pos]);
+  for (uint32_t pos : out->positions) out->values.push_back(choice.coefficients[pos]);
   out->quantization_unit = QuantizationUnit(p, w, *out);
   out->min_bits = MinBitsFor(out->quantization_unit, p.target_error, out->reference_energy);
 }

@@ -44,6 +44,14 @@ struct CodedColumn {
 // across threads sharing `out`; reuses per-thread scratch buffers.
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out);
 
+// The ranking weights of a depth-d layout (core/subband.h synthesis norms);
+// empty means all ones (core/nla.h), as for the orthonormal filters.
+std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth);
+
+// SubbandAt(x, y, W, H, depth).level of every position y*W + x, computed once
+// per thread and shape (the l of the quantizer's 2^l scaling).
+const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth);
+
 // Q_b = 2^(b−1) − 1, the largest code of b-bit signed quantization.
 int MaxQuantCode(int bits);
 // Expected quantization error energy of a column at `bits` (DESIGN.md §1 for

@@ -12,6 +12,7 @@
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
+#include "worker/column_coding.h"
 #include "worker/group_result.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
@@ -91,12 +92,9 @@ struct QuantizedOutcome {
 QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, int bits,
                              std::span<const uint32_t> positions, std::span<const float> values) {
   const JobPlan& plan = ctx.plan;
+  const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, depth);
   std::vector<uint8_t> levels(positions.size());
-  for (size_t i = 0; i < positions.size(); ++i) {
-    levels[i] = static_cast<uint8_t>(SubbandAt(positions[i] % plan.width, positions[i] / plan.width,
-                                               plan.width, plan.height, depth)
-                                         .level);
-  }
+  for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
   QuantizedOutcome out;
   out.q = Quantize(values, positions, levels, bits, ctx.params.seed, column);
   std::vector<float> decoded(positions.size());
