@@ -15,7 +15,8 @@
 // the same with thread CPU time (steadier on a shared machine; the wall
 // ratios include fsync waits and other processes).
 // BM_Finalize reports transport/indices bytes with and without the delta
-// filter (DESIGN.md §3).
+// filter (DESIGN.md §3), the bits --bits auto chose and the achieved
+// per-column error (mean, max of sqrt(dropped + quantization)/sqrt(E_ref)).
 #include <benchmark/benchmark.h>
 #include <time.h>
 #include <unistd.h>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "storage/store_layout.h"
+#include "storage/store_reader.h"
 #include "storage/zarr_array.h"
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
@@ -200,6 +202,14 @@ void BM_Finalize(benchmark::State& state) {
   state.counters["indices_bytes_plain"] = double(DirectoryBytes(plain_dir));
   state.counters["data_bytes"] = double(DirectoryBytes(store::Path(f.store, store::kData)));
   state.counters["raw_MB"] = double(f.ctx->samples.size()) * f.ctx->plan.columns * 4 / 1e6;
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(f.store);
+  if (!info.ok()) Die(info.status().ToString());
+  const nlohmann::json& stats = info->attrs["stats"];
+  state.counters["bits"] = info->bits;
+  std::fprintf(stderr, "manifest stats: %s\n", stats.dump().c_str());
+  state.counters["transport_bytes"] = stats["bytes"]["transport"].get<double>();
+  state.counters["err_mean"] = stats["column_error"]["mean"].get<double>();
+  state.counters["err_max"] = stats["column_error"]["max"].get<double>();
 }
 BENCHMARK(BM_Finalize)->Unit(benchmark::kMillisecond);
 

@@ -142,7 +142,8 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
                   .energy = gc.energy,
                   .reference_energy = gc.reference_energy,
                   .dropped_energy = gc.dropped_energy,
-                  .quantization_energy = q.error_energy});
+                  .quantization_energy = q.error_energy,
+                  .min_bits = gc.min_bits});
     }
   }
   for (absl::Status s :

@@ -111,8 +111,10 @@ absl::Status ReadManifestSummary(const std::filesystem::path& store, BakeSummary
 }  // namespace
 
 absl::StatusOr<BakeSummary> RunLocalBake(std::string_view scene_spec, const BakeParams& params,
-                                         const std::filesystem::path& out,
+                                         const std::filesystem::path& out_arg,
                                          const LocalBakeOptions& options) {
+  // "x.wbk/" names x.wbk: the partial store must sit beside it, not inside.
+  const std::filesystem::path out = out_arg.has_filename() ? out_arg : out_arg.parent_path();
   // Everything that can be refused is refused before a directory exists.
   absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(scene_spec, params);
   if (!ctx.ok()) return ctx.status();

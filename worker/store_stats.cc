@@ -20,6 +20,7 @@ void StoreStats::Add(const ColumnOutcome& c) {
   const int row_level = RowLevel(texel % light_res_, texel / light_res_);
   ++depth_histogram_.at(c.depth);
   ++depth_by_row_level_.at(row_level).at(c.depth);
+  ++bits_needed_histogram_.at(c.min_bits);
   ++columns_;
   nnz_ += c.kept;
   dropped_sum_ += c.dropped_energy;
@@ -53,6 +54,9 @@ nlohmann::json StoreStats::ToJson() const {
       {"depth_histogram", depth_histogram_},
       {"depth_by_row_level", depth_by_row_level_},
       {"mean_depth_by_row_level", mean_depth},
+      // How many columns need b bits (index b) for --bits auto on their own;
+      // FINALIZE uses the largest needed.
+      {"bits_needed_histogram", bits_needed_histogram_},
       {"column_error",
        {{"mean", nonzero_columns_ > 0 ? error_sum_ / double(nonzero_columns_) : 0.0},
         {"max", error_max_}}},

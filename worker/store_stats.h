@@ -17,6 +17,7 @@ struct ColumnOutcome {
   double reference_energy = 0;     // E_ref of its error scope
   double dropped_energy = 0;       // selection: Σ (c_i·w_i)² dropped
   double quantization_energy = 0;  // achieved: Σ ((ĉ_i − c_i)·w_i)² over kept coefficients
+  int min_bits = 2;                // its own --bits auto need (worker/column_coding.h)
 };
 
 class StoreStats {
@@ -30,8 +31,9 @@ class StoreStats {
 
  private:
   int light_res_;
-  std::vector<int64_t> depth_histogram_;                  // [depth]
-  std::vector<std::vector<int64_t>> depth_by_row_level_;  // [row level][depth]
+  std::vector<int64_t> depth_histogram_;                                      // [depth]
+  std::vector<std::vector<int64_t>> depth_by_row_level_;                      // [row level][depth]
+  std::vector<int64_t> bits_needed_histogram_ = std::vector<int64_t>(17, 0);  // [bits], 2..16 used
   int64_t nnz_ = 0, columns_ = 0, nonzero_columns_ = 0;
   double error_sum_ = 0, error_max_ = 0;
   double dropped_sum_ = 0, quantization_sum_ = 0, energy_sum_ = 0;
