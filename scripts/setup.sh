@@ -6,7 +6,7 @@ PKGS=(
   build-essential cmake ninja-build pkg-config git
   libabsl-dev libzstd-dev nlohmann-json3-dev libembree-dev libassimp-dev
   libopenexr-dev libstb-dev libcli11-dev libspdlog-dev libsqlite3-dev
-  libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc
+  libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
 )
