@@ -1,5 +1,6 @@
 #include "worker/transform_columns.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <vector>
 
