@@ -7,7 +7,9 @@
 // The matrix is synthetic with a realistic sparsity: light_res 32 (M = 6144
 // columns), every column keeps 2 % of the grid's cells (nnz/column = 328 at
 // 128², 1311 at 256²) at uniform random positions, depth uniform in
-// 0..log2(W), Haar columns. The dense matrix of 256² is 1.6 GB.
+// 0..log2(W), Haar columns. The dense matrix of 256² is 1.6 GB. (Real stores
+// for comparison, camera:64x64, N = 32, target 1 %: disk-over-plane keeps
+// 1.75 % of the cells per column, cubes-wall 4.7 %.)
 //   ./build/bench_relight --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <time.h>
