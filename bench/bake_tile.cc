@@ -29,7 +29,7 @@
 #include "worker/bake_context.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "worker/transport_row.h"
+#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -20,8 +20,8 @@
 
 #include "core/cubemap.h"
 #include "core/ray_caster.h"
-#include "worker/jitter_pattern.h"
-#include "worker/transport_row.h"
+#include "core/jitter_pattern.h"
+#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

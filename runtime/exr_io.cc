@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "storage/atomic_file.h"
 #include "runtime/image_io.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "storage/atomic_file.h"
 #include "runtime/image_io.h"
 #include "runtime/tonemap.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 

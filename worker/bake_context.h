@@ -17,7 +17,7 @@
 #include "core/samples.h"
 #include "core/scene.h"
 #include "core/scene_check.h"
-#include "worker/jitter_pattern.h"
+#include "core/jitter_pattern.h"
 
 namespace wavebake {
 

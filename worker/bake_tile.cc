@@ -9,7 +9,7 @@
 #include "storage/zarr_array.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "worker/transport_row.h"
+#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -13,7 +13,7 @@
 #include "worker/bake_tile.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "worker/transport_row.h"
+#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -16,7 +16,7 @@
 #include "storage/store_layout.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/staging.h"
-#include "worker/transport_row.h"
+#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

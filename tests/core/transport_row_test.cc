@@ -1,4 +1,4 @@
-#include "worker/transport_row.h"
+#include "core/transport_row.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "worker/jitter_pattern.h"
+#include "core/jitter_pattern.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -12,7 +12,7 @@
 #include "core/cubemap.h"
 #include "core/ray_caster.h"
 #include "core/vec3.h"
-#include "worker/jitter_pattern.h"
+#include "core/jitter_pattern.h"
 
 namespace wavebake {
 

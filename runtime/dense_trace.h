@@ -1,0 +1,39 @@
+#pragma once
+// The uncompressed answer of `eval` (DESIGN.md §5 "dense"): B = T·L with T
+// retraced row by row exactly as the bake traced it — the same cubemap, the
+// same shared jitter pattern (job seed, K), the same ray offset and the same
+// row kernel (core/transport_row.h) — and L the lighting resampled onto that
+// cubemap in the pixel basis (no row transform, no approximation). So the
+// dense error against the reference is the discretization error of T itself,
+// and compressed − dense is what compression and the n-term lighting cost.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/ray_caster.h"
+#include "core/samples.h"
+
+namespace wavebake {
+
+struct DenseTraceOptions {
+  int light_res = 32;   // N of the store
+  int supersample = 4;  // K of the store
+  uint64_t seed = 1;    // job seed of the store (jitter pattern)
+  float epsilon = 0;    // ray offset; 0: caster.DefaultEpsilon() as in the bake
+};
+
+struct DenseTraceResult {
+  std::vector<float> rgb;  // [cells*3], × albedo, NaN where masked
+  int64_t rays = 0;
+  double seconds = 0;
+};
+
+// cube_rgb: [3 * 6N²] texel mean radiance (ResampleToCubemap). Runs on all
+// cores; the result does not depend on their number.
+absl::StatusOr<DenseTraceResult> TraceDenseRelight(const RayCaster& caster,
+                                                   const SampleSet& samples,
+                                                   std::span<const float> cube_rgb,
+                                                   const DenseTraceOptions& options);
+
+}  // namespace wavebake

@@ -1,0 +1,128 @@
+#include "runtime/eval.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "core/cubemap.h"
+#include "core/scene_hash.h"
+#include "runtime/dense_trace.h"
+#include "runtime/env_resample.h"
+#include "runtime/store_relight.h"
+#include "storage/scene_loader.h"
+
+namespace wavebake {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json StatsJson(const ErrorStats& s) {
+  nlohmann::json j;
+  j["rel_rms"] = s.rel_rms;
+  j["max_abs"] = s.max_abs;
+  j["psnr"] = std::isfinite(s.psnr) ? nlohmann::json(s.psnr) : nlohmann::json(nullptr);
+  j["seconds"] = s.seconds;
+  return j;
+}
+
+}  // namespace
+
+ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference) {
+  double sq = 0, ref_sq = 0, max_abs = 0, peak = 0;
+  int64_t count = 0;
+  for (size_t i = 0; i < reference.size(); ++i) {
+    if (std::isnan(reference[i])) continue;  // masked cell
+    const double d = double{image[i]} - reference[i];
+    sq += d * d;
+    ref_sq += double{reference[i]} * reference[i];
+    max_abs = std::max(max_abs, std::fabs(d));
+    peak = std::max(peak, double{reference[i]});
+    ++count;
+  }
+  ErrorStats s;
+  s.rel_rms = ref_sq > 0 ? std::sqrt(sq / ref_sq) : std::sqrt(sq);
+  s.max_abs = max_abs;
+  s.psnr = sq > 0 ? 10 * std::log10(peak * peak / (sq / count))
+                  : std::numeric_limits<double>::infinity();
+  return s;
+}
+
+absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
+                                    int terms, const EvalOptions& options) {
+  if (terms <= 0) {
+    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
+  }
+  absl::StatusOr<OpenedStore> opened = OpenStore(store);
+  if (!opened.ok()) return opened.status();
+  absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
+  if (!env.ok()) return env.status();
+  if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
+
+  // The scene the store was baked from, checked by content hash: a scene file
+  // edited since the bake would make every comparison meaningless.
+  const StoreInfo& info = opened->info;
+  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
+  if (!scene.ok()) return scene.status();
+  if (!info.scene_hash.empty() && SceneHash(*scene) != info.scene_hash) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ",
+                     SceneHash(*scene), " vs ", info.scene_hash, ")"));
+  }
+  absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
+  if (!caster.ok()) return caster.status();
+  const float eps =
+      info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster->DefaultEpsilon();
+
+  EvalReport report;
+  report.terms = terms;
+  ReferenceOptions ref_options = options.reference;
+  ref_options.epsilon = eps;
+  absl::StatusOr<ReferenceResult> reference =
+      ComputeReference(*caster, opened->samples, *env, ref_options);
+  if (!reference.ok()) return reference.status();
+  report.reference_rel_se = reference->rel_se;
+  report.reference_rays = reference->rays;
+  report.reference_seconds = reference->seconds;
+  report.reference_converged = reference->converged;
+
+  auto t0 = std::chrono::steady_clock::now();
+  absl::StatusOr<std::vector<float>> compressed = RelightImage(*opened, *env, terms);
+  if (!compressed.ok()) return compressed.status();
+  const double compressed_seconds = SecondsSince(t0);
+  report.compressed = CompareToReference(*compressed, reference->rgb);
+  report.compressed.seconds = compressed_seconds;
+
+  if (options.dense) {
+    t0 = std::chrono::steady_clock::now();
+    const std::vector<float> cube = ResampleToCubemap(*env, Cubemap(info.light_res));
+    DenseTraceOptions dense_options{info.light_res, info.params.supersample, info.params.seed, eps};
+    absl::StatusOr<DenseTraceResult> dense =
+        TraceDenseRelight(*caster, opened->samples, cube, dense_options);
+    if (!dense.ok()) return dense.status();
+    const double dense_seconds = SecondsSince(t0);
+    report.dense = CompareToReference(dense->rgb, reference->rgb);
+    report.dense.seconds = dense_seconds;
+    report.has_dense = true;
+    report.dense_rays = dense->rays;
+  }
+  return report;
+}
+
+nlohmann::json EvalReportJson(const EvalReport& r) {
+  nlohmann::json j;
+  j["terms"] = r.terms;
+  j["dense"] = r.has_dense ? StatsJson(r.dense) : nlohmann::json(nullptr);
+  j["compressed"] = StatsJson(r.compressed);
+  j["reference"] = {{"rel_se", r.reference_rel_se},
+                    {"rays", r.reference_rays},
+                    {"seconds", r.reference_seconds},
+                    {"converged", r.reference_converged}};
+  return j;
+}
+
+}  // namespace wavebake

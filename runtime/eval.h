@@ -1,0 +1,59 @@
+#pragma once
+// `wavebake eval STORE --env ENV --reference [--terms n] [--json]`
+// (DESIGN.md §5): how far the store's relighting is from an independently
+// traced reference (runtime/reference.h), next to how far the uncompressed T
+// is (runtime/dense_trace.h), so discretization and compression error can be
+// told apart.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string_view>
+
+#include "absl/status/statusor.h"
+#include "runtime/reference.h"
+
+namespace wavebake {
+
+struct EvalOptions {
+  ReferenceOptions reference;  // its epsilon is replaced by the bake's
+  double rotate_degrees = 0;   // environment rotation about +Y (Rotated)
+  bool dense = true;           // also retrace and evaluate the uncompressed T
+};
+
+// Over all unmasked cells and the three channels of image vs reference:
+//   rel_rms = sqrt(Σ (x − r)² / Σ r²),  max_abs = max |x − r|,
+//   psnr = 10 log10(peak² / mean (x − r)²) dB with peak = max r
+// (+inf when identical: JSON null). seconds: wall time of producing the image.
+struct ErrorStats {
+  double rel_rms = 0, max_abs = 0, psnr = 0, seconds = 0;
+};
+ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference);
+
+struct EvalReport {
+  int terms = 0;
+  // compressed.seconds: lighting (resample, row transform, selection) +
+  // Eq. 8 relight, the store already in memory. dense.seconds: retracing
+  // every row of T and the product with L (the cost of the answer without a
+  // store).
+  ErrorStats dense, compressed;
+  bool has_dense = false;
+  double reference_rel_se = 0;  // the reference's own error in the rel_rms metric
+  int64_t reference_rays = 0;
+  double reference_seconds = 0;
+  bool reference_converged = true;
+  int64_t dense_rays = 0;
+};
+
+// Errors: terms ≤ 0; the store (missing, another format version, damaged);
+// the env spec; the scene spec recorded in the store no longer loading or no
+// longer hashing to the baked scene.
+absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
+                                    int terms, const EvalOptions& options = {});
+
+// {"terms": n, "dense": {"rel_rms", "max_abs", "psnr", "seconds"},
+//  "compressed": {same keys}, "reference": {"rel_se", "rays", "seconds",
+//  "converged"}}; "dense" is null when not evaluated.
+nlohmann::json EvalReportJson(const EvalReport& report);
+
+}  // namespace wavebake

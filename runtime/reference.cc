@@ -1,0 +1,208 @@
+#include "runtime/reference.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <span>
+#include <thread>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "runtime/env_sampler.h"
+
+namespace wavebake {
+namespace {
+
+constexpr int kBatch = 128;     // draws per Embree call, per stratified batch, per check
+constexpr int kMinBatches = 8;  // fewer batch means give no usable standard error
+constexpr uint64_t kReferenceDomain = 0x7265662d72617973ull;  // "ref-rays"
+
+uint64_t Mix64(uint64_t z) {  // SplitMix64 output step (Steele, Lea, Flood 2014)
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+class Rng {
+ public:
+  Rng(uint64_t seed, uint64_t stream) : state_(Mix64(Mix64(seed ^ kReferenceDomain) + stream)) {}
+  double Next01() {
+    return static_cast<double>(Mix64(state_ += 0x9e3779b97f4a7c15ull) >> 11) * 0x1p-53;
+  }
+
+ private:
+  uint64_t state_;
+};
+
+// One sample's estimate by batch means: each batch of kBatch draws, stratified
+// in the first uniform, is an unbiased estimate of B; batches are independent,
+// so their spread gives the standard error (stratified draws inside a batch
+// are not independent, so the per-draw variance would overstate it).
+struct Estimate {
+  std::array<double, 3> sum{}, sum_sq{};  // of the batch means
+  int64_t batches = 0;
+  int64_t traced = 0;
+
+  int64_t rays() const { return batches * kBatch; }
+  double Mean(int c) const { return batches ? sum[c] / batches : 0; }
+  double StdErr(int c) const {
+    if (batches < 2) return std::numeric_limits<double>::infinity();
+    const double var = std::max(0.0, (sum_sq[c] - sum[c] * sum[c] / batches) / (batches - 1));
+    return std::sqrt(var / batches);
+  }
+};
+
+struct Receiver {
+  Vec3 origin, normal;
+};
+
+// One batch of kBatch draws for one receiver: draw i takes its block-curve
+// uniform from the stratum [i, i+1)/kBatch (jittered), the rest at random.
+void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<const double> cdf,
+                const Receiver& r, Rng& rng, Estimate& e) {
+  alignas(64) float x[kBatch], y[kBatch], z[kBatch];
+  std::array<double, 3> f[kBatch];
+  uint8_t occluded[kBatch];
+  int count = 0;
+  for (int i = 0; i < kBatch; ++i) {
+    std::array<double, 5> u;
+    for (double& v : u) v = rng.Next01();
+    u[0] = (i + u[0]) / kBatch;
+    const EnvSampler::Draw d = sampler.Sample(cdf, u);
+    const double cosine = Dot(r.normal, d.direction);
+    if (!(cosine > 0)) continue;  // f = 0: counted, not traced
+    x[count] = d.direction.x, y[count] = d.direction.y, z[count] = d.direction.z;
+    for (int c = 0; c < 3; ++c) f[count][c] = d.weight[c] * cosine / std::numbers::pi;
+    ++count;
+  }
+  const size_t n = static_cast<size_t>(count);
+  caster.OccludedFan(r.origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
+                     {occluded, n});
+  std::array<double, 3> batch{};
+  for (int i = 0; i < count; ++i) {
+    if (occluded[i]) continue;
+    for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double mean = batch[c] / kBatch;
+    e.sum[c] += mean;
+    e.sum_sq[c] += mean * mean;
+  }
+  ++e.batches;
+  e.traced += count;
+}
+
+template <typename Body>
+void ForEachIndex(int count, int threads, const Body& body) {
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int i; (i = next.fetch_add(1)) < count;) body(i);
+  };
+  std::vector<std::jthread> pool;
+  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
+  work();
+}
+
+absl::Status CheckInputs(const SampleSet& s, const EnvMap& env, const ReferenceOptions& o) {
+  if (env.height <= 0 || env.width != 2 * env.height ||
+      env.rgb.size() != static_cast<size_t>(env.width) * env.height * 3) {
+    return absl::InvalidArgumentError(absl::StrCat("env: ", env.width, "x", env.height,
+                                                   " is not a lat-long map (width = 2 height)"));
+  }
+  if (s.grid.size() != static_cast<size_t>(s.cells()) || s.normal.size() != s.position.size() ||
+      s.albedo.size() != s.position.size()) {
+    return absl::InvalidArgumentError("samples: grid, normal or albedo sizes disagree");
+  }
+  if (!(o.target_rel_se > 0) || o.min_rays < 2 || o.max_rays < o.min_rays) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "reference options: target_rel_se ", o.target_rel_se, ", min_rays ", o.min_rays,
+        ", max_rays ", o.max_rays, " (need target > 0 and 2 ≤ min ≤ max)"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const SampleSet& samples,
+                                                 const EnvMap& env, const ReferenceOptions& o) {
+  if (absl::Status s = CheckInputs(samples, env, o); !s.ok()) return s;
+  const auto start = std::chrono::steady_clock::now();
+  const EnvSampler sampler(env);
+  const float eps = o.epsilon > 0 ? o.epsilon : caster.DefaultEpsilon();
+  const int threads = o.threads > 0
+                          ? o.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int count = samples.size();
+  std::vector<Estimate> est(count);
+  std::vector<double> cdf_total(count);
+  std::vector<Rng> rng;  // one stream per sample, continued by pass 2
+  rng.reserve(count);
+  for (int s = 0; s < count; ++s) rng.emplace_back(o.seed, static_cast<uint64_t>(s));
+
+  // Both passes rebuild the receiver's block distribution (2 K entries)
+  // rather than keep one per sample.
+  auto receiver = [&](int s) {
+    return Receiver{samples.position[s] + samples.normal[s] * eps, samples.normal[s]};
+  };
+  auto run = [&](int s, const auto& keep_going) {
+    std::vector<double> cdf(sampler.blocks() + 1);
+    cdf_total[s] = sampler.ReceiverCdf(samples.normal[s], cdf);
+    if (cdf_total[s] == 0) return;  // no light above the horizon: B = 0 exactly
+    while (keep_going(est[s])) TraceBatch(caster, sampler, cdf, receiver(s), rng[s], est[s]);
+  };
+  // Pass 1, the pilot: min_rays for everyone (whole batches, at least 8).
+  ForEachIndex(count, threads, [&](int s) {
+    run(s, [&](const Estimate& e) { return e.rays() < o.min_rays || e.batches < kMinBatches; });
+  });
+  double sum_sq = 0;
+  int64_t terms = 0;
+  for (int s = 0; s < count; ++s) {
+    const Vec3 a = samples.albedo[s];
+    for (int c = 0; c < 3; ++c) sum_sq += std::pow(est[s].Mean(c) * a[c], 2);
+    terms += 3;
+  }
+  const double rms = terms ? std::sqrt(sum_sq / terms) : 0;
+  const double target = o.target_rel_se * rms;
+  // Pass 2: each sample until SE_c · albedo_c ≤ target · R, or max_rays.
+  ForEachIndex(count, threads, [&](int s) {
+    const Vec3 a = samples.albedo[s];
+    run(s, [&](const Estimate& e) {
+      if (e.rays() >= o.max_rays) return false;
+      for (int c = 0; c < 3; ++c) {
+        if (e.StdErr(c) * a[c] > target) return true;
+      }
+      return false;
+    });
+  });
+
+  ReferenceResult r;
+  const size_t cells = static_cast<size_t>(samples.cells());
+  r.rgb.assign(3 * cells, std::numeric_limits<float>::quiet_NaN());
+  r.standard_error.assign(3 * cells, std::numeric_limits<float>::quiet_NaN());
+  double se_sq = 0, b_sq = 0;
+  for (size_t cell = 0; cell < cells; ++cell) {
+    const int32_t s = samples.grid[cell];
+    if (s < 0) continue;
+    const Vec3 a = samples.albedo[s];
+    const Estimate& e = est[s];
+    for (int c = 0; c < 3; ++c) {
+      const double b = e.Mean(c) * a[c];
+      const double se = cdf_total[s] == 0 ? 0.0 : e.StdErr(c) * a[c];
+      r.rgb[3 * cell + c] = static_cast<float>(b);
+      r.standard_error[3 * cell + c] = static_cast<float>(se);
+      se_sq += se * se;
+      b_sq += b * b;
+    }
+    r.rays += e.traced;
+    if (cdf_total[s] > 0 && e.rays() >= o.max_rays) r.converged = false;
+  }
+  r.rel_se = b_sq > 0 ? std::sqrt(se_sq / b_sq) : 0;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace wavebake

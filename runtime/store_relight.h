@@ -1,0 +1,43 @@
+#pragma once
+// Entry points of `wavebake relight` (DESIGN.md §5): a finished store opened
+// for relighting, one relit image, and the whole command as one call.
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/samples.h"
+#include "runtime/env_map.h"
+#include "runtime/relighter.h"
+#include "storage/store_reader.h"
+
+namespace wavebake {
+
+struct OpenedStore {
+  StoreInfo info;
+  SampleSet samples;
+  Relighter relighter;
+};
+
+// ReadStoreInfo + ReadSamples + ReadTransport (storage/store_reader.h) into a
+// Relighter. Errors: not a store, another format version, inconsistent arrays
+// (named by the reader or Relighter::Create).
+absl::StatusOr<OpenedStore> OpenStore(const std::filesystem::path& store);
+
+// The store relit by `terms` area-weighted wavelet lights of env (lat-long):
+// [W*H*3] linear RGB × albedo, NaN in masked cells. Error: terms ≤ 0.
+absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap& env, int terms);
+
+// `wavebake relight STORE --env ENV --terms n --rotate DEG --out OUT`:
+// ENV as LoadEnvMap reads it, rotated about +Y by rotate_degrees (Rotated);
+// OUT by extension: .png (8-bit sRGB, × 2^exposure_stops, masked cells
+// black) or .exr (linear float, masked NaN) of the W×H sample grid — the
+// image itself for camera layouts; .ply (vertex colours on the scene
+// reloaded from the store's scene spec) for the mesh layouts grid|hilbert.
+// Errors name the bad argument (terms, rotate, out, env, store).
+absl::Status RelightToFile(const std::filesystem::path& store, std::string_view env_spec, int terms,
+                           double rotate_degrees, float exposure_stops,
+                           const std::filesystem::path& out);
+
+}  // namespace wavebake

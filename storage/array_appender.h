@@ -1,0 +1,69 @@
+#pragma once
+// Streams a 1-D Zarr array to disk chunk by chunk, so a writer whose array is
+// larger than it wants to hold (FINALIZE's transport/indices and data,
+// DESIGN.md §2 "never S×M") buffers one chunk at a time. The array's length
+// is fixed by its spec: Close() checks every element was appended.
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "storage/zarr_array.h"
+
+namespace wavebake {
+
+template <class T>
+class ArrayAppender {
+ public:
+  // `array` must be 1-D with element type T and outlive the appender.
+  explicit ArrayAppender(const ZarrArray& array)
+      : array_(array), chunk_(static_cast<size_t>(array.spec().chunks.at(0))) {}
+
+  absl::Status Append(std::span<const T> values) {
+    while (!values.empty()) {
+      const size_t n = std::min(values.size(), chunk_.size() - filled_);
+      std::copy_n(values.begin(), n, chunk_.begin() + filled_);
+      filled_ += n;
+      values = values.subspan(n);
+      if (filled_ == chunk_.size()) {
+        if (absl::Status s = Flush(); !s.ok()) return s;
+      }
+    }
+    return absl::OkStatus();
+  }
+
+  // Writes the last, partial chunk (padded with the fill value, as Zarr
+  // does) and checks the length.
+  absl::Status Close() {
+    if (filled_ > 0) {
+      std::fill(chunk_.begin() + filled_, chunk_.end(), static_cast<T>(array_.spec().fill_value));
+      if (absl::Status s = Flush(); !s.ok()) return s;
+    }
+    const int64_t length = array_.spec().shape.at(0);
+    if (written_ != length) {
+      return absl::InternalError(absl::StrCat(array_.dir().string(), ": appended ", written_,
+                                              " elements to an array of ", length));
+    }
+    return absl::OkStatus();
+  }
+
+ private:
+  absl::Status Flush() {
+    const int64_t index = next_chunk_;
+    if (absl::Status s = array_.WriteChunk<T>(std::span(&index, 1), chunk_); !s.ok()) return s;
+    ++next_chunk_;
+    written_ += static_cast<int64_t>(filled_);
+    filled_ = 0;
+    return absl::OkStatus();
+  }
+
+  const ZarrArray& array_;
+  std::vector<T> chunk_;
+  size_t filled_ = 0;
+  int64_t next_chunk_ = 0;
+  int64_t written_ = 0;
+};
+
+}  // namespace wavebake

@@ -1,0 +1,106 @@
+#include "storage/store_samples.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "storage/store_layout.h"
+#include "storage/store_reader.h"
+#include "storage/zarr_array.h"
+
+namespace wavebake {
+namespace {
+
+constexpr int64_t kRowsPerChunk = 1 << 16;
+
+std::vector<float> Flatten(const std::vector<Vec3>& v) {
+  std::vector<float> out;
+  out.reserve(v.size() * 3);
+  for (const Vec3& p : v) out.insert(out.end(), {p.x, p.y, p.z});
+  return out;
+}
+
+std::vector<Vec3> Unflatten(const std::vector<float>& f) {
+  std::vector<Vec3> out(f.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  return out;
+}
+
+template <class T>
+absl::Status WriteArray(const std::filesystem::path& store, const char* name, ArraySpec spec,
+                        const std::vector<T>& values) {
+  spec.dtype = DTypeOf<T>();
+  absl::StatusOr<ZarrArray> a = ZarrArray::Create(store::Path(store, name), spec);
+  if (!a.ok()) return a.status();
+  return a->WriteAll<T>(values);
+}
+
+ArraySpec Vec3Spec(int64_t rows) {
+  return {.shape = {rows, 3}, .chunks = {std::max<int64_t>(1, std::min(rows, kRowsPerChunk)), 3}};
+}
+
+template <class T>
+absl::StatusOr<std::vector<T>> ReadArray(const std::filesystem::path& store, const char* name,
+                                         const std::vector<int64_t>& shape) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, name));
+  if (!a.ok()) return a.status();
+  if (a->spec().shape != shape)
+    return absl::DataLossError(absl::StrCat(a->dir().string(), ": unexpected shape"));
+  return a->ReadAll<T>();
+}
+
+}  // namespace
+
+absl::Status WriteSamples(const std::filesystem::path& store, const SampleSet& samples) {
+  if (absl::Status s = WriteGroup(store::Path(store, store::kSamples)); !s.ok()) return s;
+  const int64_t h = samples.height, w = samples.width, n = samples.size();
+  const ArraySpec grid{.shape = {h, w},
+                       .chunks = {std::min<int64_t>(h, 256), std::min<int64_t>(w, 256)}};
+  if (absl::Status s = WriteArray<int32_t>(store, store::kGrid, grid, samples.grid); !s.ok())
+    return s;
+  for (auto [name, values] :
+       {std::pair{store::kPosition, &samples.position}, std::pair{store::kNormal, &samples.normal},
+        std::pair{store::kAlbedo, &samples.albedo}}) {
+    if (absl::Status s = WriteArray<float>(store, name, Vec3Spec(n), Flatten(*values)); !s.ok())
+      return s;
+  }
+  if (samples.vertex.empty()) return absl::OkStatus();
+  const ArraySpec vertex{.shape = {n},
+                         .chunks = {std::max<int64_t>(1, std::min(n, kRowsPerChunk))}};
+  return WriteArray<int32_t>(store, store::kVertex, vertex, samples.vertex);
+}
+
+absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store) {
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
+  if (!info.ok()) return info.status();
+  SampleSet s;
+  s.width = info->width;
+  s.height = info->height;
+  absl::StatusOr<std::vector<int32_t>> grid =
+      ReadArray<int32_t>(store, store::kGrid, {s.height, s.width});
+  if (!grid.ok()) return grid.status();
+  s.grid = *std::move(grid);
+  absl::StatusOr<ZarrArray> position = ZarrArray::Open(store::Path(store, store::kPosition));
+  if (!position.ok()) return position.status();
+  const int64_t n = position->spec().shape.at(0);
+  for (auto [name, out] :
+       {std::pair{store::kPosition, &s.position}, std::pair{store::kNormal, &s.normal},
+        std::pair{store::kAlbedo, &s.albedo}}) {
+    absl::StatusOr<std::vector<float>> v = ReadArray<float>(store, name, {n, 3});
+    if (!v.ok()) return v.status();
+    *out = Unflatten(*v);
+  }
+  if (std::filesystem::exists(store::Path(store, store::kVertex))) {
+    absl::StatusOr<std::vector<int32_t>> v = ReadArray<int32_t>(store, store::kVertex, {n});
+    if (!v.ok()) return v.status();
+    s.vertex = *std::move(v);
+  }
+  for (int32_t id : s.grid) {
+    if (id < -1 || id >= n)
+      return absl::DataLossError(absl::StrCat(store::Path(store, store::kGrid).string(),
+                                              ": sample id ", id, " outside -1..", n - 1));
+  }
+  return s;
+}
+
+}  // namespace wavebake

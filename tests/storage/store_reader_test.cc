@@ -1,0 +1,261 @@
+// The store reader against a store written by hand here, array by array
+// (DESIGN.md §3), with its expected values worked out from the dequantization
+// formula of DESIGN.md §1 and levels read off the Mallat layout by hand.
+#include "storage/store_reader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/quantizer.h"
+#include "storage/params_json.h"
+#include "storage/store_layout.h"
+#include "storage/store_samples.h"
+#include "storage/zarr_array.h"
+#include "tests/storage/test_support.h"
+
+namespace wavebake {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TempDir;
+
+constexpr int kN = 8, kM = 6 * kN * kN, kW = 4, kH = 4, kBits = 9;
+constexpr uint64_t kSeed = 0x123456789ABCDEFull;
+
+// One hand-made column: positions in a 4×4 Mallat layout, their subband
+// levels at the column's depth (0 = LL and the last step's details), codes.
+struct HandColumn {
+  int column, depth;
+  std::vector<uint32_t> positions;
+  std::vector<int> levels;
+  std::vector<int16_t> q;
+  float scale;
+};
+
+const std::vector<HandColumn>& Columns() {
+  static const std::vector<HandColumn> columns = {
+      // depth 2: (0,0) LL, (1,0) step-1 HL → level 0; (2,0), (3,3) step-0 → level 1.
+      {0, 2, {0, 1, 2, 15}, {0, 0, 1, 1}, {100, -50, 255, -1}, 2.5f},
+      // depth 0: every position is level 0.
+      {5, 0, {3, 8}, {0, 0}, {-255, 7}, 0.125f},
+      // depth 1: LL and step-0 details are all level 0.
+      {200, 1, {0, 3, 12}, {0, 0, 0}, {1, 2, -3}, 1e-3f},
+      // depth 2: (2,2) is a step-0 HH coefficient → level 1.
+      {383, 2, {10}, {1}, {-17}, 40.0f},
+  };
+  return columns;
+}
+
+float Expected(const HandColumn& c, size_t k) {
+  const double u = DitherAt(kSeed, c.column, c.positions[k]);
+  const double qmax = (1 << (kBits - 1)) - 1;
+  return static_cast<float>((c.q[k] - u) / qmax * c.scale / std::pow(2.0, c.levels[k]));
+}
+
+nlohmann::json Attrs() {
+  BakeParams p;
+  p.light_res = kN;
+  p.seed = kSeed;
+  p.bits = kBits;
+  p.layout = "camera:4x4";
+  return {{"format", store::kFormat},
+          {"scene", "builtin:furnace"},
+          {"scene_hash", "abc"},
+          {"params", ToJson(p)},
+          {"N", kN},
+          {"W", kW},
+          {"H", kH},
+          {"bits", kBits}};
+}
+
+template <class T>
+void Write(const std::filesystem::path& store, const char* name, const std::vector<T>& v,
+           int64_t chunk = 3) {
+  absl::StatusOr<ZarrArray> a =
+      ZarrArray::Create(store::Path(store, name),
+                        {.shape = {int64_t(v.size())}, .chunks = {chunk}, .dtype = DTypeOf<T>()});
+  ASSERT_TRUE(a.ok()) << a.status();
+  ASSERT_TRUE(a->WriteAll<T>(v).ok());
+}
+
+// The CSC arrays of Columns(), small chunks so that columns straddle them.
+void WriteStore(const std::filesystem::path& store, std::vector<uint32_t> extra_index = {}) {
+  ASSERT_TRUE(WriteGroup(store).ok());
+  ASSERT_TRUE(WriteAttrs(store, Attrs()).ok());
+  ASSERT_TRUE(WriteGroup(store / "transport").ok());
+  std::vector<int64_t> indptr(kM + 1, 0);
+  std::vector<uint32_t> indices;
+  std::vector<int16_t> data;
+  std::vector<uint8_t> depth(kM, 0);
+  std::vector<float> scale(kM, 0.0f);
+  size_t next = 0;
+  for (int m = 0; m < kM; ++m) {
+    if (next < Columns().size() && Columns()[next].column == m) {
+      const HandColumn& c = Columns()[next++];
+      indices.insert(indices.end(), c.positions.begin(), c.positions.end());
+      data.insert(data.end(), c.q.begin(), c.q.end());
+      depth[m] = c.depth;
+      scale[m] = c.scale;
+    }
+    indptr[m + 1] = indices.size();
+  }
+  if (!extra_index.empty()) indices[0] = extra_index[0];
+  Write(store, store::kIndptr, indptr, 100);
+  Write(store, store::kIndices, indices);
+  Write(store, store::kData, data);
+  Write(store, store::kDepth, depth, 100);
+  Write(store, store::kScale, scale, 100);
+}
+
+TEST(StoreReaderTest, ReadsInfo) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  WriteStore(store);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  EXPECT_EQ(info->width, kW);
+  EXPECT_EQ(info->height, kH);
+  EXPECT_EQ(info->light_res, kN);
+  EXPECT_EQ(info->columns, kM);
+  EXPECT_EQ(info->bits, kBits);
+  EXPECT_EQ(info->params.seed, kSeed);
+  EXPECT_EQ(info->params.layout, "camera:4x4");
+  EXPECT_EQ(info->scene_spec, "builtin:furnace");
+  EXPECT_EQ(info->scene_hash, "abc");
+}
+
+TEST(StoreReaderTest, TransportIsDequantizedAndUnscaled) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  WriteStore(store);
+  absl::StatusOr<CompressedColumns> t = ReadTransport(store);
+  ASSERT_TRUE(t.ok()) << t.status();
+  EXPECT_EQ(t->columns, kM);
+  EXPECT_EQ(t->width, kW);
+  ASSERT_EQ(t->indptr.size(), size_t(kM + 1));
+  for (const HandColumn& c : Columns()) {
+    EXPECT_EQ(t->depth[c.column], c.depth);
+    const int64_t b = t->indptr[c.column];
+    ASSERT_EQ(t->indptr[c.column + 1] - b, int64_t(c.positions.size()));
+    for (size_t k = 0; k < c.positions.size(); ++k) {
+      EXPECT_EQ(t->indices[b + k], c.positions[k]);
+      EXPECT_EQ(t->values[b + k], Expected(c, k)) << "column " << c.column << " entry " << k;
+    }
+    absl::StatusOr<DecodedColumn> one = ReadColumn(store, c.column);
+    ASSERT_TRUE(one.ok()) << one.status();
+    EXPECT_EQ(one->depth, c.depth);
+    EXPECT_EQ(one->positions, c.positions);
+    for (size_t k = 0; k < c.positions.size(); ++k) EXPECT_EQ(one->values[k], Expected(c, k));
+  }
+  absl::StatusOr<DecodedColumn> empty = ReadColumn(store, 1);
+  ASSERT_TRUE(empty.ok());
+  EXPECT_TRUE(empty->values.empty());
+}
+
+TEST(StoreReaderTest, ErrorsNameTheProblem) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  EXPECT_EQ(ReadStoreInfo(store).status().code(), absl::StatusCode::kNotFound);
+  WriteStore(store);
+  EXPECT_EQ(ReadColumn(store, kM).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(ReadColumn(store, -1).status().message(), HasSubstr("column"));
+
+  nlohmann::json attrs = Attrs();
+  attrs["format"] = "wavebake/0";
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  absl::Status s = ReadStoreInfo(store).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(s.message(), HasSubstr("format"));
+  EXPECT_THAT(s.message(), HasSubstr("wavebake/0"));
+  EXPECT_THAT(s.message(), HasSubstr("wavebake/1"));
+
+  attrs = Attrs();
+  attrs["params"]["column_filter"] = "db8";
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  s = ReadStoreInfo(store).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(s.message(), HasSubstr("column_filter"));
+
+  attrs = Attrs();
+  attrs["params"]["column_mode"] = "fast";
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_THAT(ReadStoreInfo(store).status().message(), HasSubstr("column_mode"));
+
+  attrs = Attrs();
+  attrs["W"] = 3;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_THAT(ReadStoreInfo(store).status().message(), HasSubstr("W"));
+
+  // A position outside the 4×4 grid is corruption, not a crash.
+  TempDir tmp2;
+  const auto bad = tmp2.path() / "bad.wbk";
+  WriteStore(bad, {16});
+  EXPECT_EQ(ReadTransport(bad).status().code(), absl::StatusCode::kDataLoss);
+  EXPECT_EQ(ReadColumn(bad, 0).status().code(), absl::StatusCode::kDataLoss);
+}
+
+TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
+  BakeParams p;
+  p.light_res = 64;
+  p.layout = "hilbert:128x64";
+  p.supersample = 9;
+  p.row_filter = WaveletFilter::kDaub4;
+  p.column_mode = ColumnMode::kFull;
+  p.column_filter = WaveletFilter::kCdf97;
+  p.target_error = 0.0123;
+  p.error_scope = ErrorScope::kColumn;
+  p.column_terms = 17;
+  p.bits = 11;
+  p.seed = ~0ull;
+  p.tile_size = 64;
+  p.column_group = 33;
+  p.ray_epsilon = 1.5e-4f;
+  // Through text, as the .zattrs file carries it.
+  absl::StatusOr<BakeParams> back = BakeParamsFromJson(nlohmann::json::parse(ToJson(p).dump()));
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->light_res, p.light_res);
+  EXPECT_EQ(back->layout, p.layout);
+  EXPECT_EQ(back->supersample, p.supersample);
+  EXPECT_EQ(back->row_filter, p.row_filter);
+  EXPECT_EQ(back->column_mode, p.column_mode);
+  EXPECT_EQ(back->column_filter, p.column_filter);
+  EXPECT_EQ(back->target_error, p.target_error);
+  EXPECT_EQ(back->error_scope, p.error_scope);
+  EXPECT_EQ(back->column_terms, p.column_terms);
+  EXPECT_EQ(back->bits, p.bits);
+  EXPECT_EQ(back->seed, p.seed);
+  EXPECT_EQ(back->tile_size, p.tile_size);
+  EXPECT_EQ(back->column_group, p.column_group);
+  EXPECT_EQ(back->ray_epsilon, p.ray_epsilon);
+  EXPECT_EQ(ToJson(BakeParams{})["bits"], "auto");
+}
+
+TEST(StoreReaderTest, SamplesRoundTrip) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  WriteStore(store);
+  SampleSet s;
+  s.width = kW;
+  s.height = kH;
+  s.grid.assign(kW * kH, -1);
+  for (int i = 0; i < 5; ++i) {
+    s.grid[3 * i] = i;
+    s.position.push_back({float(i), 0.5f, -1.0f});
+    s.normal.push_back({0, 1, 0});
+    s.albedo.push_back({0.25f, 0.5f, 0.75f * i});
+    s.vertex.push_back(100 + i);
+  }
+  ASSERT_TRUE(WriteSamples(store, s).ok());
+  absl::StatusOr<SampleSet> back = ReadSamples(store);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->grid, s.grid);
+  EXPECT_EQ(back->position, s.position);
+  EXPECT_EQ(back->normal, s.normal);
+  EXPECT_EQ(back->albedo, s.albedo);
+  EXPECT_EQ(back->vertex, s.vertex);
+}
+
+}  // namespace
+}  // namespace wavebake

@@ -1,0 +1,183 @@
+#include "tests/worker/column_test_support.h"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "storage/store_layout.h"
+#include "storage/zarr_array.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake::column_testing {
+namespace {
+
+uint64_t Hash(uint64_t z) {  // splitmix64: reproducible parameters per column
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Uniform in [0, 1) from the k-th hash of a column.
+double Uniform(int column, int k) {
+  return double(Hash(Hash(uint64_t(column)) ^ uint64_t(k)) >> 11) * 0x1p-53;
+}
+
+float Smooth(int m, int x, int y, int w, int h) {
+  const double a = 0.5 + 0.5 * Uniform(m, 1), b = 0.5 + 0.5 * Uniform(m, 2);
+  const double phase = Uniform(m, 3), two_pi = 2 * std::numbers::pi;
+  return float(0.5 + 0.3 * std::sin(two_pi * (a * (x + 0.5) / w + phase)) *
+                         std::cos(two_pi * b * (y + 0.5) / h));
+}
+
+float Spikes(int m, int x, int y, int w, int h, int count) {
+  float v = 0;
+  for (int k = 0; k < count; ++k) {
+    const int sx = int(Uniform(m, 10 + 3 * k) * w), sy = int(Uniform(m, 11 + 3 * k) * h);
+    const double amp = 2 + 2 * Uniform(m, 12 + 3 * k);
+    if (sx == x && sy == y) v += float(k % 2 == 0 ? amp : -amp);
+  }
+  return v;
+}
+
+float Shadowed(int m, int x, int y, int w, int h) {
+  const double theta = 2 * std::numbers::pi * Uniform(m, 20);
+  const double d = (x - w / 2.0) * std::cos(theta) + (y - h / 2.0) * std::sin(theta);
+  return d > (Uniform(m, 21) - 0.5) * w / 2 ? Smooth(m, x, y, w, h) : 0.0f;
+}
+
+}  // namespace
+
+ScratchDir::ScratchDir() {
+  std::string tmpl = (std::filesystem::path(WB_BINARY_DIR) / "test_tmp").string();
+  std::filesystem::create_directories(tmpl);
+  tmpl += "/columns_XXXXXX";
+  if (::mkdtemp(tmpl.data()) == nullptr) throw std::runtime_error("mkdtemp failed: " + tmpl);
+  path_ = tmpl;
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+std::unique_ptr<BakeContext> MakeContext(const BakeParams& params, const std::string& layout) {
+  BakeParams p = params;
+  p.layout = layout;
+  absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext("builtin:furnace", p);
+  if (!ctx.ok()) throw std::runtime_error(std::string(ctx.status().message()));
+  return *std::move(ctx);
+}
+
+SyntheticKind KindOf(int column) {
+  if (column % 16 == 3) return SyntheticKind::kEmpty;
+  switch (column % 4) {
+    case 0:
+      return SyntheticKind::kSmooth;
+    case 1:
+      return SyntheticKind::kSpiky;
+    case 2:
+      return SyntheticKind::kMixed;
+    default:
+      return SyntheticKind::kSmooth;
+  }
+}
+
+ColumnImage SyntheticMatrix(int width, int height) {
+  return [width, height](int m, int x, int y) -> float {
+    switch (KindOf(m)) {
+      case SyntheticKind::kSmooth:
+        return Smooth(m, x, y, width, height);
+      case SyntheticKind::kSpiky:
+        return Spikes(m, x, y, width, height, 3);
+      case SyntheticKind::kMixed:
+        return Shadowed(m, x, y, width, height) + Spikes(m, x, y, width, height, 1);
+      case SyntheticKind::kEmpty:
+        return 0.0f;
+    }
+    return 0.0f;
+  };
+}
+
+void WriteSyntheticStaging(const JobPlan& plan, const std::filesystem::path& store,
+                           const ColumnImage& image) {
+  ASSERT_TRUE(WriteGroup(store).ok());
+  ASSERT_TRUE(WriteGroup(store::Path(store, store::kStaging)).ok());
+  absl::StatusOr<ZarrArray> transport =
+      ZarrArray::Create(store::Path(store, store::kStagingTransport),
+                        {.shape = {plan.columns, int64_t{plan.width} * plan.height},
+                         .chunks = {plan.group_size, plan.tile_cells()}});
+  absl::StatusOr<ZarrArray> energy = ZarrArray::Create(
+      store::Path(store, store::kStagingTileEnergy), {.shape = {plan.tiles()}, .chunks = {1}});
+  ASSERT_TRUE(transport.ok()) << transport.status();
+  ASSERT_TRUE(energy.ok()) << energy.status();
+  std::vector<float> chunk(size_t(plan.group_size) * plan.tile_cells());
+  for (int t = 0; t < plan.tiles(); ++t) {
+    const TileRect r = plan.Tile(t);
+    double sum = 0;
+    for (int g = 0; g < plan.groups; ++g) {
+      std::fill(chunk.begin(), chunk.end(), 0.0f);
+      for (int c = 0; c < plan.GroupCount(g); ++c) {
+        for (int i = 0; i < plan.tile_cells(); ++i) {
+          const float v = image(plan.GroupFirst(g) + c, r.x0 + i % r.width, r.y0 + i / r.width);
+          chunk[size_t(c) * plan.tile_cells() + i] = v;
+          sum += double(v) * v;
+        }
+      }
+      const int64_t index[2] = {g, t};
+      ASSERT_TRUE(transport->WriteChunk<float>(index, chunk).ok());
+    }
+    const int64_t index[1] = {t};
+    const float e = float(sum);
+    ASSERT_TRUE(energy->WriteChunk<float>(index, std::span(&e, 1)).ok());
+  }
+}
+
+void TransformAll(const BakeContext& ctx, const std::filesystem::path& store,
+                  std::vector<int> order) {
+  if (order.empty()) {
+    for (int g = 0; g < ctx.plan.groups; ++g) order.push_back(g);
+  }
+  for (int g : order) {
+    const absl::Status s = TransformColumns(ctx, store, g, nullptr);
+    ASSERT_TRUE(s.ok()) << s;
+  }
+}
+
+std::map<std::string, std::string> ReadTree(const std::filesystem::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    files[std::filesystem::relative(e.path(), dir).string()] = bytes.str();
+  }
+  return files;
+}
+
+ProcessResult RunPython(const std::filesystem::path& work_dir, const std::string& script) {
+  {
+    std::ofstream out(work_dir / "check.py");
+    out << script;
+  }
+  const std::string command = "cd '" + work_dir.string() + "' && /usr/bin/python3 check.py 2>&1";
+  ProcessResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buf[4096];
+  while (size_t n = std::fread(buf, 1, sizeof buf, pipe)) result.output.append(buf, n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace wavebake::column_testing

@@ -1,0 +1,66 @@
+#pragma once
+// Helpers of the column-stage tests: scratch directories, a bake context for
+// a small job, synthetic staging written directly in the staging format
+// (storage/store_layout.h, core/job_plan.h) with ZarrArray, and the
+// independent python reader.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/bake_params.h"
+#include "worker/bake_context.h"
+
+namespace wavebake::column_testing {
+
+// A fresh directory under the build tree, removed with everything in it.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  ~ScratchDir();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// A context for builtin:furnace with `layout` (default camera:32x32): the
+// scene only supplies the plan and samples; the tests' staging is synthetic.
+std::unique_ptr<BakeContext> MakeContext(const BakeParams& params,
+                                         const std::string& layout = "camera:32x32");
+
+// Value of cell (x, y) of light column m in a synthetic W×H matrix.
+using ColumnImage = std::function<float(int column, int x, int y)>;
+
+// What the synthetic column m is (column % 4, with every 16th column empty).
+enum class SyntheticKind { kSmooth, kSpiky, kMixed, kEmpty };
+SyntheticKind KindOf(int column);
+// Smooth lighting, a few isolated spikes, and a smooth field cut by a hard
+// shadow edge plus a spike, over a W×H grid.
+ColumnImage SyntheticMatrix(int width, int height);
+
+// Writes staging/transport and staging/tile_energy for `plan` exactly as
+// BAKE_TILE does (zero padding rows in the last group, tile-major cells,
+// per-tile Σ of squares in double stored as float32).
+void WriteSyntheticStaging(const JobPlan& plan, const std::filesystem::path& store,
+                           const ColumnImage& image);
+
+// Runs TransformColumns on every group in `order` (empty = 0..groups−1).
+void TransformAll(const BakeContext& ctx, const std::filesystem::path& store,
+                  std::vector<int> order = {});
+
+// Every regular file under `dir` by relative path → its bytes.
+std::map<std::string, std::string> ReadTree(const std::filesystem::path& dir);
+
+struct ProcessResult {
+  int exit_code = -1;
+  std::string output;
+};
+// /usr/bin/python3 `script` in `work_dir`; no interpreter is a failure, not a skip.
+ProcessResult RunPython(const std::filesystem::path& work_dir, const std::string& script);
+
+}  // namespace wavebake::column_testing

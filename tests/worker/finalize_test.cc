@@ -1,0 +1,311 @@
+// FINALIZE and the store reader against the staged matrix they came from:
+// decoding and inverse-transforming a column gives back the staged column
+// within the error target plus the quantizer's bound (DESIGN.md §1), the bit
+// count is the fewest meeting half the target, and the manifest adds up.
+#include "worker/finalize.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/quantizer.h"
+#include "core/subband.h"
+#include "core/wavelet2d.h"
+#include "storage/store_layout.h"
+#include "storage/store_reader.h"
+#include "storage/zarr_array.h"
+#include "tests/worker/column_test_support.h"
+#include "worker/column_coding.h"
+#include "worker/group_result.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+using column_testing::MakeContext;
+using column_testing::ReadTree;
+using column_testing::ScratchDir;
+using column_testing::SyntheticMatrix;
+using column_testing::TransformAll;
+using column_testing::WriteSyntheticStaging;
+
+constexpr int kW = 32, kH = 32, kColumns = 384;
+
+BakeParams SmallJob() {
+  BakeParams p;
+  p.light_res = 8;
+  p.supersample = 1;
+  p.tile_size = 16;
+  p.column_group = 100;
+  return p;
+}
+
+// Σ T² / M of the synthetic matrix, computed here from its definition.
+double MatrixEnergy() {
+  const auto image = SyntheticMatrix(kW, kH);
+  double total = 0;
+  for (int m = 0; m < kColumns; ++m)
+    for (int i = 0; i < kW * kH; ++i) total += std::pow(double(image(m, i % kW, i / kW)), 2);
+  return total / kColumns;
+}
+
+struct Baked {
+  ScratchDir dir;
+  std::filesystem::path store;
+  std::unique_ptr<BakeContext> ctx;
+};
+
+// Synthetic staging → every group → FINALIZE.
+std::unique_ptr<Baked> Bake(const BakeParams& params, bool keep_staging = false) {
+  auto b = std::make_unique<Baked>();
+  b->store = b->dir.path() / "out.wbk";
+  b->ctx = MakeContext(params);
+  WriteSyntheticStaging(b->ctx->plan, b->store, SyntheticMatrix(kW, kH));
+  TransformAll(*b->ctx, b->store);
+  const absl::Status s = Finalize(*b->ctx, b->store, {.keep_staging = keep_staging});
+  EXPECT_TRUE(s.ok()) << s;
+  return b;
+}
+
+// The staged column m and its reconstruction from the decoded store.
+std::vector<float> Staged(int m) {
+  const auto image = SyntheticMatrix(kW, kH);
+  std::vector<float> col(kW * kH);
+  for (int i = 0; i < kW * kH; ++i) col[i] = image(m, i % kW, i / kW);
+  return col;
+}
+
+std::vector<float> Reconstruct(const CompressedColumns& t, WaveletFilter f, int m) {
+  std::vector<float> img(kW * kH, 0.0f);
+  for (int64_t k = t.indptr[m]; k < t.indptr[m + 1]; ++k) img[t.indices[k]] = t.values[k];
+  Inverse2d(f, img, kW, kH, t.depth[m]);
+  return img;
+}
+
+std::vector<float> ReadScales(const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kScale));
+  EXPECT_TRUE(a.ok()) << a.status();
+  absl::StatusOr<std::vector<float>> v = a->ReadAll<float>();
+  EXPECT_TRUE(v.ok()) << v.status();
+  return v.ok() ? *v : std::vector<float>{};
+}
+
+// Haar is orthonormal: the image error² is the dropped energy plus the
+// coefficient errors², each at most QuantizationBound (core/quantizer.h).
+void ExpectWithinTargetPlusQuantization(const BakeParams& p) {
+  auto b = Bake(p);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  absl::StatusOr<CompressedColumns> t = ReadTransport(b->store);
+  ASSERT_TRUE(t.ok()) << t.status();
+  const std::vector<float> scales = ReadScales(b->store);
+  const double matrix_energy = MatrixEnergy();
+  int checked = 0;
+  for (int m = 0; m < kColumns; ++m) {
+    const std::vector<float> staged = Staged(m);
+    const std::vector<float> recon = Reconstruct(*t, WaveletFilter::kHaar, m);
+    double err2 = 0, energy = 0, quant2 = 0;
+    for (int i = 0; i < kW * kH; ++i) {
+      err2 += std::pow(double(recon[i]) - staged[i], 2);
+      energy += std::pow(double(staged[i]), 2);
+    }
+    for (int64_t k = t->indptr[m]; k < t->indptr[m + 1]; ++k) {
+      const uint32_t pos = t->indices[k];
+      const int level = SubbandAt(pos % kW, pos / kW, kW, kH, t->depth[m]).level;
+      quant2 += std::pow(QuantizationBound(scales[m], level, info->bits), 2);
+    }
+    const double reference = p.error_scope == ErrorScope::kColumn ? energy : matrix_energy;
+    const double bound = std::sqrt(p.target_error * p.target_error * reference + quant2);
+    // Slack: float rounding of the inverse transform.
+    EXPECT_LE(std::sqrt(err2), bound * (1 + 1e-5) + 1e-6 * std::sqrt(energy)) << "column " << m;
+    checked += energy > 0;
+  }
+  EXPECT_EQ(checked, kColumns - 24);  // every column but the empty ones
+}
+
+TEST(FinalizeTest, ReconstructsWithinTargetPlusQuantizationMatrixScope) {
+  for (double target : {0.003, 0.03}) {
+    BakeParams p = SmallJob();
+    p.target_error = target;
+    ExpectWithinTargetPlusQuantization(p);
+  }
+}
+
+TEST(FinalizeTest, ReconstructsWithinTargetPlusQuantizationColumnScope) {
+  BakeParams p = SmallJob();
+  p.error_scope = ErrorScope::kColumn;
+  p.bits = 10;
+  ExpectWithinTargetPlusQuantization(p);
+}
+
+// Keeping every coefficient of a full transform and quantizing at 16 bits is
+// perfect reconstruction up to quantization, for the biorthogonal filters too
+// (their synthesis operators are bounded; 4 is a loose bound on their norm).
+TEST(FinalizeTest, BiorthogonalFiltersReconstructWhenEverythingIsKept) {
+  for (WaveletFilter f : {WaveletFilter::kLeGall53, WaveletFilter::kCdf97}) {
+    BakeParams p = SmallJob();
+    p.column_filter = f;
+    p.column_mode = ColumnMode::kFull;
+    p.column_terms = kW * kH;
+    p.bits = 16;
+    auto b = Bake(p);
+    absl::StatusOr<CompressedColumns> t = ReadTransport(b->store);
+    ASSERT_TRUE(t.ok()) << t.status();
+    const std::vector<float> scales = ReadScales(b->store);
+    for (int m : {0, 1, 2, 5, 100, 383}) {
+      const std::vector<float> staged = Staged(m), recon = Reconstruct(*t, f, m);
+      double err2 = 0, quant2 = 0;
+      for (int i = 0; i < kW * kH; ++i) err2 += std::pow(double(recon[i]) - staged[i], 2);
+      for (int64_t k = t->indptr[m]; k < t->indptr[m + 1]; ++k) {
+        const uint32_t pos = t->indices[k];
+        quant2 += std::pow(
+            QuantizationBound(scales[m], SubbandAt(pos % kW, pos / kW, kW, kH, 5).level, 16), 2);
+      }
+      EXPECT_EQ(t->depth[m], 5);
+      EXPECT_LE(std::sqrt(err2), 4 * std::sqrt(quant2) + 1e-6)
+          << "filter " << int(f) << " column " << m;
+    }
+  }
+}
+
+// --bits auto: with the chosen b every column's expected dither error energy
+// Σ (Δ_b 2^−l)²/12 is within (target/2)²·E_ref, and with b − 1 some column's
+// is not. Recomputed here from the kept coefficients in staging.
+TEST(FinalizeTest, BitsAutoIsTheFewestMeetingHalfTheTarget) {
+  BakeParams p = SmallJob();
+  p.target_error = 0.01;
+  auto b = Bake(p, /*keep_staging=*/true);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  const int bits = info->bits;
+  EXPECT_EQ(info->attrs["bits_needed"], bits);
+  EXPECT_TRUE(info->attrs["bits_auto"].get<bool>());
+  const double allowed = 0.25 * p.target_error * p.target_error * MatrixEnergy();
+  auto expected_energy = [](double unit, int b) {
+    return unit / std::pow(std::ldexp(1.0, b - 1) - 1, 2);
+  };
+  double worst = 0;
+  for (int g = 0; g < b->ctx->plan.groups; ++g) {
+    absl::StatusOr<GroupResult> r = ReadGroupResult(b->store, g);
+    ASSERT_TRUE(r.ok()) << r.status();
+    size_t at = 0;
+    for (const GroupColumn& c : r->columns) {
+      double scale = 0, unit = 0;
+      for (size_t k = at; k < at + c.kept; ++k) {
+        const uint32_t pos = r->positions[k];
+        const int l = SubbandAt(pos % kW, pos / kW, kW, kH, c.depth).level;
+        scale = std::max(scale, std::fabs(std::ldexp(double(r->values[k]), l)));
+      }
+      for (size_t k = at; k < at + c.kept; ++k) {
+        const uint32_t pos = r->positions[k];
+        const int l = SubbandAt(pos % kW, pos / kW, kW, kH, c.depth).level;
+        unit += std::pow(std::ldexp(scale, -l), 2) / 12;
+      }
+      at += c.kept;
+      EXPECT_LE(expected_energy(unit, bits), allowed * (1 + 1e-6));
+      worst = std::max(worst, unit);
+    }
+  }
+  ASSERT_GT(bits, 2);
+  EXPECT_GT(expected_energy(worst, bits - 1), allowed * (1 - 1e-6));
+  std::cout << "bits auto at target 1%: " << bits << "\n";
+}
+
+TEST(FinalizeTest, ManifestAndStatsAddUp) {
+  BakeParams p = SmallJob();
+  p.target_error = 0.01;
+  auto b = Bake(p);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  const nlohmann::json& a = info->attrs;
+  EXPECT_EQ(a["format"], "wavebake/1");
+  EXPECT_EQ(info->scene_spec, "builtin:furnace");
+  EXPECT_EQ(info->scene_hash, b->ctx->scene_hash);
+  EXPECT_EQ(info->width, kW);
+  EXPECT_EQ(info->height, kH);
+  EXPECT_EQ(info->light_res, 8);
+  EXPECT_EQ(info->columns, kColumns);
+  EXPECT_EQ(info->params.column_mode, ColumnMode::kAdaptive);
+  EXPECT_EQ(info->params.target_error, 0.01);
+  EXPECT_EQ(info->params.column_group, 100);
+  EXPECT_EQ(a["params"]["bits"], "auto");
+  EXPECT_EQ(a["filters"]["column"], "haar");
+
+  absl::StatusOr<CompressedColumns> t = ReadTransport(b->store);
+  ASSERT_TRUE(t.ok()) << t.status();
+  const nlohmann::json& s = a["stats"];
+  EXPECT_EQ(s["nnz"].get<int64_t>(), t->indptr.back());
+  int64_t histogram_total = 0;
+  for (const auto& n : s["depth_histogram"]) histogram_total += n.get<int64_t>();
+  EXPECT_EQ(histogram_total, kColumns);
+  for (int d = 0; d <= 5; ++d) {
+    int64_t count = 0, by_level = 0;
+    for (uint8_t depth : t->depth) count += depth == d;
+    for (const auto& level : s["depth_by_row_level"]) by_level += level[d].get<int64_t>();
+    EXPECT_EQ(s["depth_histogram"][d].get<int64_t>(), count) << d;
+    EXPECT_EQ(by_level, count) << d;
+  }
+  ASSERT_EQ(s["depth_by_row_level"].size(), 4u);  // row levels 0..3 of an 8×8 face
+  // 6 faces × 4^l columns at row level l ≥ 1 (6 × 3·4^(l−1)), 6 at level 0.
+  const int per_level[4] = {6, 18, 72, 288};
+  for (int l = 0; l < 4; ++l) {
+    int64_t n = 0;
+    for (const auto& c : s["depth_by_row_level"][l]) n += c.get<int64_t>();
+    EXPECT_EQ(n, per_level[l]) << "row level " << l;
+  }
+  const int64_t samples = b->ctx->samples.size();
+  EXPECT_EQ(s["bytes"]["raw_float32"].get<int64_t>(), samples * kColumns * 4);
+  EXPECT_GT(s["bytes"]["transport"].get<int64_t>(), 0);
+  // Dropped ≤ t²·E_ref and each dither error ≤ Δ/2, i.e. ≤ 3× its expected
+  // Δ²/12, whose sum bits auto keeps ≤ (t/2)²·E_ref: error ≤ t·sqrt(1 + 3/4).
+  EXPECT_LE(s["column_error"]["max"].get<double>(), 0.01 * std::sqrt(1.75) * (1 + 1e-6));
+  EXPECT_GT(s["column_error"]["mean"].get<double>(), 0);
+  std::cout << "stats: " << s.dump() << "\n";
+}
+
+TEST(FinalizeTest, ReadColumnMatchesReadTransport) {
+  auto b = Bake(SmallJob());
+  absl::StatusOr<CompressedColumns> t = ReadTransport(b->store);
+  ASSERT_TRUE(t.ok()) << t.status();
+  for (int m : {0, 1, 2, 3, 99, 100, 299, 300, 383}) {
+    absl::StatusOr<DecodedColumn> c = ReadColumn(b->store, m);
+    ASSERT_TRUE(c.ok()) << c.status();
+    EXPECT_EQ(c->depth, t->depth[m]);
+    const std::vector<uint32_t> positions(t->indices.begin() + t->indptr[m],
+                                          t->indices.begin() + t->indptr[m + 1]);
+    const std::vector<float> values(t->values.begin() + t->indptr[m],
+                                    t->values.begin() + t->indptr[m + 1]);
+    EXPECT_EQ(c->positions, positions) << m;
+    EXPECT_EQ(c->values, values) << m;
+  }
+  EXPECT_EQ(ReadColumn(b->store, kColumns).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(ReadColumn(b->store, -1).status().message(), ::testing::HasSubstr("column"));
+}
+
+TEST(FinalizeTest, DropsStagingAndRetriesAreNoOps) {
+  auto b = Bake(SmallJob());
+  EXPECT_FALSE(std::filesystem::exists(b->store / "staging"));
+  EXPECT_FALSE(std::filesystem::exists(b->store / ".staging.removing"));
+  const auto before = ReadTree(b->store);
+  const absl::Status s = Finalize(*b->ctx, b->store, {});
+  EXPECT_TRUE(s.ok()) << s;
+  EXPECT_EQ(ReadTree(b->store), before);
+}
+
+TEST(FinalizeTest, RefusesMissingGroupsAndMissingStaging) {
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(SmallJob());
+  absl::Status s = Finalize(*ctx, store, {});
+  EXPECT_EQ(s.code(), absl::StatusCode::kFailedPrecondition) << s;
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, store, {0, 1, 3});
+  s = Finalize(*ctx, store, {});
+  EXPECT_EQ(s.code(), absl::StatusCode::kFailedPrecondition) << s;
+  EXPECT_THAT(s.message(), ::testing::HasSubstr("group 2"));
+  EXPECT_FALSE(std::filesystem::exists(store / ".zattrs"));
+}
+
+}  // namespace
+}  // namespace wavebake

@@ -1,0 +1,212 @@
+#include "worker/finalize.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/quantizer.h"
+#include "core/subband.h"
+#include "core/wavelet2d.h"
+#include "storage/array_appender.h"
+#include "storage/store_layout.h"
+#include "storage/store_samples.h"
+#include "storage/zarr_array.h"
+#include "worker/column_coding.h"
+#include "worker/group_result.h"
+#include "worker/store_manifest.h"
+#include "worker/store_stats.h"
+
+namespace wavebake {
+namespace {
+
+// Chunk lengths of the final arrays: ~1 MB of indices, 512 KB of data.
+constexpr int64_t kNnzChunk = 1 << 18;
+constexpr int64_t kColumnChunk = 1 << 16;
+
+absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store, int g,
+                        const GroupResult& r) {
+  if (r.first_column == plan.GroupFirst(g) &&
+      r.columns.size() == static_cast<size_t>(plan.GroupCount(g))) {
+    return absl::OkStatus();
+  }
+  return absl::DataLossError(
+      absl::StrCat(GroupResultPath(store, g).string(), ": columns do not match the job plan"));
+}
+
+// Pass 1: nnz (the length of indices/data) and the bits every column can live
+// with. A missing group is FailedPrecondition: FINALIZE ran too early.
+absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store, int64_t* nnz,
+                        int* bits_needed) {
+  *nnz = 0;
+  *bits_needed = 2;
+  for (int g = 0; g < plan.groups; ++g) {
+    absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
+    if (absl::IsNotFound(r.status()))
+      return absl::FailedPreconditionError(
+          absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
+    if (!r.ok()) return r.status();
+    if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
+    *nnz += static_cast<int64_t>(r->positions.size());
+    for (const GroupColumn& c : r->columns) *bits_needed = std::max<int>(*bits_needed, c.min_bits);
+  }
+  return absl::OkStatus();
+}
+
+struct CscArrays {
+  ZarrArray indptr, indices, data, depth, scale;
+};
+
+absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,
+                                 int64_t length, int64_t chunk, bool delta = false) {
+  return ZarrArray::Create(store::Path(store, name),
+                           {.shape = {length},
+                            .chunks = {std::max<int64_t>(1, std::min(length, chunk))},
+                            .dtype = t,
+                            .delta_filter = delta});
+}
+
+absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, int columns,
+                                          int64_t nnz) {
+  if (absl::Status s = WriteGroup(store::Path(store, store::kTransport)); !s.ok()) return s;
+  auto indptr = Create(store, store::kIndptr, DType::kInt64, columns + 1, kColumnChunk);
+  // Indices rise inside a column: the delta filter turns them into small
+  // numbers zstd packs tighter (DESIGN.md §3; measured in the report).
+  auto indices = Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true);
+  auto data = Create(store, store::kData, DType::kInt16, nnz, kNnzChunk);
+  auto depth = Create(store, store::kDepth, DType::kUint8, columns, kColumnChunk);
+  auto scale = Create(store, store::kScale, DType::kFloat32, columns, kColumnChunk);
+  for (const auto* a : {&indptr, &indices, &data, &depth, &scale})
+    if (!a->ok()) return a->status();
+  return CscArrays{*std::move(indptr), *std::move(indices), *std::move(data), *std::move(depth),
+                   *std::move(scale)};
+}
+
+// One column quantized (DESIGN.md §1 "Scaling and quantization") and its
+// achieved quantization error energy, weighted like the selection.
+struct QuantizedOutcome {
+  QuantizedColumn q;
+  double error_energy = 0;
+};
+
+QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, int bits,
+                             std::span<const uint32_t> positions, std::span<const float> values) {
+  const JobPlan& plan = ctx.plan;
+  const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, depth);
+  std::vector<uint8_t> levels(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
+  QuantizedOutcome out;
+  out.q = Quantize(values, positions, levels, bits, ctx.params.seed, column);
+  std::vector<float> decoded(positions.size());
+  Dequantize(out.q.q, positions, levels, out.q.scale, bits, ctx.params.seed, column, decoded);
+  const std::vector<float>& w =
+      SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, depth);
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const double e = (double{decoded[i]} - double{values[i]}) * w[positions[i]];
+    out.error_energy += e * e;
+  }
+  return out;
+}
+
+// Pass 2: groups in order → the CSC arrays, one group in memory at a time.
+absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store, int bits,
+                            int64_t nnz, StoreStats* stats) {
+  const JobPlan& plan = ctx.plan;
+  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
+  if (!arrays.ok()) return arrays.status();
+  ArrayAppender<uint32_t> indices(arrays->indices);
+  ArrayAppender<int16_t> data(arrays->data);
+  std::vector<int64_t> indptr(plan.columns + 1, 0);
+  std::vector<uint8_t> depth(plan.columns, 0);
+  std::vector<float> scale(plan.columns, 0.0f);
+  for (int g = 0; g < plan.groups; ++g) {
+    absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
+    if (!r.ok()) return r.status();
+    if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
+    size_t at = 0;
+    for (size_t c = 0; c < r->columns.size(); ++c) {
+      const GroupColumn& gc = r->columns[c];
+      const int m = r->first_column + static_cast<int>(c);
+      const auto positions = std::span<const uint32_t>(r->positions).subspan(at, gc.kept);
+      const auto values = std::span<const float>(r->values).subspan(at, gc.kept);
+      at += gc.kept;
+      const QuantizedOutcome q = QuantizeOne(ctx, m, gc.depth, bits, positions, values);
+      if (absl::Status s = indices.Append(positions); !s.ok()) return s;
+      if (absl::Status s = data.Append(q.q.q); !s.ok()) return s;
+      indptr[m + 1] = indptr[m] + gc.kept;
+      depth[m] = gc.depth;
+      scale[m] = q.q.scale;
+      stats->Add({.column = m,
+                  .depth = gc.depth,
+                  .kept = gc.kept,
+                  .energy = gc.energy,
+                  .reference_energy = gc.reference_energy,
+                  .dropped_energy = gc.dropped_energy,
+                  .quantization_energy = q.error_energy,
+                  .min_bits = gc.min_bits});
+    }
+  }
+  for (absl::Status s :
+       {indices.Close(), data.Close(), arrays->indptr.WriteAll<int64_t>(indptr),
+        arrays->depth.WriteAll<uint8_t>(depth), arrays->scale.WriteAll<float>(scale)}) {
+    if (!s.ok()) return s;
+  }
+  return WriteAttrs(store::Path(store, store::kTransport),
+                    {{"encoding-type", "csc_matrix"},
+                     {"encoding-version", "0.1.0"},
+                     {"shape", {int64_t{plan.width} * plan.height, plan.columns}}});
+}
+
+// A finished store whose staging is gone: a retried FINALIZE has nothing to do.
+bool AlreadyFinalized(const std::filesystem::path& store) {
+  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
+  return attrs.ok() && attrs->value("format", "") == store::kFormat;
+}
+
+// Renamed away first (atomic), so a crash midway never leaves a half-deleted
+// staging/ that looks like an unfinished job.
+absl::Status DropStaging(const std::filesystem::path& store) {
+  const std::filesystem::path trash = store / ".staging.removing";
+  std::error_code ec;
+  if (std::filesystem::exists(store::Path(store, store::kStaging))) {
+    std::filesystem::remove_all(trash, ec);
+    std::filesystem::rename(store::Path(store, store::kStaging), trash, ec);
+    if (ec)
+      return absl::InternalError(
+          absl::StrCat(store.string(), ": cannot drop staging: ", ec.message()));
+  }
+  std::filesystem::remove_all(trash, ec);
+  if (ec) return absl::InternalError(absl::StrCat(trash.string(), ": ", ec.message()));
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
+                      const FinalizeOptions& options) {
+  if (!std::filesystem::exists(store::Path(store, store::kStaging))) {
+    if (AlreadyFinalized(store)) return DropStaging(store);
+    return absl::FailedPreconditionError(absl::StrCat(store.string(), ": no staging to finalize"));
+  }
+  const JobPlan& plan = ctx.plan;
+  int64_t nnz = 0;
+  ManifestBits bits;
+  if (absl::Status s = ScanGroups(plan, store, &nnz, &bits.bits_needed); !s.ok()) return s;
+  bits.bits = ctx.params.bits != 0 ? ctx.params.bits : bits.bits_needed;
+
+  StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));
+  if (absl::Status s = WriteTransport(ctx, store, bits.bits, nnz, &stats); !s.ok()) return s;
+  if (absl::Status s = WriteSamples(store, ctx.samples); !s.ok()) return s;
+
+  nlohmann::json stats_json = stats.ToJson();
+  stats_json["bytes"] = StoreBytes(ctx, store);
+  // The manifest is written last: its presence marks a complete store.
+  if (absl::Status s = WriteGroup(store); !s.ok()) return s;
+  if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));
+      !s.ok()) {
+    return s;
+  }
+  return options.keep_staging ? absl::OkStatus() : DropStaging(store);
+}
+
+}  // namespace wavebake

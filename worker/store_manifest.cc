@@ -1,0 +1,79 @@
+#include "worker/store_manifest.h"
+
+#include <string>
+
+#include "core/bake_params_io.h"
+#include "storage/params_json.h"
+#include "storage/store_layout.h"
+
+namespace wavebake {
+namespace {
+
+// core/quantizer.h, spelled out so that a reader without our code can decode.
+constexpr char kDither[] =
+    "u = DitherAt(seed, column, position): mix(z) = splitmix64 output step (z += "
+    "0x9E3779B97F4A7C15; z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9; z = (z ^ (z >> 27)) * "
+    "0x94D049BB133111EB; return z ^ (z >> 31)), uint64 wrapping; h = mix(mix(mix(seed) ^ "
+    "column) ^ position); u = float32((h >> 40) * 2^-24 - 0.5)";
+constexpr char kDequantize[] =
+    "value = float32(ldexp((q - u) / (2^(bits-1) - 1) * scale, -l)) in float64, l = subband "
+    "level of the position at the column's depth (0 = coarsest: the LL block and the details "
+    "of the last step; details of step s have l = depth-1-s); scale 0 decodes to 0";
+
+}  // namespace
+
+nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats) {
+  const BakeParams& p = ctx.params;
+  return {{"format", store::kFormat},
+          {"scene", ctx.scene_spec},
+          {"scene_hash", ctx.scene_hash},
+          {"params", ToJson(p)},
+          {"layout", ToString(ctx.layout)},
+          {"N", p.light_res},
+          {"W", ctx.plan.width},
+          {"H", ctx.plan.height},
+          {"S", ctx.samples.size()},
+          {"M", ctx.plan.columns},
+          {"filters",
+           {{"row", std::string(ToString(p.row_filter))},
+            {"column", std::string(ToString(p.column_filter))}}},
+          {"bits", bits.bits},
+          {"bits_auto", p.bits == 0},
+          {"bits_needed", bits.bits_needed},
+          {"ray_epsilon", ctx.epsilon},
+          {"dither", kDither},
+          {"dequantize", kDequantize},
+          {"stats", std::move(stats)}};
+}
+
+uint64_t DirectoryBytes(const std::filesystem::path& dir) {
+  uint64_t total = 0;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec)) {
+    if (e.is_regular_file(ec)) total += e.file_size(ec);
+  }
+  return total;
+}
+
+nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& store) {
+  nlohmann::json arrays = nlohmann::json::object();
+  uint64_t transport = 0;
+  for (const char* name :
+       {store::kIndptr, store::kIndices, store::kData, store::kDepth, store::kScale}) {
+    const uint64_t n = DirectoryBytes(store::Path(store, name));
+    arrays[name] = n;
+    transport += n;
+  }
+  for (const char* name :
+       {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo, store::kVertex}) {
+    if (std::filesystem::exists(store::Path(store, name)))
+      arrays[name] = DirectoryBytes(store::Path(store, name));
+  }
+  const uint64_t raw = uint64_t(ctx.samples.size()) * uint64_t(ctx.plan.columns) * 4;
+  return {{"arrays", arrays},
+          {"transport", transport},
+          {"raw_float32", raw},
+          {"compression_ratio", transport > 0 ? double(raw) / double(transport) : 0.0}};
+}
+
+}  // namespace wavebake

@@ -1,0 +1,28 @@
+#pragma once
+// The root .zattrs of a finished store (DESIGN.md §3): format, scene, job
+// params, grid and cubemap sizes, filters, bits, the dither formula and the
+// stats — everything a reader needs besides the arrays, and enough to tell
+// how a store was made.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "worker/bake_context.h"
+
+namespace wavebake {
+
+struct ManifestBits {
+  int bits = 0;         // what every column is quantized with
+  int bits_needed = 0;  // max over columns of their --bits auto need
+};
+
+nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats);
+
+// On-disk bytes of every file under `dir` (an array: its chunks and .zarray).
+uint64_t DirectoryBytes(const std::filesystem::path& dir);
+
+// "bytes" of the stats: each final array's size on disk, the transport total,
+// the raw float32 size S·M·4 of T and their ratio.
+nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& store);
+
+}  // namespace wavebake

@@ -1,0 +1,136 @@
+#include "worker/transform_columns.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "storage/store_layout.h"
+#include "storage/zarr_array.h"
+#include "worker/column_coding.h"
+#include "worker/group_result.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status WrongPlan(const ZarrArray& a, const std::string& what) {
+  return absl::FailedPreconditionError(
+      absl::StrCat(a.dir().string(), ": ", what, " does not match the job plan"));
+}
+
+// Opens staging/transport and checks it is the layout of this plan
+// (core/job_plan.h): [M, W*H] float32 chunked [group_size, tile_cells].
+absl::StatusOr<ZarrArray> OpenStaging(const JobPlan& plan, const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTransport));
+  if (absl::IsNotFound(a.status()))
+    return absl::FailedPreconditionError(absl::StrCat(a.status().message(), " (no staging)"));
+  if (!a.ok()) return a.status();
+  const ArraySpec& s = a->spec();
+  if (s.dtype != DType::kFloat32) return WrongPlan(*a, "dtype");
+  if (s.shape != std::vector<int64_t>{plan.columns, int64_t{plan.width} * plan.height})
+    return WrongPlan(*a, "shape");
+  if (s.chunks != std::vector<int64_t>{plan.group_size, plan.tile_cells()})
+    return WrongPlan(*a, "chunking");
+  return a;
+}
+
+// Reads chunk (group, t) of every tile and scatters it into `images`: column
+// c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H).
+absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging, int group,
+                             std::vector<float>& images, GroupStats* stats) {
+  const int count = plan.GroupCount(group);
+  const size_t cells = size_t(plan.width) * plan.height;
+  images.assign(count * cells, 0.0f);
+  std::vector<float> chunk(size_t(plan.group_size) * plan.tile_cells());
+  for (int t = 0; t < plan.tiles(); ++t) {
+    const int64_t index[2] = {group, t};
+    if (absl::Status s = staging.ReadChunkInto(index, std::as_writable_bytes(std::span(chunk)));
+        !s.ok()) {
+      return s;
+    }
+    stats->staging_bytes += chunk.size() * sizeof(float);
+    const TileRect r = plan.Tile(t);
+    for (int c = 0; c < count; ++c) {
+      const float* src = chunk.data() + size_t(c) * plan.tile_cells();
+      float* dst = images.data() + c * cells + size_t(r.y0) * plan.width + r.x0;
+      for (int y = 0; y < r.height; ++y) {
+        std::copy_n(src + size_t(y) * r.width, r.width, dst + size_t(y) * plan.width);
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+void AppendColumn(const CodedColumn& coded, GroupResult* result) {
+  GroupColumn c;
+  c.depth = static_cast<uint8_t>(coded.depth);
+  c.min_bits = static_cast<uint8_t>(coded.min_bits);
+  c.kept = static_cast<uint32_t>(coded.positions.size());
+  c.energy = coded.energy;
+  c.reference_energy = coded.reference_energy;
+  c.dropped_energy = coded.dropped_energy;
+  c.quantization_unit = coded.quantization_unit;
+  result->columns.push_back(c);
+  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
+  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
+}
+
+}  // namespace
+
+absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTileEnergy));
+  if (!a.ok()) return a.status();
+  if (a->spec().shape != std::vector<int64_t>{plan.tiles()} || a->spec().chunks.at(0) != 1)
+    return WrongPlan(*a, "shape");
+  double sum = 0;
+  for (int64_t t = 0; t < plan.tiles(); ++t) {
+    // A missing chunk would read as 0: a tile not baked yet, not an empty one.
+    if (!std::filesystem::exists(a->ChunkPath(std::span(&t, 1))))
+      return absl::FailedPreconditionError(
+          absl::StrCat(a->dir().string(), ": tile ", t, " has not been baked"));
+    absl::StatusOr<std::vector<float>> e = a->ReadChunk<float>(std::span(&t, 1));
+    if (!e.ok()) return e.status();
+    sum += (*e)[0];
+  }
+  return sum / plan.columns;
+}
+
+absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                              GroupStats* stats) {
+  const JobPlan& plan = ctx.plan;
+  if (group < 0 || group >= plan.groups)
+    return absl::InvalidArgumentError(
+        absl::StrCat("group: ", group, " is outside 0..", plan.groups - 1));
+  absl::StatusOr<ZarrArray> staging = OpenStaging(plan, store);
+  if (!staging.ok()) return staging.status();
+  absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
+  if (!matrix_energy.ok()) return matrix_energy.status();
+
+  GroupStats local;
+  std::vector<float> images;
+  if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local); !s.ok()) return s;
+
+  const ColumnCodingParams params =
+      MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  const size_t cells = size_t(plan.width) * plan.height;
+  GroupResult result;
+  result.group = group;
+  result.first_column = plan.GroupFirst(group);
+  result.matrix_energy = *matrix_energy;
+  CodedColumn coded;
+  for (int c = 0; c < plan.GroupCount(group); ++c) {
+    CodeColumn(params, std::span(images).subspan(c * cells, cells), &coded);
+    AppendColumn(coded, &result);
+    local.min_bits = std::max(local.min_bits, coded.min_bits);
+  }
+  if (absl::Status s = WriteGroupResult(store, result); !s.ok()) return s;
+
+  local.columns = plan.GroupCount(group);
+  local.kept = result.positions.size();
+  std::error_code ec;
+  local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
+  if (stats != nullptr) *stats = local;
+  return absl::OkStatus();
+}
+
+}  // namespace wavebake

@@ -1,0 +1,37 @@
+#pragma once
+// TRANSFORM_COLUMNS, the reduce half of the blocked transpose (DESIGN.md §2):
+// one group of light columns, read from the staging chunk of every tile,
+// assembled into W×H column images, transformed to their depth and selected
+// (worker/column_coding.h), and written back to staging as the group's
+// GroupResult (worker/group_result.h) for FINALIZE. Free of scheduling: the
+// local driver and remote workers call it alike, in any order, any number of
+// times (a retry rewrites the same bytes).
+#include <cstdint>
+#include <filesystem>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/job_plan.h"
+#include "worker/bake_context.h"
+
+namespace wavebake {
+
+struct GroupStats {
+  int columns = 0;
+  uint64_t kept = 0;           // coefficients kept over the group's columns
+  uint64_t staging_bytes = 0;  // float32 bytes of staging read (one chunk per tile)
+  uint64_t bytes_written = 0;  // size of the group's result file
+  int min_bits = 2;            // max over the group's columns of their --bits auto need
+};
+
+// Memory: one group of column images (group_size × W×H floats) plus one
+// staging chunk; never S×M. Errors: `group` out of range (InvalidArgument
+// naming "group"); staging missing or of another plan (FailedPrecondition).
+absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                              GroupStats* stats);
+
+// E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
+// order in double (the same number on every worker).
+absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store);
+
+}  // namespace wavebake
