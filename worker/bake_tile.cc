@@ -123,7 +123,7 @@ absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int ti
 }  // namespace
 
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats) {
+                      TileStats* stats, const std::atomic<bool>* cancel) {
   const JobPlan& plan = ctx.plan;
   if (tile < 0 || tile >= plan.tiles()) {
     return absl::InvalidArgumentError(
@@ -140,6 +140,8 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   TileStats local;
   double energy = 0;
   for (int cy = 0; cy < rect.height; ++cy) {
+    if (cancel && cancel->load(std::memory_order_relaxed))
+      return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
     TraceTileRow(ctx, rect, cy, rows, energy, local);
     TransposeTileRow(rows, plan, cy, block);
   }
