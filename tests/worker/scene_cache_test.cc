@@ -1,0 +1,128 @@
+// SceneCache: built-ins pass through, uploaded scenes are fetched once by
+// content hash and reused, local scenes are used in place; the store always
+// records a name every worker agrees on.
+#include "worker/scene_cache.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/worker/staging_testing.h"
+
+namespace wavebake {
+namespace {
+
+using staging_testing::ScratchDir;
+
+const std::string kSha(64, 'a');
+
+v1::SceneSource Uploaded(const std::string& sha, const std::string& name, int64_t size) {
+  v1::SceneSource s;
+  s.mutable_uploaded()->set_sha256(sha);
+  s.mutable_uploaded()->set_file_name(name);
+  s.mutable_uploaded()->set_size(size);
+  return s;
+}
+
+std::string Read(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A fake coordinator that serves `bytes` and counts the fetches.
+struct FakeFetch {
+  std::string bytes;
+  int calls = 0;
+  SceneCache::FetchFn Fn() {
+    return [this](const v1::SceneRef&, const std::filesystem::path& dest) {
+      ++calls;
+      std::ofstream(dest, std::ios::binary) << bytes;
+      return absl::OkStatus();
+    };
+  }
+};
+
+TEST(SceneCacheTest, BuiltinsNeedNoFetch) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  FakeFetch fetch;
+  for (const char* name : {"builtin:furnace", "furnace"}) {
+    v1::SceneSource s;
+    s.set_builtin(name);
+    absl::StatusOr<SceneSpec> spec = cache.Resolve(s, fetch.Fn());
+    ASSERT_TRUE(spec.ok()) << spec.status();
+    EXPECT_EQ(spec->load, "builtin:furnace");
+    EXPECT_EQ(spec->recorded, "builtin:furnace");
+  }
+  EXPECT_EQ(fetch.calls, 0);
+}
+
+TEST(SceneCacheTest, FetchesAnUploadOnceAndRecordsItsFileName) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  FakeFetch fetch{.bytes = "v 0 0 0\n"};
+  const v1::SceneSource s = Uploaded(kSha, "models/tri.obj", 8);
+  for (int i = 0; i < 3; ++i) {
+    absl::StatusOr<SceneSpec> spec = cache.Resolve(s, fetch.Fn());
+    ASSERT_TRUE(spec.ok()) << spec.status();
+    EXPECT_EQ(spec->load, (dir.path() / kSha / "tri.obj").string());
+    EXPECT_EQ(spec->recorded, "tri.obj");
+    EXPECT_EQ(Read(spec->load), "v 0 0 0\n");
+  }
+  EXPECT_EQ(fetch.calls, 1);
+  // Another worker process sharing the directory finds it too.
+  SceneCache other(dir.path());
+  ASSERT_TRUE(other.Resolve(s, fetch.Fn()).ok());
+  EXPECT_EQ(fetch.calls, 1);
+}
+
+TEST(SceneCacheTest, ACachedFileOfTheWrongSizeIsFetchedAgain) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / kSha);
+  std::ofstream(dir.path() / kSha / "tri.obj") << "truncated";
+  SceneCache cache(dir.path());
+  FakeFetch fetch{.bytes = "v 0 0 0\nv 1 0 0\n"};
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(kSha, "tri.obj", 16), fetch.Fn());
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  EXPECT_EQ(fetch.calls, 1);
+  EXPECT_EQ(Read(spec->load), fetch.bytes);
+}
+
+TEST(SceneCacheTest, AFailedFetchLeavesNothing) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  const SceneCache::FetchFn broken = [](const v1::SceneRef&, const std::filesystem::path& dest) {
+    std::ofstream(dest) << "half";
+    return absl::UnavailableError("coordinator went away");
+  };
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(kSha, "tri.obj", 100), broken);
+  EXPECT_EQ(spec.status().code(), absl::StatusCode::kUnavailable);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path() / kSha));
+}
+
+TEST(SceneCacheTest, LocalScenesAreUsedInPlace) {
+  ScratchDir dir;
+  SceneCache cache(dir.path(), {{kSha, "scenes/room.json"}});
+  FakeFetch fetch;
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(kSha, "room.json", 10), fetch.Fn());
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  EXPECT_EQ(spec->load, "scenes/room.json");
+  EXPECT_EQ(spec->recorded, "scenes/room.json");  // as a local bake records it
+  EXPECT_EQ(fetch.calls, 0);
+}
+
+TEST(SceneCacheTest, RefusesWhatIsNotAHash) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  FakeFetch fetch;
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded("../../etc", "x.obj", 1), fetch.Fn());
+  EXPECT_EQ(spec.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(fetch.calls, 0);
+}
+
+}  // namespace
+}  // namespace wavebake

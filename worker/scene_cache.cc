@@ -1,0 +1,76 @@
+#include "worker/scene_cache.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <system_error>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+
+namespace wavebake {
+namespace {
+
+bool IsHexSha256(const std::string& s) {
+  return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+}  // namespace
+
+std::string CachedSceneName(const v1::SceneRef& ref) {
+  std::string name = std::filesystem::path(ref.file_name()).filename().string();
+  if (name.empty() || name.front() == '.') name = "scene";
+  return name;
+}
+
+SceneCache::SceneCache(std::filesystem::path dir, std::map<std::string, std::string> local)
+    : dir_(std::move(dir)), local_(std::move(local)) {}
+
+absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, const FetchFn& fetch) {
+  if (source.has_builtin()) {
+    std::string name = source.builtin();
+    if (!name.starts_with("builtin:")) name = "builtin:" + name;
+    return SceneSpec{name, name};
+  }
+  if (!source.has_uploaded()) return absl::InvalidArgumentError("scene: the task names no scene");
+  const v1::SceneRef& ref = source.uploaded();
+  if (!IsHexSha256(ref.sha256()))
+    return absl::InvalidArgumentError("scene.uploaded.sha256: not 64 lowercase hex digits");
+  if (auto it = local_.find(ref.sha256()); it != local_.end())
+    return SceneSpec{it->second, it->second};
+  absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
+  if (!path.ok()) return path.status();
+  return SceneSpec{path->string(), CachedSceneName(ref)};
+}
+
+absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref,
+                                                         const FetchFn& fetch) {
+  const std::filesystem::path dir = dir_ / ref.sha256();
+  const std::filesystem::path path = dir / CachedSceneName(ref);
+  std::lock_guard lock(mu_);
+  std::error_code ec;
+  // Files only ever appear whole (rename below), so one that is there is good
+  // unless it has the wrong size (a scene uploaded under a hash it does not have).
+  if (std::filesystem::is_regular_file(path, ec)) {
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && (ref.size() <= 0 || static_cast<int64_t>(size) == ref.size())) return path;
+  }
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    return absl::InternalError(absl::StrCat("scene cache ", dir.string(), ": ", ec.message()));
+  static std::atomic<uint64_t> counter{0};
+  const std::filesystem::path temp =
+      dir / absl::StrCat(".fetch-", ::getpid(), "-", counter++, ".tmp");
+  absl::Status fetched = fetch(ref, temp);
+  if (fetched.ok()) {
+    std::filesystem::rename(temp, path, ec);
+    if (ec)
+      fetched =
+          absl::InternalError(absl::StrCat("scene cache ", path.string(), ": ", ec.message()));
+  }
+  std::filesystem::remove(temp, ec);
+  if (!fetched.ok()) return fetched;
+  return path;
+}
+
+}  // namespace wavebake

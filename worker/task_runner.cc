@@ -1,0 +1,173 @@
+#include "worker/task_runner.h"
+
+#include <stdio.h>
+
+#include <cerrno>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "absl/strings/str_cat.h"
+#include "proto/bake_request.h"
+#include "storage/store_reader.h"
+#include "worker/bake_tile.h"
+#include "worker/finalize.h"
+#include "worker/staging.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status Cancelled(const v1::Task& task) {
+  return absl::CancelledError(absl::StrCat("job ", task.job_id(), ": ",
+                                           v1::TaskKind_Name(task.kind()), " ", task.index(),
+                                           " stopped: its lease was cancelled"));
+}
+
+// The job's context, built once per worker (worker/context_cache.h). The
+// store records the scene as every worker would name it, not by where this
+// worker found it.
+absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const TaskEnv& env) {
+  const std::string key = absl::StrCat(task.job_id(), "\n", task.request().SerializeAsString());
+  return env.contexts->Get(key, [&]() -> absl::StatusOr<std::unique_ptr<BakeContext>> {
+    absl::StatusOr<BakeParams> params = ToBakeParams(task.request());
+    if (!params.ok()) return params.status();
+    absl::StatusOr<SceneSpec> scene = env.scenes->Resolve(task.request().scene(), env.fetch);
+    if (!scene.ok()) return scene.status();
+    absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(scene->load, *params);
+    if (ctx.ok()) (*ctx)->scene_spec = scene->recorded;
+    return ctx;
+  });
+}
+
+// Both sides cut the job with core/job_plan.h; a mismatch means they disagree
+// about the scene or the parameters, and nothing this worker writes would fit.
+absl::Status CheckPlan(const v1::Task& task, const JobPlan& plan) {
+  if (task.tiles() == plan.tiles() && task.groups() == plan.groups) return absl::OkStatus();
+  return absl::FailedPreconditionError(
+      absl::StrCat("plan: the coordinator planned ", task.tiles(), " tiles and ", task.groups(),
+                   " groups, this worker ", plan.tiles(), " and ", plan.groups));
+}
+
+// Tasks run only in a partial directory the planner reserved (see
+// kPartialMarker): never in one a cancelled job's cleanup removed.
+absl::Status CheckPartial(const std::filesystem::path& partial) {
+  std::error_code ec;
+  if (std::filesystem::exists(partial / kPartialMarker, ec)) return absl::OkStatus();
+  return absl::FailedPreconditionError(absl::StrCat(
+      "store: ", partial.string(), " is not a reserved partial store (the job ended)"));
+}
+
+uint64_t TreeBytes(const std::filesystem::path& dir) {
+  uint64_t bytes = 0;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec)) bytes += it->file_size(ec);
+  }
+  return bytes;
+}
+
+absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext& ctx,
+                                         const std::filesystem::path& partial,
+                                         TaskProgress& progress) {
+  if (absl::Status s = CreateStaging(ctx.plan, partial); !s.ok()) return s;
+  TileStats stats;
+  absl::Status s = BakeTile(ctx, partial, task.index(), &stats, &progress.cancel);
+  if (!s.ok()) return s;
+  return TaskOutcome{.rays_traced = static_cast<int64_t>(stats.rays_traced),
+                     .bytes_written = static_cast<int64_t>(stats.bytes_written),
+                     .stats_json = nlohmann::json{{"samples", stats.samples}}.dump()};
+}
+
+// No cancel hook inside: a group is a fraction of a tile's work.
+absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContext& ctx,
+                                          const std::filesystem::path& partial) {
+  GroupStats stats;
+  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats);
+  if (!s.ok()) return s;
+  return TaskOutcome{.rays_traced = 0,
+                     .bytes_written = static_cast<int64_t>(stats.bytes_written),
+                     .stats_json = nlohmann::json{{"columns", stats.columns},
+                                                  {"kept", stats.kept},
+                                                  {"min_bits", stats.min_bits}}
+                                       .dump()};
+}
+
+absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext& ctx,
+                                         const std::filesystem::path& partial,
+                                         const std::filesystem::path& out, TaskProgress& progress) {
+  std::error_code ec;
+  const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
+  if (!retry_after_publish) {
+    if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+    if (absl::Status s = Finalize(ctx, partial, {}); !s.ok()) return s;
+    if (progress.cancel.load()) return Cancelled(task);
+    if (absl::Status s = PublishFinishedStore(partial, out); !s.ok()) return s;
+  }
+  std::filesystem::remove(out / kPartialMarker, ec);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(out);
+  if (!info.ok()) return info.status();
+  return TaskOutcome{
+      .rays_traced = 0,
+      .bytes_written = static_cast<int64_t>(retry_after_publish ? 0 : TreeBytes(out)),
+      .stats_json = info->attrs.value("stats", nlohmann::json::object()).dump()};
+}
+
+}  // namespace
+
+absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
+                                    TaskProgress& progress) {
+  absl::StatusOr<ContextCache::Context> ctx = JobContext(task, env);
+  if (!ctx.ok()) return ctx.status();
+  if (absl::Status s = CheckPlan(task, (*ctx)->plan); !s.ok()) return s;
+  const std::filesystem::path out = env.store_root / task.store_path();
+  const std::filesystem::path partial = env.store_root / PartialStorePath(task.store_path());
+  if (progress.cancel.load()) return Cancelled(task);
+
+  absl::StatusOr<TaskOutcome> outcome;
+  switch (task.kind()) {
+    case v1::BAKE_TILE:
+      if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+      outcome = BakeTileTask(task, **ctx, partial, progress);
+      break;
+    case v1::TRANSFORM_COLUMNS:
+      if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+      outcome = TransformTask(task, **ctx, partial);
+      break;
+    case v1::FINALIZE:
+      outcome = FinalizeTask(task, **ctx, partial, out, progress);
+      break;
+    default:
+      return absl::InvalidArgumentError(
+          absl::StrCat("kind: ", static_cast<int>(task.kind()), " is not a task kind"));
+  }
+  if (progress.cancel.load()) {
+    // A cancelled job's cleanup may have run while this task still wrote:
+    // what it recreated carries no marker and goes (kPartialMarker).
+    std::error_code ec;
+    if (!std::filesystem::exists(partial / kPartialMarker, ec))
+      std::filesystem::remove_all(partial, ec);
+    return Cancelled(task);
+  }
+  if (outcome.ok()) {
+    progress.rays_traced = outcome->rays_traced;
+    progress.bytes_written = outcome->bytes_written;
+  }
+  return outcome;
+}
+
+absl::Status PublishFinishedStore(const std::filesystem::path& partial,
+                                  const std::filesystem::path& out) {
+  if (::rename(partial.c_str(), out.c_str()) == 0) return absl::OkStatus();
+  const int err = errno;
+  if (ReadStoreInfo(out).ok()) {  // another FINALIZE of the job published it first
+    std::error_code ec;
+    std::filesystem::remove_all(partial, ec);
+    return absl::OkStatus();
+  }
+  return absl::InternalError(
+      absl::StrCat("rename ", partial.string(), " -> ", out.string(), ": ", std::strerror(err)));
+}
+
+}  // namespace wavebake

@@ -1,0 +1,52 @@
+#pragma once
+// One leased task as a worker runs it (DESIGN.md §2): the task's scene and
+// job context, the job's partial store directory, then the task function —
+// BAKE_TILE → CreateStaging (idempotent) + BakeTile, TRANSFORM_COLUMNS →
+// TransformColumns, FINALIZE → Finalize and the rename that makes the store
+// appear at its path whole. No RPC here (worker/worker_loop.h leases,
+// heartbeats and reports); no scheduling in the task functions.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "wavebake.pb.h"
+#include "worker/context_cache.h"
+#include "worker/scene_cache.h"
+
+namespace wavebake {
+
+struct TaskEnv {
+  std::filesystem::path store_root;  // shared with the coordinator (--store-root)
+  SceneCache* scenes = nullptr;
+  ContextCache* contexts = nullptr;
+  SceneCache::FetchFn fetch;  // FetchScene from the coordinator
+};
+
+// Shared between the running task and the heartbeat thread.
+struct TaskProgress {
+  std::atomic<bool> cancel{false};  // the lease is gone: stop, report nothing
+  std::atomic<int64_t> rays_traced{0};
+  std::atomic<int64_t> bytes_written{0};
+};
+
+struct TaskOutcome {
+  int64_t rays_traced = 0;
+  int64_t bytes_written = 0;
+  std::string stats_json;  // FINALIZE: the store's stats (they become the job's)
+};
+
+// Errors: the task's own, CancelledError once progress.cancel is seen (tasks
+// check it between rows or columns), FailedPrecondition when this worker's
+// plan of the job differs from the coordinator's (tiles / groups).
+absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
+                                    TaskProgress& progress);
+
+// FINALIZE's last step: `partial` becomes `out` by one rename. Succeeds too
+// when another worker's FINALIZE of the same job got there first (`out` is
+// a finished store); then `partial`'s leftovers are removed.
+absl::Status PublishFinishedStore(const std::filesystem::path& partial,
+                                  const std::filesystem::path& out);
+
+}  // namespace wavebake

@@ -1,0 +1,121 @@
+#pragma once
+// The worker process (DESIGN.md §4 WorkerService, §5 `wavebake worker`):
+// registers with the coordinator, then `threads` threads each lease one task
+// at a time and run it (worker/task_runner.h), while a heartbeat thread
+// renews the running leases, reports their progress counters and stops the
+// tasks whose leases the coordinator withdrew. Results go back with Complete,
+// errors with Fail and the task's reason.
+//
+// Riding out the coordinator: UNAVAILABLE and other transient errors are
+// retried with backoff (a restarted coordinator voids the old leases; their
+// tasks stop at the next heartbeat and are leased again), NOT_FOUND for the
+// worker id means the coordinator forgot it: register again. UNAUTHENTICATED,
+// PERMISSION_DENIED, FAILED_PRECONDITION (excluded) and INVALID_ARGUMENT end
+// the loop with that error.
+//
+// `wavebake worker` runs one per process; `wavebake bake` runs several in
+// its own process over the coordinator's in-process channel, sharing one
+// ContextCache and SceneCache.
+#include <grpcpp/channel.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "wavebake.grpc.pb.h"
+#include "worker/context_cache.h"
+#include "worker/scene_cache.h"
+#include "worker/task_runner.h"
+
+namespace wavebake {
+
+struct WorkerOptions {
+  std::filesystem::path store_root{};       // required: the coordinator's store root, shared
+  std::filesystem::path scene_cache_dir{};  // empty = store_root / ".scene-cache"
+  int threads = 1;
+  std::string name{};   // shown by the coordinator; empty = host:pid
+  std::string token{};  // bearer token; empty = none
+  int64_t rpc_timeout_ms = 30'000;
+  int64_t heartbeat_ms = 0;        // 0 = a third of the remaining lease at grant time
+  int64_t max_backoff_ms = 2'000;  // retry delay cap after transient errors
+  // Shared caches (the embedded bake); null = the worker's own.
+  std::shared_ptr<ContextCache> contexts{};
+  std::shared_ptr<SceneCache> scenes{};
+};
+
+struct WorkerCounters {
+  int64_t completed = 0;  // Complete accepted
+  int64_t failed = 0;     // Fail sent
+  int64_t cancelled = 0;  // stopped by a withdrawn lease
+  int64_t rays_traced = 0;
+  int64_t bytes_written = 0;
+};
+
+class WorkerLoop {
+ public:
+  WorkerLoop(std::shared_ptr<grpc::ChannelInterface> channel, WorkerOptions options);
+  WorkerLoop(const WorkerLoop&) = delete;
+  WorkerLoop& operator=(const WorkerLoop&) = delete;
+  ~WorkerLoop();
+
+  // Registers and works until Drain() (then OK, once the running tasks have
+  // finished and been reported) or a fatal error (returned).
+  absl::Status Run();
+  // Stop leasing; tasks that are running finish and are reported. Safe from
+  // any thread, also before Run.
+  void Drain();
+  // Drain, and stop the running tasks too: they are reported with Fail.
+  void Abort();
+
+  std::string worker_id() const;
+  WorkerCounters counters() const;
+
+ private:
+  struct Running {
+    std::string lease_id;
+    std::shared_ptr<TaskProgress> progress;
+  };
+
+  absl::Status Register();
+  absl::Status Reregister(const std::string& stale_id);
+  void LeaseLoop();
+  void RunLeased(const v1::Task& task);
+  void Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>& outcome);
+  void HeartbeatLoop(std::stop_token stop);
+  void HeartbeatOnce();
+  absl::Status FetchScene(const v1::SceneRef& ref, const std::filesystem::path& dest);
+
+  // Classifies an RPC error: fatal ones end the loop (returned), NOT_FOUND
+  // re-registers, the rest wait with backoff. OK when work may go on.
+  absl::Status Recover(const grpc::Status& status, const std::string& worker_id, int attempt);
+  std::unique_ptr<grpc::ClientContext> Context() const;
+  bool SleepUnlessDraining(int64_t ms);  // false: draining
+  void SetFatal(absl::Status status);
+
+  WorkerOptions options_;
+  std::unique_ptr<v1::WorkerService::Stub> stub_;
+  std::shared_ptr<ContextCache> contexts_;
+  std::shared_ptr<SceneCache> scenes_;
+  TaskEnv env_;
+
+  std::mutex register_mu_;  // one re-registration at a time
+  mutable std::mutex mu_;
+  std::condition_variable_any wake_;  // drain, abort, a shorter heartbeat period
+  std::string worker_id_;
+  bool draining_ = false;
+  bool aborted_ = false;
+  absl::Status fatal_;
+  std::map<std::string, Running> running_;  // by lease id
+  int64_t heartbeat_ms_ = 1'000;
+  WorkerCounters counters_;
+};
+
+}  // namespace wavebake
