@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_replace.h"
 #include "coordinator/scene_store.h"
 #include "core/job_plan.h"
 #include "core/layout.h"
@@ -73,29 +74,31 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
     return scene;
   }
   const v1::SceneRef& ref = request.scene().uploaded();
-  std::string spec;
-  if (auto local = options.local_scenes.find(ref.sha256()); local != options.local_scenes.end()) {
-    spec = local->second;
-  } else {
-    absl::StatusOr<std::string> named = NamedBlob(ref, options);
-    if (!named.ok()) return named.status();
-    spec = *named;
+  auto local = options.local_scenes.find(ref.sha256());
+  if (local != options.local_scenes.end()) {  // the user's own path: its errors name it
+    absl::StatusOr<Scene> scene = LoadScene(local->second);
+    if (!scene.ok()) return SceneError("scene.uploaded", scene.status());
+    return scene;
   }
-  absl::StatusOr<Scene> scene = LoadScene(spec);
+  absl::StatusOr<std::string> named = NamedBlob(ref, options);
+  if (!named.ok()) return named.status();
+  absl::StatusOr<Scene> scene = LoadScene(*named);
   if (!scene.ok()) {
-    return SceneError(
-        "scene.uploaded",
-        absl::Status(scene.status().code(),
-                     absl::StrCat("\"", ref.file_name(), "\" (sha256 ", ref.sha256().substr(0, 12),
-                                  "…): ", scene.status().message())));
+    // The loader names the link under the data dir; the client knows the file.
+    std::string message(scene.status().message());
+    const std::string file =
+        absl::StrCat("'", ref.file_name(), "' (sha256 ", ref.sha256().substr(0, 12), "…)");
+    if (absl::StrReplaceAll({{absl::StrCat("'", *named, "'"), file}}, &message) == 0)
+      message = absl::StrCat(file, ": ", message);
+    return absl::InvalidArgumentError(absl::StrCat("scene.uploaded: ", message));
   }
   return scene;
 }
 
-int64_t EstimateRays(int width, int height, int light_res, int supersample) {
+int64_t EstimateRays(int64_t samples, int light_res, int supersample) {
   // K is rounded up to a square (worker/jitter_pattern.h).
   const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
-  return int64_t{width} * height * 6 * light_res * light_res * strata * strata / 2;
+  return samples * 6 * light_res * light_res * strata * strata / 2;
 }
 
 PlanFn MakeJobPlanner(PlannerOptions options) {
@@ -111,12 +114,19 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     if (!grid.ok()) return grid.status();
     const auto [width, height] = *grid;
     const JobPlan plan = MakeJobPlan(*params, width, height);
+    // Samples that will trace: every vertex for hilbert (the rest of its grid
+    // is masked); every cell otherwise (camera: an upper bound, misses are masked).
+    int64_t samples = int64_t{width} * height;
+    if (layout->kind == LayoutKind::kHilbert) {
+      samples = 0;
+      for (const Mesh& m : scene->meshes) samples += static_cast<int64_t>(m.positions.size());
+    }
     if (absl::Status s = ReservePartialStore(options.store_root, request.output_name()); !s.ok())
       return s;
     return PlannedJob{
         .tiles = plan.tiles(),
         .groups = plan.groups,
-        .total_rays_estimate = EstimateRays(width, height, params->light_res, params->supersample),
+        .total_rays_estimate = EstimateRays(samples, params->light_res, params->supersample),
         .store_path = {}};  // the request's output_name
   };
 }

@@ -40,9 +40,9 @@ CleanupFn MakeJobCleanup(std::filesystem::path store_root);
 absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
                                        const PlannerOptions& options);
 
-// Rays BAKE_TILE will trace, roughly: every cell of the W×H grid traces K
-// jittered directions per texel, and about half the texels of a receiver are
-// below its horizon (never traced).
-int64_t EstimateRays(int width, int height, int light_res, int supersample);
+// Rays BAKE_TILE will trace, roughly: every sample traces K jittered
+// directions per texel, and about half the texels of a receiver are below
+// its horizon (never traced).
+int64_t EstimateRays(int64_t samples, int light_res, int supersample);
 
 }  // namespace wavebake

@@ -75,9 +75,9 @@ TEST_F(JobPlannerTest, GridLayoutTakesTheMeshGrid) {
 }
 
 TEST_F(JobPlannerTest, SupersamplingIsRoundedUpToASquare) {
-  EXPECT_EQ(EstimateRays(2, 2, 8, 4), 4 * 384 * 4 / 2);
-  EXPECT_EQ(EstimateRays(2, 2, 8, 5), 4 * 384 * 9 / 2);
-  EXPECT_EQ(EstimateRays(2, 2, 8, 1), 4 * 384 / 2);
+  EXPECT_EQ(EstimateRays(4, 8, 4), 4 * 384 * 4 / 2);
+  EXPECT_EQ(EstimateRays(4, 8, 5), 4 * 384 * 9 / 2);
+  EXPECT_EQ(EstimateRays(4, 8, 1), 4 * 384 / 2);
 }
 
 TEST_F(JobPlannerTest, PlansAnUploadedMeshByItsFileName) {
@@ -90,6 +90,8 @@ TEST_F(JobPlannerTest, PlansAnUploadedMeshByItsFileName) {
   absl::StatusOr<PlannedJob> plan = MakeJobPlanner(Options())(Request(r));
   ASSERT_TRUE(plan.ok()) << plan.status();
   EXPECT_EQ(plan->tiles, 4);
+  // Only the vertices trace (the bunny file says 2503 of them).
+  EXPECT_EQ(plan->total_rays_estimate, int64_t{2503} * 384 * 4 / 2);
 }
 
 TEST_F(JobPlannerTest, BadScenesAreInvalidArgumentNamingTheField) {
@@ -103,7 +105,9 @@ TEST_F(JobPlannerTest, BadScenesAreInvalidArgumentNamingTheField) {
   absl::StatusOr<PlannedJob> nan =
       plan(Request(Uploaded("v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "nan.obj"), "b.wbk"));
   EXPECT_EQ(nan.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(std::string(nan.status().message()), StartsWith("scene.uploaded: \"nan.obj\""));
+  EXPECT_THAT(std::string(nan.status().message()),
+              StartsWith("scene.uploaded: scene file 'nan.obj' (sha256 "));
+  EXPECT_THAT(std::string(nan.status().message()), HasSubstr("not finite"));
 
   absl::StatusOr<PlannedJob> empty = plan(Request(Uploaded("# nothing\n", "empty.obj"), "c.wbk"));
   EXPECT_EQ(empty.status().code(), absl::StatusCode::kInvalidArgument);
