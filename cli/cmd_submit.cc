@@ -1,0 +1,66 @@
+// `wavebake submit SCENE [bake flags] --coordinator ADDR [--wait]` (DESIGN.md
+// §4, §5): prints the new job's id on stdout; with --wait, follows the job
+// like `watch` and exits 0 only if it is DONE.
+#include <cstdio>
+
+#include "cli/bake_flags.h"
+#include "cli/client.h"
+#include "cli/cluster_commands.h"
+#include "cli/command_error.h"
+#include "cli/job_submit.h"
+#include "cli/job_watch.h"
+#include "cli/stderr_log.h"
+#include "proto/bake_request.h"
+
+namespace wavebake::cli {
+namespace {
+
+struct SubmitFlags {
+  std::string scene;
+  BakeFlags bake;
+  ClientFlags client;
+  std::string output_name;
+  int max_attempts = kDefaultMaxAttempts;
+  bool wait = false;
+};
+
+void Run(const SubmitFlags& f) {
+  LogToStderr(spdlog::level::warn);
+  absl::StatusOr<BakeParams> params = ToParams(f.bake);
+  if (!params.ok()) Fail("submit", params.status());
+  v1::BakeRequest request = ToBakeRequest(*params);
+  request.set_output_name(f.output_name);
+  request.set_max_attempts(f.max_attempts);
+  absl::StatusOr<Client> client = Client::Connect(f.client);
+  if (!client.ok()) Fail("submit", client.status());
+  absl::StatusOr<v1::Job> job = SubmitScene(*client, request, f.scene);
+  if (!job.ok()) Fail("submit", job.status());
+  std::printf("%s\n", job->id().c_str());
+  std::fflush(stdout);
+  if (!f.wait) return;
+  absl::StatusOr<v1::Job> ended = WatchJob(*client, job->id());
+  if (!ended.ok()) Fail("submit", ended.status());
+  if (ended->phase() != v1::PHASE_DONE) Fail("submit", JobOutcome(*ended));
+  std::fprintf(stderr, "%s\n", JobOutcome(*ended).c_str());
+}
+
+}  // namespace
+
+void AddSubmitCommand(CLI::App& app) {
+  auto f = std::make_shared<SubmitFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "submit", "submit a bake job to a coordinator; prints its id (uploads a scene file once)");
+  cmd->add_option("SCENE", f->scene, "builtin:NAME, a mesh file (OBJ, PLY, glTF) or a .json scene")
+      ->required();
+  AddBakeFlags(*cmd, f->bake);
+  AddClientFlags(*cmd, f->client);
+  cmd->add_option("--output-name", f->output_name,
+                  "store directory under the store root (default job-<id>.wbk)");
+  cmd->add_option("--max-attempts", f->max_attempts,
+                  "failures and lease expiries a task may take before the job fails")
+      ->capture_default_str();
+  cmd->add_flag("--wait", f->wait, "follow the job to its end (exit 0 only if DONE)");
+  cmd->callback([f] { Run(*f); });
+}
+
+}  // namespace wavebake::cli

@@ -1,0 +1,45 @@
+// `wavebake watch JOB --coordinator ADDR` (DESIGN.md §4 Watch): the job's
+// progress until it ends — a bar with rays/s and ETA on a terminal, plain
+// lines otherwise. Exit 0 if the job is DONE.
+#include <cstdio>
+
+#include "cli/client.h"
+#include "cli/cluster_commands.h"
+#include "cli/command_error.h"
+#include "cli/job_watch.h"
+#include "cli/stderr_log.h"
+
+namespace wavebake::cli {
+namespace {
+
+struct WatchFlags {
+  std::string job;
+  ClientFlags client;
+  double patience_seconds = 60;
+};
+
+void Run(const WatchFlags& f) {
+  LogToStderr(spdlog::level::warn);
+  absl::StatusOr<Client> client = Client::Connect(f.client);
+  if (!client.ok()) Fail("watch", client.status());
+  absl::StatusOr<v1::Job> job = WatchJob(*client, f.job, f.patience_seconds);
+  if (!job.ok()) Fail("watch", job.status());
+  if (job->phase() != v1::PHASE_DONE) Fail("watch", JobOutcome(*job));
+  std::printf("%s\n", JobOutcome(*job).c_str());
+}
+
+}  // namespace
+
+void AddWatchCommand(CLI::App& app) {
+  auto f = std::make_shared<WatchFlags>();
+  CLI::App* cmd =
+      app.add_subcommand("watch", "follow a job's progress until it ends (exit 0 if it is DONE)");
+  cmd->add_option("JOB", f->job, "job id")->required();
+  AddClientFlags(*cmd, f->client);
+  cmd->add_option("--patience", f->patience_seconds,
+                  "seconds to keep reconnecting to an unreachable coordinator")
+      ->capture_default_str();
+  cmd->callback([f] { Run(*f); });
+}
+
+}  // namespace wavebake::cli
