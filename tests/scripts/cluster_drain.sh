@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# `wavebake worker` on SIGTERM (DESIGN.md §4): it drains — leases nothing
+# more, finishes and reports the task it is running, and exits 0; the job
+# goes on with the next worker.
+source "$(dirname "$0")/cluster_lib.bash" "$1"
+
+start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 5
+start_worker w1 "$TMP/data/store" --threads 1
+w1=$WORKER_PID
+
+# 4 tiles of 16×16 cells, ~10 Mrays each: long enough to be inside one.
+job=$("$WB" submit builtin:disk-over-plane --light-res 16 --supersample 64 --layout camera:32x32 \
+  --tile-size 16 --output-name disk.wbk --coordinator "$ADDR")
+wait_until 30 "a tile leased" job_at_least "$job" leased_tasks 1
+kill -TERM "$w1"
+deadline=$((SECONDS + 30))
+while kill -0 "$w1" 2>/dev/null; do
+  ((SECONDS < deadline)) || fail "the worker did not exit within 30 s of SIGTERM"
+  sleep 0.1
+done
+wait "$w1" || fail "the drained worker exited with status $?"
+grep -q "BAKE_TILE [0-9]*: done" "$TMP/w1.log" || fail "the running tile was not finished"
+grep -q "stopped (1 tasks completed, 0 failed, 0 cancelled)" "$TMP/w1.log" ||
+  fail "the worker did not finish exactly its one task"
+job_is "$job" tasks_done 1 || fail "tasks_done is $(job_field "$job" tasks_done), expected 1"
+job_is "$job" leased_tasks 0 || fail "the drained worker still holds a lease"
+
+start_worker w2 "$TMP/data/store" --threads 2
+timeout 120 "$WB" watch "$job" --coordinator "$ADDR" >/dev/null 2>&1 || fail "the job did not complete"
+echo "PASS: SIGTERM drained the worker (its tile finished and reported, exit 0); job $job completed"

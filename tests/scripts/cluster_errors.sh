@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# DESIGN.md §4, §5 errors through the CLI: a wrong or missing bearer token is
+# UNAUTHENTICATED, malformed requests and bad scenes are INVALID_ARGUMENT
+# naming the field, an unknown job is NOT_FOUND — each with a non-zero exit
+# status. The embedded bake leaves nothing at OUT when it fails.
+source "$(dirname "$0")/cluster_lib.bash" "$1"
+
+echo "s3cret-token" >"$TMP/token"
+echo "wrong-token" >"$TMP/wrong"
+start_coordinator "$TMP/data" "$(free_port)" --token-file "$TMP/token" --max-upload-mb 1
+
+# expect_error STATUS_TEXT COMMAND...: exits non-zero and says STATUS_TEXT.
+expect_error() {
+  local want=$1
+  shift
+  if "$@" >"$TMP/out.txt" 2>"$TMP/err.txt"; then fail "succeeded, expected $want: $*"; fi
+  grep -qF -- "$want" "$TMP/err.txt" || fail "expected '$want' from: $* -- got: $(cat "$TMP/err.txt")"
+}
+AUTH=(--coordinator "$ADDR" --token-file "$TMP/token")
+
+expect_error UNAUTHENTICATED "$WB" status --coordinator "$ADDR"
+expect_error UNAUTHENTICATED "$WB" status --coordinator "$ADDR" --token-file "$TMP/wrong"
+expect_error UNAUTHENTICATED "$WB" submit builtin:furnace --coordinator "$ADDR"
+expect_error UNAUTHENTICATED "$WB" worker --store-root "$TMP/data/store" --coordinator "$ADDR" \
+  --token-file "$TMP/wrong"
+expect_error "--token-file" "$WB" status --coordinator "$ADDR" --token-file "$TMP/missing"
+
+expect_error "NOT_FOUND" "$WB" status 4242 "${AUTH[@]}"
+expect_error "NOT_FOUND" "$WB" cancel 4242 "${AUTH[@]}"
+expect_error "NOT_FOUND" "$WB" watch 4242 "${AUTH[@]}"
+expect_error "NOT_FOUND" "$WB" fetch 4242 --out "$TMP/x.wbk" "${AUTH[@]}"
+expect_error "INVALID_ARGUMENT: id:" "$WB" status not-a-job "${AUTH[@]}"
+
+# Refused by the coordinator, field first.
+expect_error "INVALID_ARGUMENT: scene.builtin:" "$WB" submit builtin:no-such-scene "${AUTH[@]}"
+expect_error "INVALID_ARGUMENT: output_name:" "$WB" submit builtin:furnace --output-name .hidden \
+  "${AUTH[@]}"
+printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$TMP/nan.obj"
+expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/nan.obj" "${AUTH[@]}"
+printf '# no geometry\n' >"$TMP/empty.obj"
+expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/empty.obj" "${AUTH[@]}"
+head -c 1500000 /dev/zero | tr '\0' '#' | fold -w 100 >"$TMP/big.obj" # past the upload limit
+expect_error "INVALID_ARGUMENT: data:" "$WB" submit "$TMP/big.obj" "${AUTH[@]}"
+# Refused before sending.
+expect_error "light_res:" "$WB" submit builtin:furnace --light-res 33 "${AUTH[@]}"
+expect_error "SCENE:" "$WB" submit "$TMP/no-such-file.obj" "${AUTH[@]}"
+expect_error "SCENE:" "$WB" submit "$TMP" "${AUTH[@]}" # a directory
+"$WB" status "${AUTH[@]}" >/dev/null || fail "the right token was refused"
+
+# Nothing of a job was left by any of the refusals.
+[[ -z $(ls -A "$TMP/data/store") ]] || fail "refused jobs left files: $(ls -A "$TMP/data/store")"
+
+# The embedded bake: bad input fails before or during the bake, leaving nothing.
+cd "$TMP"
+expect_error "light_res:" "$WB" bake builtin:furnace --light-res 12 --out out.wbk
+expect_error "scene.uploaded:" "$WB" bake "$TMP/nan.obj" --light-res 8 --out out.wbk
+expect_error "scene.builtin:" "$WB" bake builtin:nope --out out.wbk
+[[ -z $(find "$TMP" -maxdepth 1 -name 'out.wbk*' -o -maxdepth 1 -name '.out.wbk*') ]] ||
+  fail "a failed bake left $(ls -A "$TMP")"
+echo "PASS: UNAUTHENTICATED, INVALID_ARGUMENT and NOT_FOUND through the CLI"
