@@ -34,12 +34,17 @@ absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store,
       absl::StrCat(GroupResultPath(store, g).string(), ": columns do not match the job plan"));
 }
 
-// Pass 1: nnz (the length of indices/data) and the bits every column can live
-// with. A missing group is FailedPrecondition: FINALIZE ran too early.
-absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store, int64_t* nnz,
-                        int* bits_needed) {
-  *nnz = 0;
-  *bits_needed = 2;
+// Pass 1: nnz (the length of indices/data) and what --bits auto needs to
+// know. A missing group is FailedPrecondition: FINALIZE ran too early.
+struct GroupScan {
+  int64_t nnz = 0;
+  int max_column_bits = 2;      // the largest single column's need
+  double quantization_unit = 0;  // Σ over columns (worker/column_coding.h)
+  double reference_energy = 0;   // Σ over columns of E_ref
+};
+
+absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store, GroupScan* scan) {
+  *scan = {};
   for (int g = 0; g < plan.groups; ++g) {
     absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
     if (absl::IsNotFound(r.status()))
@@ -47,10 +52,26 @@ absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
           absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
     if (!r.ok()) return r.status();
     if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
-    *nnz += static_cast<int64_t>(r->positions.size());
-    for (const GroupColumn& c : r->columns) *bits_needed = std::max<int>(*bits_needed, c.min_bits);
+    scan->nnz += static_cast<int64_t>(r->positions.size());
+    for (const GroupColumn& c : r->columns) {
+      scan->max_column_bits = std::max<int>(scan->max_column_bits, c.min_bits);
+      scan->quantization_unit += c.quantization_unit;
+      scan->reference_energy += c.reference_energy;
+    }
   }
   return absl::OkStatus();
+}
+
+// --bits auto (DESIGN.md §1: the fewest bits whose quantization error stays
+// under half the target). With the matrix error scope the target is a budget
+// on the whole matrix, so is the quantization half of it: the summed expected
+// dither energy ≤ (target/2)²·Σ E_ref. One rare column with a huge dynamic
+// range no longer sets the bits of all the others (a per-column max asked 15
+// bits where 12 meet the matrix budget). With the column scope every column
+// keeps its own promise: the max over columns.
+int AutoBits(const GroupScan& scan, const BakeParams& params) {
+  if (params.error_scope == ErrorScope::kColumn) return scan.max_column_bits;
+  return MinBitsFor(scan.quantization_unit, params.target_error, scan.reference_energy);
 }
 
 struct CscArrays {
@@ -189,9 +210,11 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
     return absl::FailedPreconditionError(absl::StrCat(store.string(), ": no staging to finalize"));
   }
   const JobPlan& plan = ctx.plan;
-  int64_t nnz = 0;
-  ManifestBits bits;
-  if (absl::Status s = ScanGroups(plan, store, &nnz, &bits.bits_needed); !s.ok()) return s;
+  GroupScan scan;
+  if (absl::Status s = ScanGroups(plan, store, &scan); !s.ok()) return s;
+  const int64_t nnz = scan.nnz;
+  ManifestBits bits{.bits_needed = AutoBits(scan, ctx.params),
+                    .max_column_bits = scan.max_column_bits};
   bits.bits = ctx.params.bits != 0 ? ctx.params.bits : bits.bits_needed;
 
   StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));

@@ -4,9 +4,10 @@
 // then staging is dropped. Quantization happens here because --bits auto is a
 // matrix-wide choice: each group recorded, per column, the fewest bits b whose
 // expected subtractive-dither error energy Σ_i (Δ_b·2^−l_i·w_i)²/12, Δ_b =
-// scale/Q_b, stays ≤ (target/2)²·E_ref (worker/column_coding.h); FINALIZE
-// takes the maximum over all columns (recorded as attrs "bits" and
-// "bits_needed") and quantizes every column with it (core/quantizer.h).
+// scale/Q_b, stays ≤ (target/2)²·E_ref (worker/column_coding.h). FINALIZE
+// applies that rule to the whole matrix for the matrix error scope and takes
+// the max over columns for the column scope (recorded as attrs "bits",
+// "bits_needed", "max_column_bits") and quantizes every column with it.
 //
 // Memory: one group's coded columns plus O(M) column arrays, never S×M.
 // Idempotent: a retry rewrites the same bytes, and a retry after staging was

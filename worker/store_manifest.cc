@@ -40,6 +40,7 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
           {"bits", bits.bits},
           {"bits_auto", p.bits == 0},
           {"bits_needed", bits.bits_needed},
+          {"max_column_bits", bits.max_column_bits},
           {"ray_epsilon", ctx.epsilon},
           {"dither", kDither},
           {"dequantize", kDequantize},

@@ -13,7 +13,8 @@ namespace wavebake {
 
 struct ManifestBits {
   int bits = 0;         // what every column is quantized with
-  int bits_needed = 0;  // max over columns of their --bits auto need
+  int bits_needed = 0;      // what --bits auto asks (worker/finalize.cc AutoBits)
+  int max_column_bits = 0;  // the largest single column's need
 };
 
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats);
