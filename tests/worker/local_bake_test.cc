@@ -140,7 +140,11 @@ TEST(LocalBakeTest, SummaryAndProgressAddUp) {
   EXPECT_LE(s->rays_traced, s->samples * 384);
   EXPECT_EQ(s->raw_bytes, s->samples * 384 * 4);
   EXPECT_GE(s->bits, 2);
-  EXPECT_LE(s->column_error_max, 0.01 * std::sqrt(1.75) * (1 + 1e-6));
+  // Matrix scope: every column's error is relative to the same mean energy,
+  // so their mean ≤ their RMS = the matrix error ≤ t·sqrt(1 + 3/4) (dropped
+  // ≤ t², dither ≤ 3× its expected (t/2)² budget). Single columns may exceed
+  // it: --bits auto budgets the dither over the whole matrix.
+  EXPECT_LE(s->column_error_mean, 0.01 * std::sqrt(1.75) * (1 + 1e-6));
   absl::StatusOr<CompressedColumns> t = ReadTransport(out);
   ASSERT_TRUE(t.ok()) << t.status();
   EXPECT_EQ(s->nnz, t->indptr.back());
