@@ -74,13 +74,14 @@ TEST(EmbeddedBakeTest, StoreIsBitIdenticalToTheLocalDriver) {
   ScratchDir dir;
   LocalBakeOptions local;
   local.threads = 2;
-  ASSERT_TRUE(RunLocalBake("builtin:cylinder-bump", SmallJob(), dir.path() / "local.wbk", local).ok());
+  ASSERT_TRUE(
+      RunLocalBake("builtin:cylinder-bump", SmallJob(), dir.path() / "local.wbk", local).ok());
   const auto expected = Files(dir.path() / "local.wbk");
   ASSERT_TRUE(expected.contains("transport/indptr/0"));
   for (int workers : {1, 3}) {
     const std::filesystem::path out = dir.path() / ("embedded" + std::to_string(workers) + ".wbk");
-    absl::StatusOr<v1::Job> job = EmbeddedBake("builtin:cylinder-bump", SmallJob(), out,
-                                               {.workers = workers, .quiet = true});
+    absl::StatusOr<v1::Job> job =
+        EmbeddedBake("builtin:cylinder-bump", SmallJob(), out, {.workers = workers, .quiet = true});
     ASSERT_TRUE(job.ok()) << job.status();
     ASSERT_EQ(job->phase(), v1::PHASE_DONE) << job->error();
     EXPECT_EQ(job->tiles(), 4);
@@ -89,8 +90,8 @@ TEST(EmbeddedBakeTest, StoreIsBitIdenticalToTheLocalDriver) {
     EXPECT_TRUE(Files(out) == expected) << workers << " workers";
   }
   // Nothing but the three stores: the coordinator's data dirs are gone.
-  EXPECT_THAT(Names(dir.path()), ::testing::UnorderedElementsAre("local.wbk", "embedded1.wbk",
-                                                                 "embedded3.wbk"));
+  EXPECT_THAT(Names(dir.path()),
+              ::testing::UnorderedElementsAre("local.wbk", "embedded1.wbk", "embedded3.wbk"));
 }
 
 // A scene file is read in place: a JSON scene finds its mesh beside it, and
@@ -141,9 +142,9 @@ TEST(EmbeddedBakeTest, RefusedInputLeavesNothing) {
 TEST(EmbeddedBakeTest, AnInterruptedBakeIsCancelledAndLeavesNothing) {
   ScratchDir dir;
   const std::atomic<bool> interrupted{true};
-  absl::StatusOr<v1::Job> job = EmbeddedBake(
-      "builtin:sphere-plane", SmallJob(), dir.path() / "out.wbk",
-      {.workers = 1, .quiet = true, .interrupted = &interrupted});
+  absl::StatusOr<v1::Job> job =
+      EmbeddedBake("builtin:sphere-plane", SmallJob(), dir.path() / "out.wbk",
+                   {.workers = 1, .quiet = true, .interrupted = &interrupted});
   ASSERT_TRUE(job.ok()) << job.status();
   EXPECT_EQ(job->phase(), v1::PHASE_CANCELLED);
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
