@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/cluster_commands.h"
+#include "cli/runtime_commands.h"
 
 namespace wavebake::cli {
 
@@ -17,6 +18,8 @@ int Run(int argc, char** argv) {
   AddStatusCommand(app);
   AddCancelCommand(app);
   AddFetchCommand(app);
+  AddRelightCommand(app);
+  AddEvalCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

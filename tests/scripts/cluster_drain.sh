@@ -8,8 +8,8 @@ start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 5
 start_worker w1 "$TMP/data/store" --threads 1
 w1=$WORKER_PID
 
-# 4 tiles of 16×16 cells, ~10 Mrays each: long enough to be inside one.
-job=$("$WB" submit builtin:disk-over-plane --light-res 16 --supersample 64 --layout camera:32x32 \
+# 4 tiles of 16×16 cells, ~40 Mrays each: long enough to be inside one.
+job=$("$WB" submit builtin:disk-over-plane --light-res 32 --supersample 64 --layout camera:32x32 \
   --tile-size 16 --output-name disk.wbk --coordinator "$ADDR")
 wait_until 30 "a tile leased" job_at_least "$job" leased_tasks 1
 kill -TERM "$w1"
@@ -19,11 +19,19 @@ while kill -0 "$w1" 2>/dev/null; do
   sleep 0.1
 done
 wait "$w1" || fail "the drained worker exited with status $?"
-grep -q "BAKE_TILE [0-9]*: done" "$TMP/w1.log" || fail "the running tile was not finished"
-completed=$(sed -n 's/.*stopped (\([0-9]*\) tasks completed, 0 failed, 0 cancelled).*/\1/p' "$TMP/w1.log")
-[[ -n $completed ]] && ((completed >= 1)) || fail "the worker did not finish its task cleanly"
+# Tiles can finish between the lease and the signal, so the worker may have
+# completed more than one; what drain promises is that the task running at
+# the signal is finished and reported, nothing is failed or cancelled, and
+# nothing more is leased (the job is still unfinished for the next worker).
+stopped=$(grep -o "stopped ([0-9]* tasks completed, 0 failed, 0 cancelled)" "$TMP/w1.log") ||
+  fail "the drained worker did not stop cleanly: $(tail -n 1 "$TMP/w1.log")"
+completed=$(grep -o "[0-9]* tasks completed" <<<"$stopped" | cut -d' ' -f1)
+done_lines=$(grep -c "BAKE_TILE [0-9]*: done" "$TMP/w1.log")
+((completed >= 1)) || fail "the running tile was not finished"
+((completed == done_lines)) || fail "worker reported $completed tasks, logged $done_lines"
+((completed < 4)) || fail "the worker kept leasing after SIGTERM (all $completed tiles done)"
 job_is "$job" tasks_done "$completed" ||
-  fail "tasks_done is $(job_field "$job" tasks_done), the worker completed $completed"
+  fail "tasks_done is $(job_field "$job" tasks_done), expected $completed"
 job_is "$job" leased_tasks 0 || fail "the drained worker still holds a lease"
 
 start_worker w2 "$TMP/data/store" --threads 2
