@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "core/transport_row.h"
 #include "worker/bake_context.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "core/cubemap.h"
-#include "core/ray_caster.h"
 #include "core/jitter_pattern.h"
+#include "core/ray_caster.h"
 #include "core/transport_row.h"
 
 namespace wavebake {

@@ -8,13 +8,15 @@
 namespace wavebake::cli {
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
-  cmd.add_option("--light-res", f.light_res, "cubemap texels per face edge N (power of two, 8..256)")
+  cmd.add_option("--light-res", f.light_res,
+                 "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
   cmd.add_option("--layout", f.layout, "spatial layout: camera[:WxH] | grid | hilbert:WxH")
       ->capture_default_str();
   cmd.add_option("--supersample", f.supersample, "jittered directions per texel K")
       ->capture_default_str();
-  cmd.add_option("--row-filter", f.row_filter, "row transform: haar | daub4")->capture_default_str();
+  cmd.add_option("--row-filter", f.row_filter, "row transform: haar | daub4")
+      ->capture_default_str();
   cmd.add_option("--column-mode", f.column_mode, "column transform depth: adaptive | full | 2d")
       ->capture_default_str();
   cmd.add_option("--column-filter", f.column_filter, "column filter: haar | legall53 | cdf97")

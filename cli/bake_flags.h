@@ -1,8 +1,7 @@
 #pragma once
 // The bake flags of DESIGN.md §5, shared by `bake` and `submit`.
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"

@@ -26,8 +26,10 @@ void PrintRow(const char* name, const ErrorStats& e) {
 
 void Run(const EvalFlags& f) {
   if (!f.reference)
-    Fail("eval", "--reference is required: the only ground truth eval knows is the "
-                 "independently traced one", kExitBadInput);
+    Fail("eval",
+         "--reference is required: the only ground truth eval knows is the "
+         "independently traced one",
+         kExitBadInput);
   EvalOptions options;
   options.rotate_degrees = f.rotate;
   options.dense = !f.no_dense;

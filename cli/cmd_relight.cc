@@ -29,7 +29,8 @@ void Run(const RelightFlags& f) {
 void AddRelightCommand(CLI::App& app) {
   auto flags = std::make_shared<RelightFlags>();
   CLI::App* cmd = app.add_subcommand("relight", "relight a baked store under an environment map");
-  cmd->add_option("store", flags->store, "the store (OUT.wbk) written by bake or fetch")->required();
+  cmd->add_option("store", flags->store, "the store (OUT.wbk) written by bake or fetch")
+      ->required();
   cmd->add_option("--env", flags->env,
                   "environment: EXR or Radiance .hdr (lat-long or vertical cross), "
                   "builtin:constant or builtin:sky")
@@ -38,9 +39,9 @@ void AddRelightCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--rotate", flags->rotate, "rotate the environment about +Y, degrees")
       ->capture_default_str();
-  cmd->add_option("--exposure", flags->exposure, "PNG/PLY exposure in stops")->capture_default_str();
-  cmd->add_option("--out", flags->out,
-                  "output: .png or .exr (camera layouts), .ply (mesh layouts)")
+  cmd->add_option("--exposure", flags->exposure, "PNG/PLY exposure in stops")
+      ->capture_default_str();
+  cmd->add_option("--out", flags->out, "output: .png or .exr (camera layouts), .ply (mesh layouts)")
       ->required();
   cmd->callback([flags] { Run(*flags); });
 }

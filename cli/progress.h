@@ -8,9 +8,9 @@
 namespace wavebake::cli {
 
 struct ProgressState {
-  std::string phase;    // e.g. "bake tiles", "transform columns", "finalize"
+  std::string phase;  // e.g. "bake tiles", "transform columns", "finalize"
   int64_t done = 0, total = 0;
-  uint64_t rays = 0;    // rays traced so far in the whole job
+  uint64_t rays = 0;  // rays traced so far in the whole job
   // When known better by the caller (a coordinator's live numbers), >= 0
   // replaces the reporter's own estimates from its clock.
   double rays_per_second = -1;

@@ -11,20 +11,20 @@ enum class WaveletFilter { kHaar, kDaub4, kLeGall53, kCdf97 };
 enum class ErrorScope { kMatrix, kColumn };
 
 struct BakeParams {
-  int light_res = 32;              // N: texels per cube face edge, power of two in 8..256
-  std::string layout = "camera";   // camera[:WxH] | grid | hilbert:WxH
-  int supersample = 4;             // K jittered directions per texel (rounded to a square)
-  WaveletFilter row_filter = WaveletFilter::kHaar;     // haar | daub4
+  int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
+  std::string layout = "camera";  // camera[:WxH] | grid | hilbert:WxH
+  int supersample = 4;            // K jittered directions per texel (rounded to a square)
+  WaveletFilter row_filter = WaveletFilter::kHaar;  // haar | daub4
   ColumnMode column_mode = ColumnMode::kAdaptive;
   WaveletFilter column_filter = WaveletFilter::kHaar;  // haar | legall53 | cdf97
-  double target_error = 0.01;      // absolute budget, DESIGN.md §1 "Coefficient selection"
+  double target_error = 0.01;  // absolute budget, DESIGN.md §1 "Coefficient selection"
   ErrorScope error_scope = ErrorScope::kMatrix;
-  int column_terms = 0;            // > 0: keep a fixed K per column instead of the target
-  int bits = 0;                    // 0 = auto, else 2..16
+  int column_terms = 0;  // > 0: keep a fixed K per column instead of the target
+  int bits = 0;          // 0 = auto, else 2..16
   uint64_t seed = 1;
-  int tile_size = 32;              // spatial tile edge (cells) of BAKE_TILE
-  int column_group = 256;          // columns per TRANSFORM_COLUMNS task
-  float ray_epsilon = 0;           // 0 = 1e-4 × scene bounding-box diagonal
+  int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
+  int column_group = 256;  // columns per TRANSFORM_COLUMNS task
+  float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
 };
 
 }  // namespace wavebake

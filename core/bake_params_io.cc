@@ -8,19 +8,26 @@ bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 std::string_view ToString(ColumnMode m) {
   switch (m) {
-    case ColumnMode::k2d: return "2d";
-    case ColumnMode::kFull: return "full";
-    case ColumnMode::kAdaptive: return "adaptive";
+    case ColumnMode::k2d:
+      return "2d";
+    case ColumnMode::kFull:
+      return "full";
+    case ColumnMode::kAdaptive:
+      return "adaptive";
   }
   return "?";
 }
 
 std::string_view ToString(WaveletFilter f) {
   switch (f) {
-    case WaveletFilter::kHaar: return "haar";
-    case WaveletFilter::kDaub4: return "daub4";
-    case WaveletFilter::kLeGall53: return "legall53";
-    case WaveletFilter::kCdf97: return "cdf97";
+    case WaveletFilter::kHaar:
+      return "haar";
+    case WaveletFilter::kDaub4:
+      return "daub4";
+    case WaveletFilter::kLeGall53:
+      return "legall53";
+    case WaveletFilter::kCdf97:
+      return "cdf97";
   }
   return "?";
 }
@@ -59,7 +66,8 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   if (p.supersample < 1 || p.supersample > 256)
     return bad("supersample", p.supersample, " is outside 1..256");
   if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
-    return bad("row_filter", std::string(ToString(p.row_filter)), " is not a row filter (haar|daub4)");
+    return bad("row_filter", std::string(ToString(p.row_filter)),
+               " is not a row filter (haar|daub4)");
   if (p.column_filter == WaveletFilter::kDaub4)
     return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
   if (!(p.target_error >= 0) || p.target_error > 1)

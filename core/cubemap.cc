@@ -20,12 +20,24 @@ Vec3 Cubemap::FaceDirection(int face, double s, double t) {
   const float sc = static_cast<float>(2 * s - 1), tc = static_cast<float>(2 * t - 1);
   Vec3 d;
   switch (face) {
-    case kPosX: d = {1, -tc, -sc}; break;
-    case kNegX: d = {-1, -tc, sc}; break;
-    case kPosY: d = {sc, 1, tc}; break;
-    case kNegY: d = {sc, -1, -tc}; break;
-    case kPosZ: d = {sc, -tc, 1}; break;
-    default: d = {-sc, -tc, -1}; break;
+    case kPosX:
+      d = {1, -tc, -sc};
+      break;
+    case kNegX:
+      d = {-1, -tc, sc};
+      break;
+    case kPosY:
+      d = {sc, 1, tc};
+      break;
+    case kNegY:
+      d = {sc, -1, -tc};
+      break;
+    case kPosZ:
+      d = {sc, -tc, 1};
+      break;
+    default:
+      d = {-sc, -tc, -1};
+      break;
   }
   return Normalize(d);
 }

@@ -9,12 +9,12 @@
 namespace wavebake {
 
 struct SampleSet {
-  int width = 0, height = 0;        // powers of two
-  std::vector<int32_t> grid;        // [height*width], sample id or -1 (masked cell)
-  std::vector<Vec3> position;       // [S]
-  std::vector<Vec3> normal;         // [S], unit
-  std::vector<Vec3> albedo;         // [S], RGB
-  std::vector<int32_t> vertex;      // [S] global mesh vertex id (mesh layouts), else empty
+  int width = 0, height = 0;    // powers of two
+  std::vector<int32_t> grid;    // [height*width], sample id or -1 (masked cell)
+  std::vector<Vec3> position;   // [S]
+  std::vector<Vec3> normal;     // [S], unit
+  std::vector<Vec3> albedo;     // [S], RGB
+  std::vector<int32_t> vertex;  // [S] global mesh vertex id (mesh layouts), else empty
 
   int size() const { return static_cast<int>(position.size()); }
   int cells() const { return width * height; }

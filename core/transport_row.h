@@ -10,9 +10,9 @@
 #include <span>
 
 #include "core/cubemap.h"
+#include "core/jitter_pattern.h"
 #include "core/ray_caster.h"
 #include "core/vec3.h"
-#include "core/jitter_pattern.h"
 
 namespace wavebake {
 

@@ -9,7 +9,7 @@ namespace wavebake::store {
 inline constexpr char kFormat[] = "wavebake/1";
 
 // Final arrays.
-inline constexpr char kTransport[] = "transport";  // group, attrs: encoding-type csc_matrix
+inline constexpr char kTransport[] = "transport";        // group, attrs: encoding-type csc_matrix
 inline constexpr char kIndptr[] = "transport/indptr";    // int64  [M+1]
 inline constexpr char kIndices[] = "transport/indices";  // uint32 [nnz]  y*W+x in the Mallat layout
 inline constexpr char kData[] = "transport/data";        // int16  [nnz]

@@ -2,9 +2,8 @@
 // Reading a finished store (DESIGN.md §3). Shared by the runtime, `fetch`
 // verification and tests.
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
@@ -14,10 +13,10 @@
 namespace wavebake {
 
 struct StoreInfo {
-  nlohmann::json attrs;     // the root .zattrs as written by FINALIZE
-  BakeParams params;        // parsed back from attrs["params"]
-  std::string scene_spec;   // attrs["scene"]: builtin:NAME or the scene file path
-  std::string scene_hash;   // attrs["scene_hash"]
+  nlohmann::json attrs;    // the root .zattrs as written by FINALIZE
+  BakeParams params;       // parsed back from attrs["params"]
+  std::string scene_spec;  // attrs["scene"]: builtin:NAME or the scene file path
+  std::string scene_hash;  // attrs["scene_hash"]
   int width = 0, height = 0, light_res = 0, columns = 0, bits = 0;
 };
 

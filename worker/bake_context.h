@@ -11,13 +11,13 @@
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
 #include "core/cubemap.h"
+#include "core/jitter_pattern.h"
 #include "core/job_plan.h"
 #include "core/layout.h"
 #include "core/ray_caster.h"
 #include "core/samples.h"
 #include "core/scene.h"
 #include "core/scene_check.h"
-#include "core/jitter_pattern.h"
 
 namespace wavebake {
 

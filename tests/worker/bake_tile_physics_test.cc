@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "core/builtin_scenes.h"
+#include "core/transport_row.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/bake_tile.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -13,10 +13,10 @@
 #include <thread>
 #include <vector>
 
+#include "core/transport_row.h"
 #include "storage/store_layout.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/staging.h"
-#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {
