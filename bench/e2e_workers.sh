@@ -3,13 +3,15 @@
 # job on a coordinator with 1 worker process, then with 2 worker processes,
 # each worker single-threaded (--threads 1), in the same run. Reports the
 # job's wall time (first lease to DONE, the coordinator's clock), the workers'
-# CPU time, and the speed-up t(1 worker) / t(2 workers). Loopback only.
+# CPU time, and the speed-up t(1 worker) / t(2 workers). Loopback only. The
+# coordinator answers idle workers "ask again in 20 ms" (--lease-wait-ms), so
+# the waits at the phase boundaries (the last tile, the last group) stay small.
 #
 #   bash bench/e2e_workers.sh [build/wavebake] [repeats]
 set -euo pipefail
 WB=$(realpath "${1:-build/wavebake}")
 REPEATS=${2:-2}
-BAKE=(builtin:cubes-wall --light-res 32 --supersample 4 --layout camera:64x64 --tile-size 16
+BAKE=(builtin:cubes-wall --light-res 32 --supersample 16 --layout camera:64x64 --tile-size 16
       --column-group 1024)
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/wb_e2e.XXXXXX")
 PIDS=()
@@ -31,7 +33,8 @@ run() {
   local workers=$1 dir addr job pids=() cpu=0
   dir=$(mktemp -d "$TMP/run.XXXXXX")
   addr=127.0.0.1:$(port)
-  "$WB" coordinator --listen "$addr" --data "$dir" --address-file "$dir/addr" 2>"$dir/coord.log" &
+  "$WB" coordinator --listen "$addr" --data "$dir" --address-file "$dir/addr" --lease-wait-ms 20 \
+    2>"$dir/coord.log" &
   PIDS+=($!)
   local coord=$!
   for _ in $(seq 100); do [[ -s $dir/addr ]] && break; sleep 0.1; done

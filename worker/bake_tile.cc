@@ -123,7 +123,7 @@ absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int ti
 }  // namespace
 
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats, const std::atomic<bool>* cancel) {
+                      TileStats* stats, const TaskSignals& signals) {
   const JobPlan& plan = ctx.plan;
   if (tile < 0 || tile >= plan.tiles()) {
     return absl::InvalidArgumentError(
@@ -140,9 +140,11 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   TileStats local;
   double energy = 0;
   for (int cy = 0; cy < rect.height; ++cy) {
-    if (cancel && cancel->load(std::memory_order_relaxed))
+    if (signals.cancel && signals.cancel->load(std::memory_order_relaxed))
       return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
     TraceTileRow(ctx, rect, cy, rows, energy, local);
+    if (signals.rays_traced)
+      signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
     TransposeTileRow(rows, plan, cy, block);
   }
   absl::Status written = WriteTile(*staging, plan, tile, block, energy, local);

@@ -3,12 +3,12 @@
 // trace every sample's row of T (worker/transport_row.h), row-transform it
 // (worker/row_transform.h), transpose the tile's samples × M block in memory
 // and write one staging chunk per column group, plus the tile's energy.
-#include <atomic>
 #include <cstdint>
 #include <filesystem>
 
 #include "absl/status/status.h"
 #include "worker/bake_context.h"
+#include "worker/task_signals.h"
 
 namespace wavebake {
 
@@ -30,10 +30,11 @@ struct TileStats {
 // S×M. Single-threaded; tiles may run concurrently on one context, in any
 // order, and a retried tile rewrites the same bytes: the chunks depend only on
 // (context, tile). `tile` outside [0, plan.tiles()) is InvalidArgument naming
-// "tile". stats (may be null) is added to. cancel (may be null) is checked
-// between tile rows: once it is true, BakeTile returns Cancelled without
-// writing (a worker whose lease was withdrawn stops promptly, DESIGN.md §4).
+// "tile". stats (may be null) is added to. Between tile rows BakeTile
+// checks signals.cancel (once it is true it returns Cancelled without
+// writing: a worker whose lease was withdrawn stops promptly, DESIGN.md §4)
+// and publishes its rays so far to signals.rays_traced.
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats, const std::atomic<bool>* cancel = nullptr);
+                      TileStats* stats, const TaskSignals& signals = {});
 
 }  // namespace wavebake

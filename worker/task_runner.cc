@@ -13,6 +13,7 @@
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
 #include "worker/staging.h"
+#include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
@@ -58,22 +59,13 @@ absl::Status CheckPartial(const std::filesystem::path& partial) {
       "store: ", partial.string(), " is not a reserved partial store (the job ended)"));
 }
 
-uint64_t TreeBytes(const std::filesystem::path& dir) {
-  uint64_t bytes = 0;
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
-       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
-    if (it->is_regular_file(ec)) bytes += it->file_size(ec);
-  }
-  return bytes;
-}
-
 absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext& ctx,
                                          const std::filesystem::path& partial,
                                          TaskProgress& progress) {
   if (absl::Status s = CreateStaging(ctx.plan, partial); !s.ok()) return s;
   TileStats stats;
-  absl::Status s = BakeTile(ctx, partial, task.index(), &stats, &progress.cancel);
+  absl::Status s =
+      BakeTile(ctx, partial, task.index(), &stats, {&progress.cancel, &progress.rays_traced});
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = static_cast<int64_t>(stats.rays_traced),
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -110,7 +102,7 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
   if (!info.ok()) return info.status();
   return TaskOutcome{
       .rays_traced = 0,
-      .bytes_written = static_cast<int64_t>(retry_after_publish ? 0 : TreeBytes(out)),
+      .bytes_written = static_cast<int64_t>(retry_after_publish ? 0 : DirectoryBytes(out)),
       .stats_json = info->attrs.value("stats", nlohmann::json::object()).dump()};
 }
 
@@ -151,8 +143,8 @@ absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
     return Cancelled(task);
   }
   if (outcome.ok()) {
-    progress.rays_traced = outcome->rays_traced;
-    progress.bytes_written = outcome->bytes_written;
+    progress.rays_traced = static_cast<uint64_t>(outcome->rays_traced);
+    progress.bytes_written = static_cast<uint64_t>(outcome->bytes_written);
   }
   return outcome;
 }

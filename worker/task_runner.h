@@ -26,9 +26,9 @@ struct TaskEnv {
 
 // Shared between the running task and the heartbeat thread.
 struct TaskProgress {
-  std::atomic<bool> cancel{false};  // the lease is gone: stop, report nothing
-  std::atomic<int64_t> rays_traced{0};
-  std::atomic<int64_t> bytes_written{0};
+  std::atomic<bool> cancel{false};       // the lease is gone: stop, report nothing
+  std::atomic<uint64_t> rays_traced{0};  // live while BAKE_TILE runs (worker/task_signals.h)
+  std::atomic<uint64_t> bytes_written{0};
 };
 
 struct TaskOutcome {

@@ -318,8 +318,8 @@ void WorkerLoop::HeartbeatOnce() {
   for (const Running& r : leases) {
     v1::LeaseProgress* p = request.add_leases();
     p->set_lease_id(r.lease_id);
-    p->set_rays_traced(r.progress->rays_traced);
-    p->set_bytes_written(r.progress->bytes_written);
+    p->set_rays_traced(static_cast<int64_t>(r.progress->rays_traced.load()));
+    p->set_bytes_written(static_cast<int64_t>(r.progress->bytes_written.load()));
   }
   v1::HeartbeatReply reply;
   const grpc::Status s = stub_->Heartbeat(Context().get(), request, &reply);
