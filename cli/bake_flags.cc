@@ -31,6 +31,8 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "keep exactly K coefficients per column instead of --target-error");
   cmd.add_option("--bits", f.bits, "quantization bits 2..16, or auto")->capture_default_str();
   cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
+  cmd.add_flag("--keep-staging", f.keep_staging,
+               "leave the staging arrays (row-transformed T, transposed) in the store");
   cmd.add_option("--tile-size", f.tile_size,
                  "spatial tile edge of one BAKE_TILE task (power of two)")
       ->capture_default_str();
@@ -58,6 +60,7 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   p.target_error = f.target_error;
   p.column_terms = f.column_terms;
   p.seed = f.seed;
+  p.keep_staging = f.keep_staging;
   p.tile_size = f.tile_size;
   p.column_group = f.column_group;
   if (f.bits != "auto") {

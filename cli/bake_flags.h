@@ -21,6 +21,7 @@ struct BakeFlags {
   int column_terms = 0;
   std::string bits = "auto";
   uint64_t seed = 1;
+  bool keep_staging = false;
   int tile_size = 32;      // BAKE_TILE edge (DESIGN.md §2)
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task
 };

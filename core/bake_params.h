@@ -25,6 +25,9 @@ struct BakeParams {
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task
   float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
+  // Not a property of the matrix (not recorded with it): FINALIZE leaves
+  // staging/ in the store for inspection.
+  bool keep_staging = false;
 };
 
 }  // namespace wavebake

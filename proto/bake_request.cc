@@ -125,6 +125,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.seed = r.seed();
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
+  p.keep_staging = r.keep_staging();
   return p;
 }
 
@@ -174,6 +175,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_row_filter(std::string(ToString(p.row_filter)));
   r.set_tile_size(p.tile_size);
   r.set_column_group(p.column_group);
+  r.set_keep_staging(p.keep_staging);
   return r;
 }
 
