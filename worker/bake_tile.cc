@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/transport_row.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
-#include "core/transport_row.h"
 
 namespace wavebake {
 namespace {

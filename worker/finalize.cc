@@ -38,7 +38,7 @@ absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store,
 // know. A missing group is FailedPrecondition: FINALIZE ran too early.
 struct GroupScan {
   int64_t nnz = 0;
-  int max_column_bits = 2;      // the largest single column's need
+  int max_column_bits = 2;       // the largest single column's need
   double quantization_unit = 0;  // Σ over columns (worker/column_coding.h)
   double reference_energy = 0;   // Σ over columns of E_ref
 };

@@ -145,7 +145,8 @@ absl::StatusOr<BakeSummary> RunLocalBake(std::string_view scene_spec, const Bake
 
   start = std::chrono::steady_clock::now();
   progress.StartPhase("finalize", 1);
-  if (absl::Status s = Finalize(**ctx, partial.path(), {.keep_staging = options.keep_staging || params.keep_staging});
+  if (absl::Status s = Finalize(**ctx, partial.path(),
+                                {.keep_staging = options.keep_staging || params.keep_staging});
       !s.ok()) {
     return s;
   }
