@@ -98,10 +98,18 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
   if (!opened.ok()) return opened.status();
   absl::StatusOr<std::vector<float>> rgb = RelightImage(*opened, *env, terms);
   if (!rgb.ok()) return rgb.status();
-  const int w = opened->samples.width, h = opened->samples.height;
-  if (ext == ".png") return WritePng(out, w, h, *rgb, exposure_stops, Vec3{0, 0, 0});
-  if (ext == ".exr") return WriteExr(out, w, h, *rgb);
-  return WriteMeshColours(*opened, *rgb, exposure_stops, out);
+  return WriteRelit(*opened, *rgb, exposure_stops, out);
+}
+
+absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
+                        const std::filesystem::path& out) {
+  const std::string ext = LowerExtension(out);
+  const int w = store.samples.width, h = store.samples.height;
+  if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
+  if (ext == ".exr") return WriteExr(out, w, h, rgb);
+  if (ext == ".ply") return WriteMeshColours(store, rgb, exposure_stops, out);
+  return absl::InvalidArgumentError(
+      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
 }
 
 }  // namespace wavebake

@@ -2,6 +2,7 @@
 // Entry points of `wavebake relight` (DESIGN.md §5): a finished store opened
 // for relighting, one relit image, and the whole command as one call.
 #include <filesystem>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -39,5 +40,9 @@ absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap
 absl::Status RelightToFile(const std::filesystem::path& store, std::string_view env_spec, int terms,
                            double rotate_degrees, float exposure_stops,
                            const std::filesystem::path& out);
+
+// One relit image [W*H*3] written by out's extension, as RelightToFile does.
+absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
+                        const std::filesystem::path& out);
 
 }  // namespace wavebake

@@ -3,6 +3,7 @@
 // compressed path against the dense retrace of the same T, `eval`'s report,
 // RelightToFile outputs, and bad inputs. Lives in tests/cli because this is
 // the one test binary that links both the worker and the runtime.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -17,6 +18,7 @@
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
 #include "runtime/eval.h"
+#include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 #include "storage/scene_loader.h"
 #include "worker/local_bake.h"
@@ -202,6 +204,44 @@ TEST(RelightStore, BadInputsGiveClearErrors) {
   std::ofstream(attrs_path) << attrs.dump();
   expect(OpenStore(store).status(), "format");
   expect(Evaluate(store, "builtin:constant", 8).status(), "format");
+}
+
+// `relight --rotate-sequence` with START == END is static lighting: per-band
+// incremental relighting (Overbeck §6.2.2) keeps moving n more residual terms
+// into its approximation, so its error against the all-lights image falls to
+// ~0, while the non-incremental error stays at the n-term truncation error
+// of frame 0 (which it equals: both start from L̃ = 0).
+TEST(RelightSequence, StaticLightingConvergesPerBandOnly) {
+  TempDir dir;
+  const auto store = Bake(dir, "seq.wbk", "builtin:cubes-wall", SmallBake());
+  SequenceOptions o{.rotation = {.start_degrees = 30, .end_degrees = 30, .frames = 40},
+                    .terms = 16,
+                    .out_dir = dir.path() / "frames"};
+  auto per_band = RelightSequence(store, "builtin:sky", o);
+  ASSERT_TRUE(per_band.ok()) << per_band.status();
+  o.mode = SequenceMode::kNonIncremental;
+  o.out_dir.clear();
+  auto plain = RelightSequence(store, "builtin:sky", o);
+  ASSERT_TRUE(plain.ok()) << plain.status();
+  ASSERT_EQ(per_band->size(), 40u);
+  EXPECT_GT(plain->front().rel_rms, 1e-3) << "16 terms should not be exact";
+  EXPECT_NEAR(per_band->front().rel_rms, plain->front().rel_rms, 1e-6);
+  for (const SequenceFrame& f : *plain) EXPECT_NEAR(f.rel_rms, plain->front().rel_rms, 1e-6);
+  EXPECT_LT(per_band->back().rel_rms, 1e-4);
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "frames" / "frame_0039.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "frames" / "errors.csv"));
+}
+
+TEST(RelightSequence, BadSpecsNameTheFlag) {
+  for (const char* spec : {"0:90", "a:90:10", "0:90:0", "0:inf:10", "0:90:10:1"}) {
+    auto r = ParseRotateSequence(spec);
+    ASSERT_FALSE(r.ok()) << spec;
+    EXPECT_THAT(std::string(r.status().message()), testing::HasSubstr("rotate-sequence")) << spec;
+  }
+  auto r = ParseRotateSequence("-45:45.5:7");
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->frames, 7);
+  EXPECT_DOUBLE_EQ(r->end_degrees, 45.5);
 }
 
 }  // namespace
