@@ -28,6 +28,7 @@
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
+#include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
@@ -88,7 +89,8 @@ struct Staged {
 };
 
 Staged BakeStaging(const SceneCase& scene, int light_res, const RunConfig& run) {
-  Staged s{.scene = scene};
+  Staged s;
+  s.scene = scene;
   s.base.light_res = light_res;
   s.base.layout = scene.layout;
   s.store = run.work_dir / (scene.name + "-N" + std::to_string(light_res) + ".wbk");
@@ -113,7 +115,15 @@ struct Compressed {
   double seconds = 0;  // TRANSFORM_COLUMNS × groups + FINALIZE
 };
 
+// FINALIZE refuses to overwrite an array of another shape, so the previous
+// setting's output goes first; staging stays.
+void DropFinalArrays(const std::filesystem::path& store) {
+  for (const char* name : {store::kTransport, store::kSamples, ".zattrs"})
+    std::filesystem::remove_all(store / name);
+}
+
 Compressed Compress(const Staged& staged, const BakeParams& params, const RunConfig& run) {
+  DropFinalArrays(staged.store);
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, params));
   Check(RunTasks(ctx->plan.groups, run.threads,
@@ -136,7 +146,7 @@ class Csv {
   }
   template <typename... Fields>
   void Row(const Fields&... fields) {
-    std::string sep;
+    const char* sep = "";
     ((out_ << sep << fields, sep = ","), ...);
     out_ << '\n';
     out_.flush();
@@ -156,7 +166,7 @@ std::string Name(WaveletFilter f) { return std::string(ToString(f)); }
 void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv,
                        Csv& depth_csv) {
   const std::vector<double> targets = run.quick ? std::vector<double>{0.01, 0.05}
-                                                : std::vector<double>{0.003, 0.01, 0.03, 0.1};
+                                                : std::vector<double>{0.003, 0.01, 0.02, 0.05, 0.1};
   for (ColumnMode mode : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive}) {
     for (WaveletFilter filter : {WaveletFilter::kHaar, WaveletFilter::kLeGall53}) {
       for (double target : targets) {
@@ -226,7 +236,7 @@ void Run(const RunConfig& run) {
   Csv res_csv(run.out_dir / "bake_time.csv",
               "scene,light_res,bake_seconds,rays,column_seconds,nnz,transport_bytes,"
               "matrix_rel_rms,bits,threads");
-  const int light_res = run.quick ? 8 : 16;
+  const int light_res = run.quick ? 8 : 32;
   for (const SceneCase& scene : ChartScenes()) {
     const Staged staged = BakeStaging(scene, light_res, run);
     SweepSizeAndDepth(staged, run, size_csv, depth_csv);
