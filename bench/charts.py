@@ -1,0 +1,178 @@
+#!/usr/bin/python3
+"""Turns the CSVs of bench_charts_data into the PNGs of docs/RESULTS.md.
+
+    /usr/bin/python3 bench/charts.py CSV_DIR PNG_DIR
+
+One PNG per CSV present (a chart whose CSV is missing is skipped with a
+note); matplotlib's Agg backend, no display needed.
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MODE_COLORS = {"2d": "tab:blue", "full": "tab:red", "adaptive": "tab:green"}
+FILTER_STYLES = {"haar": "-", "legall53": "--"}
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def scenes_of(rows):
+    seen = []
+    for r in rows:
+        if r["scene"] not in seen:
+            seen.append(r["scene"])
+    return seen
+
+
+def size_error(rows, out):
+    """Chart 1 (4D paper Fig. 7): bytes and kept coefficients vs matrix error."""
+    scenes = scenes_of(rows)
+    fig, axes = plt.subplots(2, len(scenes), figsize=(5 * len(scenes), 8), squeeze=False)
+    for col, scene in enumerate(scenes):
+        for mode, color in MODE_COLORS.items():
+            for filt, style in FILTER_STYLES.items():
+                pts = sorted(
+                    (float(r["matrix_rel_rms"]), int(r["transport_bytes"]), int(r["nnz"]))
+                    for r in rows
+                    if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt
+                )
+                if not pts:
+                    continue
+                err = [p[0] for p in pts]
+                label = f"{mode} / {filt}"
+                axes[0][col].plot(err, [p[1] / 1e3 for p in pts], style, color=color,
+                                  marker="o", label=label)
+                axes[1][col].plot(err, [p[2] / 1e3 for p in pts], style, color=color,
+                                  marker="o", label=label)
+        raw = next(int(r["raw_bytes"]) for r in rows if r["scene"] == scene)
+        axes[0][col].set_title(f"{scene}  (dense float32 T: {raw / 1e6:.1f} MB)")
+        axes[0][col].set_ylabel("transport bytes on disk (kB)")
+        axes[1][col].set_ylabel("kept coefficients (thousands)")
+        for row in (0, 1):
+            ax = axes[row][col]
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("relative RMS error of T (stats.matrix_rel_rms)")
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0][col].legend(fontsize=8)
+    fig.suptitle("Store size vs matrix error: column modes x column filters (bits auto)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def bits_error(rows, out):
+    """Chart 5: matrix error and bytes vs fixed quantization bits."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for mode, color in MODE_COLORS.items():
+        pts = sorted((int(r["bits"]), float(r["matrix_rel_rms"]), int(r["transport_bytes"]))
+                     for r in rows if r["mode"] == mode)
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "-o", color=color, label=mode)
+        bx.plot([p[0] for p in pts], [p[2] / 1e3 for p in pts], "-o", color=color, label=mode)
+    target = float(rows[0]["target"])
+    ax.axhline(target, color="gray", ls=":", label=f"target {target}")
+    ax.set_yscale("log")
+    ax.set_xlabel("quantization bits")
+    ax.set_ylabel("relative RMS error of T")
+    ax.set_title(f"{rows[0]['scene']}: error vs bits (selection at target {target})")
+    bx.set_xlabel("quantization bits")
+    bx.set_ylabel("transport bytes on disk (kB)")
+    bx.set_title("bytes vs bits")
+    for a in (ax, bx):
+        a.grid(True, which="both", alpha=0.3)
+        a.legend()
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def depth_by_level(rows, out):
+    """Chart 6 (4D paper Fig. 8): mean adaptive column depth per row level."""
+    scenes = scenes_of(rows)
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5 * len(scenes), 4), squeeze=False)
+    for col, scene in enumerate(scenes):
+        ax = axes[0][col]
+        targets = sorted({float(r["target"]) for r in rows if r["scene"] == scene})
+        for t in targets:
+            pts = sorted((int(r["row_level"]), float(r["mean_depth"]))
+                         for r in rows if r["scene"] == scene and float(r["target"]) == t)
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], "-o", label=f"target {t}")
+        ax.set_title(f"{scene} (adaptive, haar)")
+        ax.set_xlabel("row-transform level of the light (0 = scaling, coarse to fine)")
+        ax.set_ylabel("mean column depth")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def bake_time(rows, out):
+    """Chart 2: trace and column-stage time, size and matrix error vs N."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
+    n = [int(r["light_res"]) for r in rows]
+    ax.plot(n, [float(r["bake_seconds"]) for r in rows], "-o", label="trace (BAKE_TILE)")
+    ax.plot(n, [float(r["column_seconds"]) for r in rows], "-o",
+            label="column stage + FINALIZE")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("light resolution N (M = 6N^2 columns)")
+    ax.set_ylabel(f"seconds ({rows[0]['threads']} threads)")
+    ax.set_title(f"{rows[0]['scene']}: bake time vs N")
+    bx.plot(n, [int(r["transport_bytes"]) / 1e3 for r in rows], "-o", color="tab:purple",
+            label="transport kB")
+    bx.set_xscale("log", base=2)
+    bx.set_yscale("log")
+    bx.set_xlabel("light resolution N")
+    bx.set_ylabel("transport bytes on disk (kB)")
+    tx = bx.twinx()
+    tx.plot(n, [float(r["matrix_rel_rms"]) for r in rows], "-s", color="tab:orange",
+            label="matrix rel. RMS")
+    tx.set_ylabel("relative RMS error of T (vs its own dense T)")
+    bx.set_title("store size and matrix error vs N (adaptive, target 0.01)")
+    for a in (ax, bx):
+        a.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    bx.legend(loc="upper left")
+    tx.legend(loc="lower right")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+CHARTS = {
+    "size_error": size_error,
+    "bits_error": bits_error,
+    "depth_by_level": depth_by_level,
+    "bake_time": bake_time,
+}
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit("usage: charts.py CSV_DIR PNG_DIR")
+    csv_dir, png_dir = sys.argv[1], sys.argv[2]
+    os.makedirs(png_dir, exist_ok=True)
+    for name, plot in CHARTS.items():
+        path = os.path.join(csv_dir, name + ".csv")
+        if not os.path.exists(path):
+            print(f"charts.py: {path} missing, chart skipped")
+            continue
+        rows = read_rows(path)
+        if not rows:
+            print(f"charts.py: {path} empty, chart skipped")
+            continue
+        out = os.path.join(png_dir, name + ".png")
+        plot(rows, out)
+        plt.close("all")
+        print(f"charts.py: wrote {out}")
+
+
+if __name__ == "__main__":
+    main()

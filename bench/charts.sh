@@ -1,0 +1,27 @@
+#!/bin/bash
+# The charts of docs/RESULTS.md in one command (issue 7): builds
+# bench_charts_data, runs the sweeps into docs/charts/*.csv, then plots
+# docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
+#
+#   bash bench/charts.sh [BUILD_DIR] [--quick]
+#
+# BUILD_DIR defaults to build. Full run ≈ see docs/RESULTS.md; --quick is a
+# few seconds (N = 8, two targets) and writes to BUILD_DIR/charts-quick
+# instead, so the committed charts are only ever the full ones.
+set -euo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+build="build"
+quick=""
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick="--quick" ;;
+    *) build="$arg" ;;
+  esac
+done
+out="$here/docs/charts"
+[[ -n "$quick" ]] && out="$build/charts-quick"
+cmake --build "$build" -j2 --target bench_charts_data
+start=$(date +%s)
+"$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+/usr/bin/python3 "$here/bench/charts.py" "$out" "$out"
+echo "charts: $out ($(( $(date +%s) - start )) s)"

@@ -1,0 +1,274 @@
+// The data behind docs/RESULTS.md (issue 7): sweeps of the real pipeline,
+// one CSV per chart, written into the directory given on the command line.
+//
+//   build/bench_charts_data OUT_DIR [--quick] [--threads T]
+//
+// Each (scene, layout, light resolution) is traced once (BAKE_TILE × tiles
+// into a staging store); every compression setting then reruns only
+// TRANSFORM_COLUMNS × groups and FINALIZE on that staging (FINALIZE keeps
+// it), so a sweep costs one trace plus one column stage per point. Errors are
+// the store's own stats.matrix_rel_rms = sqrt(Σ dropped + quantization
+// energy / Σ energy) (worker/store_stats.h): the relative Frobenius error of
+// the whole matrix, which bounds the relighting error for any lighting and
+// does not depend on a probe. A plain main(): the file is linked with Google
+// Benchmark like every bench/*.cc but uses none of it.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "absl/status/statusor.h"
+#include "core/bake_params.h"
+#include "core/bake_params_io.h"
+#include "storage/store_layout.h"
+#include "storage/store_reader.h"
+#include "worker/bake_context.h"
+#include "worker/bake_tile.h"
+#include "worker/finalize.h"
+#include "worker/staging.h"
+#include "worker/task_pool.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+[[noreturn]] void Die(const std::string& what) {
+  std::fprintf(stderr, "bench_charts_data: %s\n", what.c_str());
+  std::exit(1);
+}
+
+void Check(const absl::Status& s) {
+  if (!s.ok()) Die(s.ToString());
+}
+
+template <typename T>
+T Value(absl::StatusOr<T> v) {
+  if (!v.ok()) Die(v.status().ToString());
+  return *std::move(v);
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct SceneCase {
+  std::string name;    // short label for the CSVs
+  std::string spec;    // builtin:NAME or a mesh path
+  std::string layout;  // DESIGN.md §1 "Spatial layout"
+};
+
+// The three scenes issue 7 asks for: a camera layout, the bunny on a
+// Hilbert layout, and a regular-grid mesh.
+std::vector<SceneCase> ChartScenes() {
+  return {{"cubes-wall", "builtin:cubes-wall", "camera:64x64"},
+          {"bunny", std::string(WB_SHARED_DATA) + "/models/bunny.obj", "hilbert:64x64"},
+          {"cylinder-bump", "builtin:cylinder-bump", "grid"}};
+}
+
+struct RunConfig {
+  std::filesystem::path out_dir, work_dir;
+  bool quick = false;
+  int threads = 2;
+};
+
+// One traced (scene, layout, N): a staging store ready for column stages.
+struct Staged {
+  SceneCase scene;
+  BakeParams base;
+  std::filesystem::path store;
+  double bake_seconds = 0;
+  uint64_t rays = 0;
+};
+
+Staged BakeStaging(const SceneCase& scene, int light_res, const RunConfig& run) {
+  Staged s;
+  s.scene = scene;
+  s.base.light_res = light_res;
+  s.base.layout = scene.layout;
+  s.store = run.work_dir / (scene.name + "-N" + std::to_string(light_res) + ".wbk");
+  std::filesystem::remove_all(s.store);
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(scene.spec, s.base));
+  Check(CreateStaging(ctx->plan, s.store));
+  std::vector<TileStats> stats(ctx->plan.tiles());
+  Check(RunTasks(ctx->plan.tiles(), run.threads,
+                 [&](int t) { return BakeTile(*ctx, s.store, t, &stats[t]); }));
+  s.bake_seconds = SecondsSince(start);
+  for (const TileStats& t : stats) s.rays += t.rays_traced;
+  std::fprintf(stderr, "traced %s N=%d: %.1f s, %.1f Mrays\n", scene.name.c_str(), light_res,
+               s.bake_seconds, s.rays / 1e6);
+  return s;
+}
+
+// What one compression setting produced, from the store's .zattrs.
+struct Compressed {
+  nlohmann::json stats;  // attrs["stats"]
+  int bits = 0;
+  double seconds = 0;  // TRANSFORM_COLUMNS × groups + FINALIZE
+};
+
+// FINALIZE refuses to overwrite an array of another shape, so the previous
+// setting's output goes first; staging stays.
+void DropFinalArrays(const std::filesystem::path& store) {
+  for (const char* name : {store::kTransport, store::kSamples, ".zattrs"})
+    std::filesystem::remove_all(store / name);
+}
+
+Compressed Compress(const Staged& staged, const BakeParams& params, const RunConfig& run) {
+  DropFinalArrays(staged.store);
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, params));
+  Check(RunTasks(ctx->plan.groups, run.threads,
+                 [&](int g) { return TransformColumns(*ctx, staged.store, g, nullptr); }));
+  Check(Finalize(*ctx, staged.store, {.keep_staging = true}));
+  Compressed c;
+  c.seconds = SecondsSince(start);
+  const StoreInfo info = Value(ReadStoreInfo(staged.store));
+  c.stats = info.attrs.at("stats");
+  c.bits = info.bits;
+  return c;
+}
+
+// CSV writer: a header, then rows of already formatted fields.
+class Csv {
+ public:
+  Csv(const std::filesystem::path& path, const std::string& header) : out_(path), path_(path) {
+    if (!out_) Die("cannot write " + path.string());
+    out_ << header << '\n';
+  }
+  template <typename... Fields>
+  void Row(const Fields&... fields) {
+    const char* sep = "";
+    ((out_ << sep << fields, sep = ","), ...);
+    out_ << '\n';
+    out_.flush();
+  }
+
+ private:
+  std::ofstream out_;
+  std::filesystem::path path_;
+};
+
+std::string Name(ColumnMode m) { return std::string(ToString(m)); }
+std::string Name(WaveletFilter f) { return std::string(ToString(f)); }
+
+// Chart 1 (4D paper Fig. 7) and chart 6 (Fig. 8): bytes and kept
+// coefficients against matrix error, per mode × column filter × target; the
+// adaptive Haar runs also give the mean depth by row level.
+void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv,
+                       Csv& depth_csv) {
+  const std::vector<double> targets = run.quick ? std::vector<double>{0.01, 0.05}
+                                                : std::vector<double>{0.003, 0.01, 0.02, 0.05, 0.1};
+  for (ColumnMode mode : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive}) {
+    for (WaveletFilter filter : {WaveletFilter::kHaar, WaveletFilter::kLeGall53}) {
+      for (double target : targets) {
+        BakeParams p = staged.base;
+        p.column_mode = mode;
+        p.column_filter = filter;
+        p.target_error = target;
+        const Compressed c = Compress(staged, p, run);
+        const nlohmann::json& bytes = c.stats.at("bytes");
+        size_csv.Row(staged.scene.name, Name(mode), Name(filter), target,
+                     c.stats.at("nnz").get<int64_t>(), bytes.at("transport").get<uint64_t>(),
+                     bytes.at("arrays").at("transport/indices").get<uint64_t>(),
+                     bytes.at("arrays").at("transport/data").get<uint64_t>(),
+                     bytes.at("raw_float32").get<uint64_t>(), c.bits,
+                     c.stats.at("matrix_rel_rms").get<double>(), c.seconds);
+        if (mode != ColumnMode::kAdaptive || filter != WaveletFilter::kHaar) continue;
+        const nlohmann::json& mean = c.stats.at("mean_depth_by_row_level");
+        for (size_t level = 0; level < mean.size(); ++level)
+          depth_csv.Row(staged.scene.name, target, level, mean[level].get<double>());
+      }
+    }
+  }
+}
+
+// Chart 5: matrix error against fixed quantization bits.
+void SweepBits(const Staged& staged, const RunConfig& run, Csv& csv) {
+  for (ColumnMode mode : {ColumnMode::k2d, ColumnMode::kAdaptive}) {
+    for (int bits = 4; bits <= 12; bits += run.quick ? 4 : 1) {
+      BakeParams p = staged.base;
+      p.column_mode = mode;
+      p.target_error = 0.01;
+      p.bits = bits;
+      const Compressed c = Compress(staged, p, run);
+      csv.Row(staged.scene.name, Name(mode), p.target_error, bits,
+              c.stats.at("matrix_rel_rms").get<double>(),
+              c.stats.at("bytes").at("transport").get<uint64_t>(),
+              c.stats.at("nnz").get<int64_t>());
+    }
+  }
+}
+
+// Chart 2: trace time (and column stage, size, matrix error) against N.
+void SweepLightRes(const SceneCase& scene, const RunConfig& run, Csv& csv) {
+  const std::vector<int> resolutions =
+      run.quick ? std::vector<int>{8, 16} : std::vector<int>{8, 16, 32, 64};
+  for (int n : resolutions) {
+    const Staged staged = BakeStaging(scene, n, run);
+    BakeParams p = staged.base;  // adaptive, haar, target 0.01, bits auto
+    const Compressed c = Compress(staged, p, run);
+    csv.Row(scene.name, n, staged.bake_seconds, staged.rays, c.seconds,
+            c.stats.at("nnz").get<int64_t>(), c.stats.at("bytes").at("transport").get<uint64_t>(),
+            c.stats.at("matrix_rel_rms").get<double>(), c.bits, run.threads);
+    std::filesystem::remove_all(staged.store);
+  }
+}
+
+void Run(const RunConfig& run) {
+  std::filesystem::create_directories(run.out_dir);
+  std::filesystem::create_directories(run.work_dir);
+  const auto start = std::chrono::steady_clock::now();
+  Csv size_csv(run.out_dir / "size_error.csv",
+               "scene,mode,filter,target,nnz,transport_bytes,indices_bytes,data_bytes,raw_bytes,"
+               "bits,matrix_rel_rms,seconds");
+  Csv depth_csv(run.out_dir / "depth_by_level.csv", "scene,target,row_level,mean_depth");
+  Csv bits_csv(run.out_dir / "bits_error.csv",
+               "scene,mode,target,bits,matrix_rel_rms,transport_bytes,nnz");
+  Csv res_csv(run.out_dir / "bake_time.csv",
+              "scene,light_res,bake_seconds,rays,column_seconds,nnz,transport_bytes,"
+              "matrix_rel_rms,bits,threads");
+  const int light_res = run.quick ? 8 : 32;
+  for (const SceneCase& scene : ChartScenes()) {
+    const Staged staged = BakeStaging(scene, light_res, run);
+    SweepSizeAndDepth(staged, run, size_csv, depth_csv);
+    if (scene.name == "cubes-wall") SweepBits(staged, run, bits_csv);
+    std::filesystem::remove_all(staged.store);
+  }
+  SweepLightRes(ChartScenes()[0], run, res_csv);
+  std::fprintf(stderr, "bench_charts_data: done in %.0f s\n", SecondsSince(start));
+}
+
+}  // namespace
+}  // namespace wavebake
+
+int main(int argc, char** argv) {
+  wavebake::RunConfig run;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") {
+      run.quick = true;
+    } else if (arg == "--threads" && i + 1 < argc) {
+      run.threads = std::atoi(argv[++i]);
+    } else if (!arg.empty() && arg[0] != '-' && run.out_dir.empty()) {
+      run.out_dir = arg;
+    } else {
+      wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--threads T]");
+    }
+  }
+  if (run.out_dir.empty() || run.threads < 1)
+    wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--threads T]");
+  run.work_dir = std::filesystem::temp_directory_path() /
+                 ("wavebake-charts-" + std::to_string(::getpid()));
+  wavebake::Run(run);
+  std::filesystem::remove_all(run.work_dir);
+  return 0;
+}
