@@ -12,18 +12,17 @@
 // the whole matrix, which bounds the relighting error for any lighting and
 // does not depend on a probe. A plain main(): the file is linked with Google
 // Benchmark like every bench/*.cc but uses none of it.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
-
-#include <nlohmann/json.hpp>
 
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
@@ -163,8 +162,7 @@ std::string Name(WaveletFilter f) { return std::string(ToString(f)); }
 // Chart 1 (4D paper Fig. 7) and chart 6 (Fig. 8): bytes and kept
 // coefficients against matrix error, per mode × column filter × target; the
 // adaptive Haar runs also give the mean depth by row level.
-void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv,
-                       Csv& depth_csv) {
+void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv, Csv& depth_csv) {
   const std::vector<double> targets = run.quick ? std::vector<double>{0.01, 0.05}
                                                 : std::vector<double>{0.003, 0.01, 0.02, 0.05, 0.1};
   for (ColumnMode mode : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive}) {
@@ -266,8 +264,8 @@ int main(int argc, char** argv) {
   }
   if (run.out_dir.empty() || run.threads < 1)
     wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--threads T]");
-  run.work_dir = std::filesystem::temp_directory_path() /
-                 ("wavebake-charts-" + std::to_string(::getpid()));
+  run.work_dir =
+      std::filesystem::temp_directory_path() / ("wavebake-charts-" + std::to_string(::getpid()));
   wavebake::Run(run);
   std::filesystem::remove_all(run.work_dir);
   return 0;

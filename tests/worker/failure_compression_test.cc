@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/bake_params.h"

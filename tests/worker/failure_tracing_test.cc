@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "core/builtin_scenes.h"
+#include "core/transport_row.h"
 #include "tests/worker/column_test_support.h"
 #include "worker/bake_context.h"
-#include "worker/transport_row.h"
 
 namespace wavebake {
 namespace {
@@ -106,12 +106,13 @@ void WritePlaneWithDegenerates(const std::filesystem::path& path) {
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
       const int a = 1 + j * 4 + i, b = a + 1, c = a + 4, d = c + 1;
-      obj << "f " << a << " " << c << " " << b << "\n" << "f " << b << " " << c << " " << d << "\n";
+      obj << "f " << a << " " << c << " " << b << "\n"
+          << "f " << b << " " << c << " " << d << "\n";
     }
   }
-  obj << "f 1 1 2\n"     // repeated index
-      << "f 1 17 6\n"    // coincident positions: zero area
-      << "f 1 2 3\n";    // collinear: zero area
+  obj << "f 1 1 2\n"   // repeated index
+      << "f 1 17 6\n"  // coincident positions: zero area
+      << "f 1 2 3\n";  // collinear: zero area
 }
 
 TEST(FailureTracingTest, DegenerateTrianglesAreDroppedCountedAndHarmless) {
