@@ -3,34 +3,10 @@
 #include <atomic>
 #include <system_error>
 
-#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 
 namespace wavebake {
-namespace {
-
-std::string HexDigest(EVP_MD_CTX* ctx) {
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int n = 0;
-  EVP_DigestFinal_ex(ctx, digest, &n);
-  return absl::BytesToHexString(absl::string_view(reinterpret_cast<const char*>(digest), n));
-}
-
-std::unique_ptr<EVP_MD_CTX, EvpMdCtxFree> NewSha256() {
-  std::unique_ptr<EVP_MD_CTX, EvpMdCtxFree> ctx(EVP_MD_CTX_new());
-  if (ctx) EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
-  return ctx;
-}
-
-}  // namespace
-
-std::string Sha256Hex(absl::string_view bytes) {
-  auto ctx = NewSha256();
-  EVP_DigestUpdate(ctx.get(), bytes.data(), bytes.size());
-  return HexDigest(ctx.get());
-}
-
 SceneStore::SceneStore(std::filesystem::path data_dir, JobStore* db, const Clock* clock,
                        int64_t max_bytes)
     : dir_(data_dir / "scenes"), db_(db), clock_(clock), max_bytes_(max_bytes) {}
@@ -73,8 +49,7 @@ SceneUpload::SceneUpload(SceneStore* store, std::string file_name, std::filesyst
     : store_(store),
       file_name_(std::move(file_name)),
       temp_path_(std::move(temp_path)),
-      out_(temp_path_, std::ios::binary | std::ios::trunc),
-      sha_(NewSha256()) {}
+      out_(temp_path_, std::ios::binary | std::ios::trunc) {}
 
 SceneUpload::~SceneUpload() {
   if (finished_) return;
@@ -84,15 +59,14 @@ SceneUpload::~SceneUpload() {
 }
 
 absl::Status SceneUpload::Append(absl::string_view data) {
-  if (!out_ || !sha_)
-    return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
+  if (!out_) return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
   size_ += static_cast<int64_t>(data.size());
   if (size_ > store_->max_bytes_) {
     return absl::InvalidArgumentError(absl::StrCat(
         "data: upload exceeds the coordinator's limit of ", store_->max_bytes_, " bytes"));
   }
   out_.write(data.data(), static_cast<std::streamsize>(data.size()));
-  EVP_DigestUpdate(sha_.get(), data.data(), data.size());
+  sha_.Update(std::string_view(data.data(), data.size()));
   if (!out_) return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
   return absl::OkStatus();
 }
@@ -101,7 +75,7 @@ absl::StatusOr<SceneRecord> SceneUpload::Finish(absl::string_view expected_sha25
   out_.close();
   if (!out_) return absl::InternalError(absl::StrCat("cannot write ", temp_path_.string()));
   if (size_ == 0) return absl::InvalidArgumentError("data: the scene file is empty");
-  SceneRecord rec{.sha256 = HexDigest(sha_.get()),
+  SceneRecord rec{.sha256 = sha_.HexDigest(),
                   .size = size_,
                   .file_name = file_name_,
                   .created_ms = store_->clock_->NowMs()};

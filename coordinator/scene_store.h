@@ -3,8 +3,6 @@
 // <data dir>/scenes/<sha256>, whatever name or how often they were uploaded;
 // the `scenes` table records size and first file name. Workers fetch them by
 // hash (FetchScene) and cache them.
-#include <openssl/evp.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,12 +15,9 @@
 #include "absl/strings/string_view.h"
 #include "coordinator/clock.h"
 #include "coordinator/job_store.h"
+#include "storage/sha256.h"
 
 namespace wavebake {
-
-struct EvpMdCtxFree {
-  void operator()(EVP_MD_CTX* ctx) const { EVP_MD_CTX_free(ctx); }
-};
 
 class SceneStore;
 
@@ -46,7 +41,7 @@ class SceneUpload {
   std::string file_name_;
   std::filesystem::path temp_path_;
   std::ofstream out_;
-  std::unique_ptr<EVP_MD_CTX, EvpMdCtxFree> sha_;
+  Sha256 sha_;
   int64_t size_ = 0;
   bool finished_ = false;
 };
@@ -73,8 +68,5 @@ class SceneStore {
   const Clock* clock_;
   int64_t max_bytes_;
 };
-
-// SHA-256 of bytes as 64 lowercase hex digits.
-std::string Sha256Hex(absl::string_view bytes);
 
 }  // namespace wavebake

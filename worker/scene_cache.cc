@@ -7,12 +7,23 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "storage/sha256.h"
 
 namespace wavebake {
 namespace {
 
 bool IsHexSha256(const std::string& s) {
   return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+// The bytes must be what their name says: a scene is loaded, and its hash
+// recorded in the store, on the strength of that name.
+absl::Status CheckHash(const std::filesystem::path& file, const std::string& sha256) {
+  absl::StatusOr<std::string> got = Sha256OfFile(file);
+  if (!got.ok()) return got.status();
+  if (*got == sha256) return absl::OkStatus();
+  return absl::DataLossError(
+      absl::StrCat("FetchScene: scene ", sha256, ": the fetched bytes hash to ", *got));
 }
 
 }  // namespace
@@ -49,8 +60,8 @@ absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref
   const std::filesystem::path path = dir / CachedSceneName(ref);
   std::lock_guard lock(mu_);
   std::error_code ec;
-  // Files only ever appear whole (rename below), so one that is there is good
-  // unless it has the wrong size (a scene uploaded under a hash it does not have).
+  // Files only ever appear whole and verified (rename below), so one that is
+  // there is good unless another writer left a file of the wrong size.
   if (std::filesystem::is_regular_file(path, ec)) {
     const auto size = std::filesystem::file_size(path, ec);
     if (!ec && (ref.size() <= 0 || static_cast<int64_t>(size) == ref.size())) return path;
@@ -62,6 +73,7 @@ absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref
   const std::filesystem::path temp =
       dir / absl::StrCat(".fetch-", ::getpid(), "-", counter++, ".tmp");
   absl::Status fetched = fetch(ref, temp);
+  if (fetched.ok()) fetched = CheckHash(temp, ref.sha256());
   if (fetched.ok()) {
     std::filesystem::rename(temp, path, ec);
     if (ec)

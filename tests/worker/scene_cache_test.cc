@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "storage/sha256.h"
 #include "tests/worker/staging_testing.h"
 
 namespace wavebake {
@@ -65,11 +66,12 @@ TEST(SceneCacheTest, FetchesAnUploadOnceAndRecordsItsFileName) {
   ScratchDir dir;
   SceneCache cache(dir.path());
   FakeFetch fetch{.bytes = "v 0 0 0\n"};
-  const v1::SceneSource s = Uploaded(kSha, "models/tri.obj", 8);
+  const std::string sha = Sha256Hex(fetch.bytes);
+  const v1::SceneSource s = Uploaded(sha, "models/tri.obj", 8);
   for (int i = 0; i < 3; ++i) {
     absl::StatusOr<SceneSpec> spec = cache.Resolve(s, fetch.Fn());
     ASSERT_TRUE(spec.ok()) << spec.status();
-    EXPECT_EQ(spec->load, (dir.path() / kSha / "tri.obj").string());
+    EXPECT_EQ(spec->load, (dir.path() / sha / "tri.obj").string());
     EXPECT_EQ(spec->recorded, "tri.obj");
     EXPECT_EQ(Read(spec->load), "v 0 0 0\n");
   }
@@ -82,11 +84,12 @@ TEST(SceneCacheTest, FetchesAnUploadOnceAndRecordsItsFileName) {
 
 TEST(SceneCacheTest, ACachedFileOfTheWrongSizeIsFetchedAgain) {
   ScratchDir dir;
-  std::filesystem::create_directories(dir.path() / kSha);
-  std::ofstream(dir.path() / kSha / "tri.obj") << "truncated";
-  SceneCache cache(dir.path());
   FakeFetch fetch{.bytes = "v 0 0 0\nv 1 0 0\n"};
-  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(kSha, "tri.obj", 16), fetch.Fn());
+  const std::string sha = Sha256Hex(fetch.bytes);
+  std::filesystem::create_directories(dir.path() / sha);
+  std::ofstream(dir.path() / sha / "tri.obj") << "truncated";
+  SceneCache cache(dir.path());
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(sha, "tri.obj", 16), fetch.Fn());
   ASSERT_TRUE(spec.ok()) << spec.status();
   EXPECT_EQ(fetch.calls, 1);
   EXPECT_EQ(Read(spec->load), fetch.bytes);
@@ -102,6 +105,22 @@ TEST(SceneCacheTest, AFailedFetchLeavesNothing) {
   absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(kSha, "tri.obj", 100), broken);
   EXPECT_EQ(spec.status().code(), absl::StatusCode::kUnavailable);
   EXPECT_TRUE(std::filesystem::is_empty(dir.path() / kSha));
+}
+
+// A coordinator (or a network) that serves other bytes than the hash names
+// must not get them loaded and recorded under that hash.
+TEST(SceneCacheTest, BytesThatDoNotHashToTheirNameAreRefusedAndNotCached) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  FakeFetch fetch{.bytes = "v 0 0 0\n"};
+  const std::string other = Sha256Hex("v 9 9 9\n");
+  absl::StatusOr<SceneSpec> spec = cache.Resolve(Uploaded(other, "tri.obj", 8), fetch.Fn());
+  EXPECT_EQ(spec.status().code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(std::string(spec.status().message()), testing::HasSubstr(Sha256Hex(fetch.bytes)));
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path() / other));
+  // The next task tries again rather than trusting a bad cache entry.
+  EXPECT_FALSE(cache.Resolve(Uploaded(other, "tri.obj", 8), fetch.Fn()).ok());
+  EXPECT_EQ(fetch.calls, 2);
 }
 
 TEST(SceneCacheTest, LocalScenesAreUsedInPlace) {
