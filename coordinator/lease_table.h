@@ -8,8 +8,10 @@
 // * A lease lasts lease_ms; Heartbeat renews it. An expired lease returns its
 //   task to pending (§4). Fail calls and expiries both count as failures of
 //   the task: at max_attempts failures the job FAILS with the last reason.
-// * worker_failure_limit failures in a row (Fail or expiry; a Complete resets
-//   the count) exclude a worker: Lease refuses it from then on.
+//   A permanent failure (the task's input is at fault) fails the job at once
+//   and is not charged to the worker.
+// * worker_failure_limit failures in a row (transient Fail or expiry; a
+//   Complete resets the count) exclude a worker: Lease refuses it from then on.
 // * Cancel ends a job at once; its outstanding leases are answered
 //   "cancelled" by Heartbeat. Once none is outstanding, the cleanup callback
 //   removes the partial store (FAILED jobs too), so no worker writes into a
@@ -119,7 +121,9 @@ class LeaseTable {
   // done yet is accepted too: task output is deterministic (§1).
   absl::StatusOr<bool> Complete(int64_t worker_id, const LeaseKey& key, const TaskReport& report);
   // true: counted; false: the lease was stale (expired, superseded, job ended).
-  absl::StatusOr<bool> Fail(int64_t worker_id, const LeaseKey& key, absl::string_view reason);
+  enum class Failure { kTransient, kPermanent };
+  absl::StatusOr<bool> Fail(int64_t worker_id, const LeaseKey& key, absl::string_view reason,
+                            Failure failure = Failure::kTransient);
   // Returns expired leases to the queue; also run at every Lease/Heartbeat.
   absl::Status ExpireLeases();
 
@@ -166,7 +170,7 @@ class LeaseTable {
   void MaybeCleanup(JobState& js, Cleanups& cleanups);
   void ChargeWorker(int64_t worker_id, JobState& js, Transition& tx);
   void ChargeTask(JobState& js, int task, EventKind kind, std::string reason, int64_t worker_id,
-                  Transition& tx);
+                  Transition& tx, bool permanent = false);
   void ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups);
   absl::StatusOr<bool> CompleteLocked(JobState& js, int64_t worker_id, const LeaseKey& key,
                                       const TaskReport& report);

@@ -187,7 +187,7 @@ absl::StatusOr<bool> LeaseTable::CompleteLocked(JobState& js, int64_t worker_id,
 }
 
 absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
-                                      absl::string_view reason) {
+                                      absl::string_view reason, Failure failure) {
   Cleanups cleanups;
   bool counted = false;
   {
@@ -207,9 +207,10 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
       DropLease(js, key.task);
       Transition tx;
       if (!IsTerminal(js.rec.phase)) {
-        ChargeWorker(worker_id, js, tx);
+        const bool permanent = failure == Failure::kPermanent;
+        if (!permanent) ChargeWorker(worker_id, js, tx);
         ChargeTask(js, key.task, EventKind::kTaskFailed,
-                   absl::StrCat("worker ", worker_id, ": ", reason), worker_id, tx);
+                   absl::StrCat("worker ", worker_id, ": ", reason), worker_id, tx, permanent);
         counted = true;
       }
       if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
@@ -268,10 +269,10 @@ void LeaseTable::ChargeWorker(int64_t worker_id, JobState& js, Transition& tx) {
   tx.workers.push_back(w);
 }
 
-// A failure or an expiry: the task goes back to pending, or, at max_attempts,
-// fails the job with the reason (§4).
+// A failure or an expiry: the task goes back to pending, or, at max_attempts
+// or when permanent, fails the job with the reason (§4).
 void LeaseTable::ChargeTask(JobState& js, int task, EventKind kind, std::string reason,
-                            int64_t worker_id, Transition& tx) {
+                            int64_t worker_id, Transition& tx, bool permanent) {
   TaskRecord& t = js.tasks[task];
   t.state = TaskState::kPending;
   t.worker_id.clear();
@@ -279,10 +280,13 @@ void LeaseTable::ChargeTask(JobState& js, int task, EventKind kind, std::string 
   t.last_error = reason;
   tx.tasks.push_back(t);
   AddEvent(js, tx, kind, &t, reason, worker_id);
-  if (t.failures >= js.rec.max_attempts) {
+  if (permanent || t.failures >= js.rec.max_attempts) {
     EndJob(js, Phase::kFailed,
-           absl::StrCat(TaskKindName(t.kind), " ", t.kind_index, " failed ", t.failures,
-                        " times (max_attempts ", js.rec.max_attempts, "); last: ", reason),
+           permanent
+               ? absl::StrCat(TaskKindName(t.kind), " ", t.kind_index,
+                              " failed on its input: ", reason)
+               : absl::StrCat(TaskKindName(t.kind), " ", t.kind_index, " failed ", t.failures,
+                              " times (max_attempts ", js.rec.max_attempts, "); last: ", reason),
            tx);
     tx.jobs.push_back(js.rec);
     return;

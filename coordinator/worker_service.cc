@@ -116,8 +116,9 @@ grpc::Status WorkerServiceImpl::Fail(grpc::ServerContext* context, const v1::Tas
   if (!key.ok()) return ToGrpc(key.status());
   absl::string_view reason = request->reason();
   if (reason.empty()) reason = "no reason given";
-  absl::StatusOr<bool> counted =
-      deps_.table->Fail(*worker, *key, reason.substr(0, kMaxReasonBytes));
+  absl::StatusOr<bool> counted = deps_.table->Fail(
+      *worker, *key, reason.substr(0, kMaxReasonBytes),
+      request->permanent() ? LeaseTable::Failure::kPermanent : LeaseTable::Failure::kTransient);
   if (!counted.ok()) return ToGrpc(counted.status());
   reply->set_accepted(*counted);
   return grpc::Status::OK;

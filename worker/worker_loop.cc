@@ -260,6 +260,9 @@ void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>&
       failure.set_reason(aborted && absl::IsCancelled(outcome.status())
                              ? absl::StrCat("worker \"", options_.name, "\" was stopped")
                              : outcome.status().ToString());
+      // INVALID_ARGUMENT is the task's input (scene, parameters) naming its
+      // bad field: every worker would fail the same way (DESIGN.md §4).
+      failure.set_permanent(!aborted && absl::IsInvalidArgument(outcome.status()));
       v1::FailReply reply;
       s = stub_->Fail(Context().get(), failure, &reply);
     }

@@ -205,6 +205,31 @@ TEST_F(LeaseTableTest, WorkerFailingInARowIsExcluded) {
   EXPECT_EQ(table_->Lease(999).status().code(), absl::StatusCode::kNotFound);
 }
 
+// A job whose input is bad fails on every worker. Retried as transient
+// failures, its many tasks would exclude each healthy worker after
+// worker_failure_limit of them before any one task ran out of attempts, and
+// the job would wait forever. A permanent failure ends it at once instead.
+TEST_F(LeaseTableTest, APermanentFailureFailsTheJobAndSparesTheWorker) {
+  const int64_t bad_job = AddJob(8, 1);
+  const int64_t w = Worker();
+  LeaseGrant g;
+  EXPECT_EQ(Next(w, &g), "BAKE_TILE 0");
+  ASSERT_TRUE(*table_->Fail(w, g.key, "scene: NaN vertex 3", LeaseTable::Failure::kPermanent));
+  auto info = table_->Get(bad_job);
+  EXPECT_EQ(info->record.phase, Phase::kFailed);
+  EXPECT_THAT(info->record.error, HasSubstr("failed on its input: worker"));
+  EXPECT_THAT(info->record.error, HasSubstr("NaN vertex 3"));
+  // Twice the exclusion limit of permanent failures, and the worker still works.
+  for (int i = 0; i < 6; ++i) {
+    AddJob(1, 1);
+    ASSERT_NE(Next(w, &g), "-");
+    ASSERT_TRUE(*table_->Fail(w, g.key, "bad", LeaseTable::Failure::kPermanent));
+  }
+  const int64_t good_job = AddJob(1, 1);
+  ASSERT_EQ(Next(w, &g), "BAKE_TILE 0");
+  EXPECT_EQ(g.key.job_id, good_job);
+}
+
 TEST_F(LeaseTableTest, CancelStopsLeasesThenCleansUp) {
   const int64_t job = AddJob(3, 1);
   const int64_t w = Worker();
