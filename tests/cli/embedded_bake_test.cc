@@ -7,12 +7,12 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "tests/testing/scratch_dir.h"
 #include "worker/local_bake.h"
 
 namespace wavebake::cli {
@@ -20,24 +20,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-class ScratchDir {
- public:
-  ScratchDir() {
-    static int counter = 0;
-    path_ = std::filesystem::path(WB_BINARY_DIR) / "test_tmp" /
-            ("cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using test_support::ScratchDir;
 
 // Every file under `dir` by relative path, with its bytes.
 std::map<std::string, std::string> Files(const std::filesystem::path& dir) {

@@ -5,8 +5,6 @@
 // the one test binary that links both the worker and the runtime.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <stdlib.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -21,23 +19,13 @@
 #include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 #include "storage/scene_loader.h"
+#include "tests/testing/scratch_dir.h"
 #include "worker/local_bake.h"
 
 namespace wavebake {
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "wb_relight_XXXXXX").string();
-    path_ = mkdtemp(tmpl.data());
-  }
-  ~TempDir() { std::filesystem::remove_all(path_); }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using TempDir = test_support::ScratchDir;
 
 BakeParams SmallBake(const std::string& layout = "camera:32x32") {
   BakeParams p;

@@ -1,33 +1,17 @@
 #pragma once
 // Shared helpers of the coordinator tests: a temporary directory, a fake
 // planner, a job request.
-#include <stdlib.h>
 
 #include <filesystem>
 #include <string>
 
 #include "coordinator/job_types.h"
+#include "tests/testing/scratch_dir.h"
 #include "wavebake.pb.h"
 
 namespace wavebake::testing {
 
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "wb_coord_XXXXXX").string();
-    path_ = mkdtemp(tmpl.data());
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using TempDir = test_support::ScratchDir;
 
 inline PlannedJob Plan(int tiles, int groups, std::string store_path = "job.wbk") {
   return {.tiles = tiles,

@@ -9,19 +9,6 @@
 
 namespace wavebake::testing {
 
-TempDir::TempDir() {
-  std::string tmpl = (std::filesystem::path(WB_BINARY_DIR) / "test_tmp").string();
-  std::filesystem::create_directories(tmpl);
-  tmpl += "/storage_XXXXXX";
-  if (::mkdtemp(tmpl.data()) == nullptr) throw std::runtime_error("mkdtemp failed: " + tmpl);
-  path_ = tmpl;
-}
-
-TempDir::~TempDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
-
 std::vector<std::string> PartialFiles(const std::filesystem::path& dir) {
   std::vector<std::string> found;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {

@@ -7,20 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "tests/testing/scratch_dir.h"
+
 namespace wavebake::testing {
 
-// A fresh directory under the build tree, removed with everything in it.
-class TempDir {
- public:
-  TempDir();
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir();
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using TempDir = test_support::ScratchDir;
 
 // Names in `dir` (recursively, relative) that are temp files of AtomicWriteFile.
 std::vector<std::string> PartialFiles(const std::filesystem::path& dir);

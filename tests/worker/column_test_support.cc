@@ -1,7 +1,6 @@
 #include "tests/worker/column_test_support.h"
 
 #include <gtest/gtest.h>
-#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <atomic>
@@ -55,19 +54,6 @@ float Shadowed(int m, int x, int y, int w, int h) {
 }
 
 }  // namespace
-
-ScratchDir::ScratchDir() {
-  std::string tmpl = (std::filesystem::path(WB_BINARY_DIR) / "test_tmp").string();
-  std::filesystem::create_directories(tmpl);
-  tmpl += "/columns_XXXXXX";
-  if (::mkdtemp(tmpl.data()) == nullptr) throw std::runtime_error("mkdtemp failed: " + tmpl);
-  path_ = tmpl;
-}
-
-ScratchDir::~ScratchDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
 
 std::unique_ptr<BakeContext> MakeContext(const BakeParams& params, const std::string& layout) {
   BakeParams p = params;

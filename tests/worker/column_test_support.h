@@ -11,22 +11,12 @@
 #include <vector>
 
 #include "core/bake_params.h"
+#include "tests/testing/scratch_dir.h"
 #include "worker/bake_context.h"
 
 namespace wavebake::column_testing {
 
-// A fresh directory under the build tree, removed with everything in it.
-class ScratchDir {
- public:
-  ScratchDir();
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir();
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using test_support::ScratchDir;
 
 // A context for builtin:furnace with `layout` (default camera:32x32): the
 // scene only supplies the plan and samples; the tests' staging is synthetic.

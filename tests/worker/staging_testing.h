@@ -4,9 +4,7 @@
 // reader of what BakeTile wrote: chunk (g, t) as the layout of
 // storage/store_layout.h and core/job_plan.h defines it).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -19,31 +17,12 @@
 
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
+#include "tests/testing/scratch_dir.h"
 #include "worker/bake_context.h"
 
 namespace wavebake::staging_testing {
 
-// A fresh directory under the build tree, removed with everything in it.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::path(WB_BINARY_DIR) / "test_tmp" /
-            ("worker-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using test_support::ScratchDir;
 
 inline std::unique_ptr<BakeContext> ContextOrDie(std::string_view spec, const BakeParams& p) {
   absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(spec, p);
