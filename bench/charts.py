@@ -146,11 +146,93 @@ def bake_time(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def relight_time(rows, out):
+    """Chart 3 (4D paper Fig. 9): Eq. 8 frame time vs wavelet lights, 2d vs adaptive."""
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
+    series = {}
+    for mode in MODE_COLORS:
+        pts = sorted((int(r["terms"]), float(r["seconds"]), float(r["touched"]),
+                      float(r["matrix_rel_rms"]), int(r["nnz"]))
+                     for r in rows if r["mode"] == mode)
+        if not pts:
+            continue
+        series[mode] = pts
+        ax.plot([p[0] for p in pts], [p[1] * 1e3 for p in pts], "-o", color=MODE_COLORS[mode],
+                label=f"{mode}: matrix err {pts[0][3]:.4f}, nnz {pts[0][4] / 1e6:.2f} M")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("wavelet lights n")
+    ax.set_ylabel("ms per frame (median thread CPU time, Eq. 8 only)")
+    r0 = rows[0]
+    ax.set_title(f"relighting time, {r0['width']}x{r0['width']} grid, N = {r0['light_res']}")
+    if "2d" in series and "adaptive" in series:
+        a, b = series["2d"], series["adaptive"]
+        n = [p[0] for p in a]
+        bx.plot(n, [q[1] / p[1] for p, q in zip(a, b)], "-o", color="tab:green",
+                label="time adaptive / 2d")
+        bx.plot(n, [q[2] / p[2] for p, q in zip(a, b)], "--s", color="tab:gray",
+                label="stored coefficients touched, adaptive / 2d")
+        bx.axhline(1, color="black", lw=0.8)
+        bx.set_xscale("log", base=2)
+        bx.set_xlabel("wavelet lights n")
+        bx.set_ylabel("ratio")
+        bx.set_ylim(bottom=0)
+        bx.set_title("adaptive against 2d at equal target error")
+        bx.legend(fontsize=8)
+    for x in (ax, bx):
+        x.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+METHOD_COLORS = {"none": "tab:red", "basic": "tab:orange", "per-band": "tab:blue"}
+METHOD_LABELS = {"none": "non-incremental", "basic": "basic incremental",
+                 "per-band": "per-band incremental"}
+
+
+def rotation_error(rows, out):
+    """Chart 4 (Overbeck Fig. 6.2): error per frame over a rotation, three methods."""
+    speeds = []
+    for r in rows:
+        if r["speed"] not in speeds:
+            speeds.append(r["speed"])
+    fig, axes = plt.subplots(2, len(speeds), figsize=(5 * len(speeds), 7.5), squeeze=False)
+    for col, speed in enumerate(speeds):
+        for method, color in METHOD_COLORS.items():
+            pts = sorted((int(r["frame"]), float(r["image_rel_rms"]), float(r["lighting_rel_l1"]))
+                         for r in rows if r["speed"] == speed and r["method"] == method)
+            if not pts:
+                continue
+            mean = sum(p[1] for p in pts) / len(pts)
+            axes[0][col].plot([p[0] for p in pts], [p[1] for p in pts], "-", color=color,
+                              label=f"{METHOD_LABELS[method]} (mean {mean:.4f})")
+            axes[1][col].plot([p[0] for p in pts], [p[2] for p in pts], "-", color=color,
+                              label=METHOD_LABELS[method])
+        terms = next(r["terms"] for r in rows if r["speed"] == speed)
+        axes[0][col].set_title(f"{speed} deg/frame, {terms} wavelet lights")
+        axes[0][col].set_ylabel("image rel. RMS vs all wavelet lights")
+        axes[1][col].set_ylabel("lighting rel. L1 (area-weighted) |L - L~| / |L|")
+        for row in (0, 1):
+            ax = axes[row][col]
+            ax.set_xlabel("frame")
+            ax.set_yscale("log")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+    r0 = rows[0]
+    fig.suptitle(f"grace.hdr rotating about +Y: cubes-wall, {r0['width']}x{r0['width']} camera "
+                 f"grid, N = {r0['light_res']}, adaptive store")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 CHARTS = {
     "size_error": size_error,
     "bits_error": bits_error,
     "depth_by_level": depth_by_level,
     "bake_time": bake_time,
+    "relight_time": relight_time,
+    "rotation_error": rotation_error,
 }
 
 

@@ -1,6 +1,7 @@
 #!/bin/bash
 # The charts of docs/RESULTS.md in one command (issue 7): builds
-# bench_charts_data, runs the sweeps into docs/charts/*.csv, then plots
+# bench_charts_data and bench_charts_runtime, runs the sweeps into
+# docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
 #
 #   bash bench/charts.sh [BUILD_DIR] [--quick]
@@ -20,8 +21,9 @@ for arg in "$@"; do
 done
 out="$here/docs/charts"
 [[ -n "$quick" ]] && out="$build/charts-quick"
-cmake --build "$build" -j2 --target bench_charts_data
+cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime
 start=$(date +%s)
 "$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+"$build/bench_charts_runtime" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 /usr/bin/python3 "$here/bench/charts.py" "$out" "$out"
 echo "charts: $out ($(( $(date +%s) - start )) s)"

@@ -22,20 +22,26 @@ struct RelightFlags {
   std::string rotate_sequence, incremental = "per-band", frame_format = "png";
 };
 
+// --incremental, already checked to be none, basic or per-band.
+SequenceMode ModeOf(const std::string& name) {
+  if (name == "none") return SequenceMode::kNonIncremental;
+  return name == "basic" ? SequenceMode::kBasic : SequenceMode::kPerBand;
+}
+
 void RunSequence(const RelightFlags& f) {
   absl::StatusOr<RotateSequence> rotation = ParseRotateSequence(f.rotate_sequence);
   if (!rotation.ok()) Fail("relight", rotation.status());
-  if (f.incremental != "per-band" && f.incremental != "none")
-    Fail("relight", "incremental: '" + f.incremental + "' is not per-band or none", kExitBadInput);
+  if (f.incremental != "per-band" && f.incremental != "basic" && f.incremental != "none")
+    Fail("relight", "incremental: '" + f.incremental + "' is not per-band, basic or none",
+         kExitBadInput);
   if (f.frame_format != "png" && f.frame_format != "exr" && f.frame_format != "ply")
     Fail("relight", "frame-format: '" + f.frame_format + "' is not png, exr or ply", kExitBadInput);
-  SequenceOptions options{
-      .rotation = *rotation,
-      .terms = f.terms,
-      .mode = f.incremental == "none" ? SequenceMode::kNonIncremental : SequenceMode::kPerBand,
-      .exposure_stops = f.exposure,
-      .out_dir = f.out,
-      .frame_extension = "." + f.frame_format};
+  SequenceOptions options{.rotation = *rotation,
+                          .terms = f.terms,
+                          .mode = ModeOf(f.incremental),
+                          .exposure_stops = f.exposure,
+                          .out_dir = f.out,
+                          .frame_extension = "." + f.frame_format};
   absl::StatusOr<std::vector<SequenceFrame>> frames = RelightSequence(f.store, f.env, options);
   if (!frames.ok()) Fail("relight", frames.status());
   double sum = 0, worst = 0, seconds = 0;
@@ -79,7 +85,8 @@ void AddRelightCommand(CLI::App& app) {
                   "START:END:FRAMES: relight a rotating environment; --out is then a directory "
                   "of frames and errors.csv (error vs all wavelet lights, per frame)");
   cmd->add_option("--incremental", flags->incremental,
-                  "with --rotate-sequence: per-band (Overbeck §6.2.2) or none")
+                  "with --rotate-sequence: per-band (Overbeck §6.2.2), basic (Overbeck ch. 4, "
+                  "never resets: ghosts under fast rotation) or none")
       ->capture_default_str();
   cmd->add_option("--frame-format", flags->frame_format, "with --rotate-sequence: png | exr | ply")
       ->capture_default_str();

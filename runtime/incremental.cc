@@ -11,7 +11,8 @@
 
 namespace wavebake {
 
-absl::StatusOr<IncrementalRelighter> IncrementalRelighter::Create(Relighter* relighter, int terms) {
+absl::StatusOr<IncrementalRelighter> IncrementalRelighter::Create(Relighter* relighter, int terms,
+                                                                  IncrementalPolicy policy) {
   if (relighter == nullptr) return absl::InvalidArgumentError("relighter: null");
   if (terms <= 0) {
     return absl::InvalidArgumentError(
@@ -20,14 +21,16 @@ absl::StatusOr<IncrementalRelighter> IncrementalRelighter::Create(Relighter* rel
   IncrementalRelighter r;
   r.relighter_ = relighter;
   r.terms_ = terms;
+  r.policy_ = policy;
   const int n = relighter->light_res();
   const Cubemap cube(n);
-  r.band_of_.resize(cube.size());
-  for (int m = 0; m < cube.size(); ++m) {
+  const bool basic = policy == IncrementalPolicy::kBasic;
+  r.band_of_.assign(cube.size(), 0);  // kBasic: everything in band 0
+  for (int m = 0; m < cube.size() && !basic; ++m) {
     const Texel t = cube.TexelOf(m);
     r.band_of_[m] = static_cast<uint8_t>(RowBand(t.x, t.y));
   }
-  const int bands = std::max(RowBandCount(n), 1);
+  const int bands = basic ? 1 : std::max(RowBandCount(n), 1);
   r.support_ = SupportSolidAngles(n);
   r.approx_.assign(3 * static_cast<size_t>(cube.size()), 0.0f);
   const size_t image = 3 * static_cast<size_t>(relighter->cells());
@@ -45,7 +48,7 @@ void IncrementalRelighter::Reset() {
 }
 
 // §6.2.2: a band is incremental when the new lighting is closer to the
-// current approximation than to zero.
+// current approximation than to zero. BI (ch. 4) skips the test.
 void IncrementalRelighter::DecideBands(const LightingCoefficients& lighting) {
   for (BandStats& s : stats_) s = {};
   for (size_t m = 0; m < band_of_.size(); ++m) {
@@ -59,7 +62,9 @@ void IncrementalRelighter::DecideBands(const LightingCoefficients& lighting) {
     s.residual_l1 += support_[m] * res;
     s.lighting_l1 += support_[m] * full;
   }
-  for (BandStats& s : stats_) s.incremental = s.residual_l1 < s.lighting_l1;
+  for (BandStats& s : stats_) {
+    s.incremental = policy_ == IncrementalPolicy::kBasic || s.residual_l1 < s.lighting_l1;
+  }
 }
 
 // Fig. 6.1 lines 3, 9–10, 14, 16: the top n of what each wavelet would

@@ -19,6 +19,13 @@
 // moves n more residual coefficients into L̃, so after ⌈nonzeros/n⌉ + 1
 // frames L̃ = L and B is the full-lighting image (up to float rounding of
 // the accumulated B_k).
+//
+// IncrementalPolicy::kBasic is Overbeck's basic incremental (BI, ch. 4,
+// Eq. 4.2–4.5) run through the same code: one band holding every basis
+// function that is always incremental, so nothing is ever reset. It is the
+// baseline of Fig. 6.2: a global change of the lighting (a rotation touches
+// every wavelet) outruns the n-term budget and ghosts of earlier lighting
+// linger in the image (§5, Fig. 5.1), which PBI's per-band resets avoid.
 #include <span>
 #include <vector>
 
@@ -28,11 +35,17 @@
 
 namespace wavebake {
 
+enum class IncrementalPolicy {
+  kPerBand,  // PBI: bands by support size, the §6.2.2 test per band per frame
+  kBasic,    // BI: one band, always incremental, never reset
+};
+
 class IncrementalRelighter {
  public:
   // relighter is borrowed and must outlive this object; terms > 0 is the
   // wavelet budget per frame.
-  static absl::StatusOr<IncrementalRelighter> Create(Relighter* relighter, int terms);
+  static absl::StatusOr<IncrementalRelighter> Create(
+      Relighter* relighter, int terms, IncrementalPolicy policy = IncrementalPolicy::kPerBand);
 
   // One frame. lighting: the frame's complete L in the row basis of the
   // relighter's light resolution (an error otherwise). rgb_out: [W*H*3],
@@ -43,7 +56,7 @@ class IncrementalRelighter {
   void Reset();
 
   struct BandStats {
-    bool incremental = false;  // the §6.2.2 decision of the last frame
+    bool incremental = false;  // the §6.2.2 decision of the last frame (always, kBasic)
     int terms = 0;             // wavelets the band got in the last frame
     double residual_l1 = 0;    // ‖L_new − L̃‖ before the update
     double lighting_l1 = 0;    // ‖L_new‖
@@ -61,6 +74,7 @@ class IncrementalRelighter {
 
   Relighter* relighter_ = nullptr;
   int terms_ = 0;
+  IncrementalPolicy policy_ = IncrementalPolicy::kPerBand;
   std::vector<uint8_t> band_of_;                 // [M]
   std::vector<float> support_;                   // [M] SupportSolidAngles
   std::vector<float> approx_;                    // L̃, [3M]

@@ -71,8 +71,11 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
   if (!opened.ok()) return opened.status();
   Relighter& relighter = opened->relighter;
   std::optional<IncrementalRelighter> incremental;
-  if (o.mode == SequenceMode::kPerBand) {
-    absl::StatusOr<IncrementalRelighter> inc = IncrementalRelighter::Create(&relighter, o.terms);
+  if (o.mode != SequenceMode::kNonIncremental) {
+    const IncrementalPolicy policy =
+        o.mode == SequenceMode::kBasic ? IncrementalPolicy::kBasic : IncrementalPolicy::kPerBand;
+    absl::StatusOr<IncrementalRelighter> inc =
+        IncrementalRelighter::Create(&relighter, o.terms, policy);
     if (!inc.ok()) return inc.status();
     incremental.emplace(*std::move(inc));
   }

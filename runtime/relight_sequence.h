@@ -2,7 +2,8 @@
 // `wavebake relight --rotate-sequence START:END:FRAMES`: the environment
 // turned about +Y from START to END degrees over FRAMES frames, each frame
 // relit with `terms` wavelet lights, either from scratch (non-incremental,
-// Ng et al. 2003) or per-band incrementally (Overbeck ch. 6, §6.2.2;
+// Ng et al. 2003), basic-incrementally (Overbeck ch. 4, never reset: the
+// ghosting baseline) or per-band incrementally (Overbeck ch. 6, §6.2.2;
 // runtime/incremental.h). Each frame's error is measured against the same
 // frame relit with every wavelet light (the store's best answer), so the
 // number isolates what the lighting approximation costs.
@@ -14,7 +15,7 @@
 
 namespace wavebake {
 
-enum class SequenceMode { kNonIncremental, kPerBand };
+enum class SequenceMode { kNonIncremental, kBasic, kPerBand };
 
 struct RotateSequence {
   double start_degrees = 0, end_degrees = 360;

@@ -195,11 +195,11 @@ TEST(RelightStore, BadInputsGiveClearErrors) {
 }
 
 // `relight --rotate-sequence` with START == END is static lighting: per-band
-// incremental relighting (Overbeck §6.2.2) keeps moving n more residual terms
-// into its approximation, so its error against the all-lights image falls to
-// ~0, while the non-incremental error stays at the n-term truncation error
-// of frame 0 (which it equals: both start from L̃ = 0).
-TEST(RelightSequence, StaticLightingConvergesPerBandOnly) {
+// (Overbeck §6.2.2) and basic (ch. 4) incremental relighting keep moving n
+// more residual terms into their approximation, so their error against the
+// all-lights image falls to ~0, while the non-incremental error stays at the
+// n-term truncation error of frame 0 (which they equal: all start from L̃ = 0).
+TEST(RelightSequence, StaticLightingConvergesOnlyIncrementally) {
   TempDir dir;
   const auto store = Bake(dir, "seq.wbk", "builtin:cubes-wall", SmallBake());
   SequenceOptions o{.rotation = {.start_degrees = 30, .end_degrees = 30, .frames = 40},
@@ -216,6 +216,12 @@ TEST(RelightSequence, StaticLightingConvergesPerBandOnly) {
   EXPECT_NEAR(per_band->front().rel_rms, plain->front().rel_rms, 1e-6);
   for (const SequenceFrame& f : *plain) EXPECT_NEAR(f.rel_rms, plain->front().rel_rms, 1e-6);
   EXPECT_LT(per_band->back().rel_rms, 1e-4);
+  o.mode = SequenceMode::kBasic;
+  o.rotation.frames = 26;  // M = 384 terms, 16 per frame: exact from frame 25 on
+  auto basic = RelightSequence(store, "builtin:sky", o);
+  ASSERT_TRUE(basic.ok()) << basic.status();
+  EXPECT_NEAR(basic->front().rel_rms, plain->front().rel_rms, 1e-6);
+  EXPECT_LT(basic->back().rel_rms, 1e-4);
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "frames" / "frame_0039.png"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "frames" / "errors.csv"));
 }
