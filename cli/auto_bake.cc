@@ -12,15 +12,8 @@
 #include "absl/strings/str_cat.h"
 #include "cli/embedded_bake.h"
 #include "cli/job_watch.h"
-#include "core/cubemap.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_map.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/reference.h"
-#include "runtime/store_relight.h"
+#include "cli/reference_measure.h"
 #include "storage/zarr_group.h"
-#include "worker/bake_context.h"
 #include "worker/publish_store.h"
 
 namespace wavebake::cli {
@@ -65,47 +58,6 @@ int64_t DirectoryBytes(const std::filesystem::path& dir) {
   return bytes;
 }
 
-// The search's measuring side: the scene's samples and caster, the
-// environment and the reference, all computed once.
-class Measurer {
- public:
-  Measurer(std::unique_ptr<BakeContext> ctx, EnvMap env, ReferenceResult reference)
-      : ctx_(std::move(ctx)), env_(std::move(env)), reference_(std::move(reference)) {}
-
-  const ReferenceResult& reference() const { return reference_; }
-
-  // e_disc(N): the dense T at N, traced as the bake would, against the reference.
-  absl::StatusOr<double> DenseError(int light_res) const {
-    const std::vector<float> cube = ResampleToCubemap(env_, Cubemap(light_res));
-    const DenseTraceOptions options{light_res, ctx_->params.supersample, ctx_->params.seed,
-                                    ctx_->epsilon};
-    absl::StatusOr<DenseTraceResult> dense =
-        TraceDenseRelight(ctx_->caster, ctx_->samples, cube, options);
-    if (!dense.ok()) return dense.status();
-    return CompareToReference(dense->rgb, reference_.rgb).rel_rms;
-  }
-
-  // e_tot of a baked store with all its wavelet lights and with the default number.
-  absl::Status StoreErrors(const std::filesystem::path& store, AutoBakeMeasurement* m) const {
-    absl::StatusOr<OpenedStore> opened = OpenStore(store);
-    if (!opened.ok()) return opened.status();
-    m->bits = opened->info.bits;
-    const int all = 6 * opened->info.light_res * opened->info.light_res;
-    for (auto [terms, error] :
-         {std::pair{all, &m->e_tot}, std::pair{kDefaultRelightTerms, &m->e_tot_default}}) {
-      absl::StatusOr<std::vector<float>> rgb = RelightImage(*opened, env_, terms);
-      if (!rgb.ok()) return rgb.status();
-      *error = CompareToReference(*rgb, reference_.rgb).rel_rms;
-    }
-    return absl::OkStatus();
-  }
-
- private:
-  std::unique_ptr<BakeContext> ctx_;
-  EnvMap env_;
-  ReferenceResult reference_;
-};
-
 void Say(bool quiet, const char* format, ...) __attribute__((format(printf, 2, 3)));
 void Say(bool quiet, const char* format, ...) {
   if (quiet) return;
@@ -117,34 +69,29 @@ void Say(bool quiet, const char* format, ...) {
   va_end(args);
 }
 
-absl::StatusOr<std::unique_ptr<Measurer>> MakeMeasurer(const std::string& scene,
-                                                       const BakeParams& base,
-                                                       const AutoBakeOptions& options) {
-  absl::StatusOr<EnvMap> env = LoadEnvMap(options.env);
-  if (!env.ok()) return env.status();
-  absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(scene, base);
-  if (!ctx.ok()) return ctx.status();
+absl::StatusOr<std::unique_ptr<ReferenceMeasure>> MakeMeasure(const std::string& scene,
+                                                              const BakeParams& base,
+                                                              const AutoBakeOptions& options) {
   // The reference's own error inflates every measured e_tot (e² + SE²):
   // keeping it below E/5 bounds that to 2 % of E; it is not subtracted, so
   // the measurements err on the safe side.
-  ReferenceOptions ref;
-  ref.target_rel_se = std::min(0.002, options.search.target_error / 5);
-  ref.epsilon = (*ctx)->epsilon;
-  Say(options.quiet, "tracing the reference under %s (%zu samples, target rel SE %.4f)",
-      options.env.c_str(), static_cast<size_t>((*ctx)->samples.size()), ref.target_rel_se);
-  absl::StatusOr<ReferenceResult> reference =
-      ComputeReference((*ctx)->caster, (*ctx)->samples, *env, ref);
-  if (!reference.ok()) return reference.status();
-  Say(options.quiet, "reference: rel SE %.5f, %.1f Mrays, %.1f s", reference->rel_se,
-      reference->rays / 1e6, reference->seconds);
-  return std::make_unique<Measurer>(*std::move(ctx), *std::move(env), *std::move(reference));
+  const double target_se = std::min(0.002, options.search.target_error / 5);
+  Say(options.quiet, "tracing the reference under %s (target rel SE %.4f)", options.env.c_str(),
+      target_se);
+  absl::StatusOr<std::unique_ptr<ReferenceMeasure>> measure =
+      ReferenceMeasure::Create(scene, base, options.env, target_se);
+  if (!measure.ok()) return measure.status();
+  const ReferenceResult& r = (*measure)->reference();
+  Say(options.quiet, "reference: %d samples, rel SE %.5f, %.1f Mrays, %.1f s",
+      (*measure)->samples(), r.rel_se, r.rays / 1e6, r.seconds);
+  return measure;
 }
 
 // One candidate bake at (N, column target) into `dir`, measured.
 absl::StatusOr<AutoBakeMeasurement> BakeCandidate(const std::string& scene, BakeParams params,
                                                   const AutoAction& action,
                                                   const std::filesystem::path& store,
-                                                  const Measurer& measurer,
+                                                  const ReferenceMeasure& measurer,
                                                   const AutoBakeOptions& options) {
   const auto t0 = Clock::now();
   params.light_res = action.light_res;
@@ -157,7 +104,12 @@ absl::StatusOr<AutoBakeMeasurement> BakeCandidate(const std::string& scene, Bake
     return absl::CancelledError("interrupted; nothing written");
   if (job->phase() != v1::PHASE_DONE) return absl::InternalError(JobOutcome(*job));
   AutoBakeMeasurement m;
-  if (absl::Status s = measurer.StoreErrors(store, &m); !s.ok()) return s;
+  const int all = 6 * action.light_res * action.light_res;
+  const int terms[] = {all, kDefaultRelightTerms};
+  absl::StatusOr<std::vector<double>> errors = measurer.StoreErrors(store, terms, &m.bits);
+  if (!errors.ok()) return errors.status();
+  m.e_tot = (*errors)[0];
+  m.e_tot_default = (*errors)[1];
   m.bytes = DirectoryBytes(store);
   m.seconds = SecondsSince(t0);
   return m;
@@ -195,9 +147,10 @@ nlohmann::json AutoRecord(const AutoBakeReport& r, const AutoBakeOptions& option
 }
 
 // The search loop proper: what Next() asks, measured, until done or failed.
-absl::Status Search(const std::string& scene, const BakeParams& base, const Measurer& measurer,
-                    const std::filesystem::path& dir, const AutoBakeOptions& options,
-                    AutoBakeReport& report, std::filesystem::path* chosen_store) {
+absl::Status Search(const std::string& scene, const BakeParams& base,
+                    const ReferenceMeasure& measurer, const std::filesystem::path& dir,
+                    const AutoBakeOptions& options, AutoBakeReport& report,
+                    std::filesystem::path* chosen_store) {
   AutoSearch& search = report.search;
   std::map<size_t, std::filesystem::path> stores;  // candidate row → its store, if it met E
   for (AutoAction a = search.Next(); a.step == AutoStep::kMeasureDisc || a.step == AutoStep::kBake;
@@ -241,7 +194,7 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
                                         const AutoBakeOptions& options) {
   const auto t0 = Clock::now();
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
-  absl::StatusOr<std::unique_ptr<Measurer>> measurer = MakeMeasurer(scene, base, options);
+  absl::StatusOr<std::unique_ptr<ReferenceMeasure>> measurer = MakeMeasure(scene, base, options);
   if (!measurer.ok()) return measurer.status();
   absl::StatusOr<std::unique_ptr<ScratchDir>> dir = ScratchDir::Beside(out);
   if (!dir.ok()) return dir.status();
