@@ -6,7 +6,7 @@
 # E when re-measured by `wavebake eval --reference` (its own reference, at a
 # tighter standard error than the search's), .zattrs records the choice,
 # nothing but the store is left beside it, and conflicting flags are refused
-# by name.
+# by name; a target no N reaches fails and writes nothing.
 set -euo pipefail
 WB=$1
 TMP=$(mktemp -d)
@@ -52,6 +52,16 @@ sharp=$(bake_and_check sharp builtin:sphere-plane camera:16x16 builtin:sky 0.01)
 [ "$sharp" -ge 32 ] || fail "sharp sun shadow chose N=$sharp, expected at least 32"
 leftovers=$(ls -A "$TMP" | grep -v -E '^(soft|sharp)\.(wbk|txt|json)$' || true)
 [ -z "$leftovers" ] || fail "left beside the output: $leftovers"
+
+# A target no N up to --max-light-res reaches: exit 1 naming it, nothing written.
+if "$WB" bake builtin:sphere-plane --layout camera:16x16 --auto --target-error 0.01 \
+  --max-light-res 16 --env builtin:sky --quiet --out "$TMP/none.wbk" >/dev/null 2>"$TMP/none.err"; then
+  fail "an unreachable target was accepted"
+fi
+grep -q "no light resolution up to 16 meets target error 0.01" "$TMP/none.err" ||
+  fail "unreachable target: $(cat "$TMP/none.err")"
+leftovers=$(ls -A "$TMP" | grep -v -E '^(soft|sharp)\.(wbk|txt|json)$|^none\.err$' || true)
+[ -z "$leftovers" ] || fail "a failed search left: $leftovers"
 
 # Flags: --auto owns N, terms and bits and needs an explicit target.
 expect_refused() {
