@@ -115,8 +115,11 @@ def depth_by_level(rows, out):
 
 
 def bake_time(rows, out):
-    """Chart 2: trace and column-stage time, size and matrix error vs N."""
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
+    """Chart 2: trace and column-stage time, size and matrix error vs N, and
+    the relighting error against the independent reference (when measured)."""
+    with_ref = "dense_ref_rel_rms" in rows[0]
+    fig, axes = plt.subplots(1, 3 if with_ref else 2, figsize=(18 if with_ref else 11, 4.5))
+    ax, bx = axes[0], axes[1]
     n = [int(r["light_res"]) for r in rows]
     ax.plot(n, [float(r["bake_seconds"]) for r in rows], "-o", label="trace (BAKE_TILE)")
     ax.plot(n, [float(r["column_seconds"]) for r in rows], "-o",
@@ -142,6 +145,8 @@ def bake_time(rows, out):
     ax.legend()
     bx.legend(loc="upper left")
     tx.legend(loc="lower right")
+    if with_ref:
+        reference_error(rows, n, axes[2])
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
@@ -224,6 +229,25 @@ def rotation_error(rows, out):
                  f"grid, N = {r0['light_res']}, adaptive store")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
+
+
+def reference_error(rows, n, ax):
+    """Chart 2, third panel: rel. RMS of the relit samples vs the reference."""
+    ax.plot(n, [float(r["dense_ref_rel_rms"]) for r in rows], "-o", color="tab:blue",
+            label="dense T (discretization)")
+    ax.plot(n, [float(r["store_ref_rel_rms"]) for r in rows], "-s", color="tab:green",
+            label="store, all 6N^2 lights")
+    ax.plot(n, [float(r["store_ref_rel_rms_256"]) for r in rows], "--^", color="tab:olive",
+            label="store, 256 lights")
+    ax.plot(n, [float(r["reference_rel_se"]) for r in rows], ":", color="grey",
+            label="reference's own rel. SE")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("light resolution N")
+    ax.set_ylabel("relative RMS error vs independent reference")
+    ax.set_title(f"relighting error under {rows[0]['env']} (target 0.01)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
 
 
 CHARTS = {

@@ -1,7 +1,7 @@
 // The data behind docs/RESULTS.md (issue 7): sweeps of the real pipeline,
 // one CSV per chart, written into the directory given on the command line.
 //
-//   build/bench_charts_data OUT_DIR [--quick] [--threads T]
+//   build/bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]
 //
 // Each (scene, layout, light resolution) is traced once (BAKE_TILE × tiles
 // into a staging store); every compression setting then reruns only
@@ -10,8 +10,9 @@
 // the store's own stats.matrix_rel_rms = sqrt(Σ dropped + quantization
 // energy / Σ energy) (worker/store_stats.h): the relative Frobenius error of
 // the whole matrix, which bounds the relighting error for any lighting and
-// does not depend on a probe. A plain main(): the file is linked with Google
-// Benchmark like every bench/*.cc but uses none of it.
+// does not depend on a probe. Chart 2 adds the relighting error under a
+// probe against the independent Monte-Carlo reference (runtime/reference.h). A plain main(): the
+// file is linked with Google Benchmark like every bench/*.cc but uses none of it.
 #include <unistd.h>
 
 #include <chrono>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "cli/reference_measure.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
 #include "storage/store_layout.h"
@@ -75,6 +77,7 @@ std::vector<SceneCase> ChartScenes() {
 struct RunConfig {
   std::filesystem::path out_dir, work_dir;
   bool quick = false;
+  bool light_res_only = false;  // chart 2 alone (bake_time.csv)
   int threads = 2;
 };
 
@@ -206,17 +209,36 @@ void SweepBits(const Staged& staged, const RunConfig& run, Csv& csv) {
   }
 }
 
-// Chart 2: trace time (and column stage, size, matrix error) against N.
-void SweepLightRes(const SceneCase& scene, const RunConfig& run, Csv& csv) {
+// Chart 2: trace time (and column stage, size, matrix error) against N,
+// and the relighting error under `env` against the independent reference
+// (cli/reference_measure.h, traced once): the dense T at N (discretization
+// alone) and the store with all 6N² wavelet lights and with the runtime's
+// default 256 — what `eval --reference` reports, and what `bake --auto`
+// chooses N by.
+void SweepLightRes(const SceneCase& scene, const std::string& env, const RunConfig& run, Csv& csv) {
   const std::vector<int> resolutions =
       run.quick ? std::vector<int>{8, 16} : std::vector<int>{8, 16, 32, 64};
+  BakeParams base;
+  base.layout = scene.layout;
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<cli::ReferenceMeasure> measure =
+      Value(cli::ReferenceMeasure::Create(scene.spec, base, env, run.quick ? 0.01 : 0.002));
+  std::fprintf(stderr, "reference %s: rel SE %.4f, %.1f s\n", scene.name.c_str(),
+               measure->reference().rel_se, SecondsSince(start));
   for (int n : resolutions) {
     const Staged staged = BakeStaging(scene, n, run);
     BakeParams p = staged.base;  // adaptive, haar, target 0.01, bits auto
     const Compressed c = Compress(staged, p, run);
+    const auto dense_start = std::chrono::steady_clock::now();
+    const double dense = Value(measure->DenseError(n));
+    const double dense_seconds = SecondsSince(dense_start);
+    const int terms[] = {6 * n * n, 256};
+    const std::vector<double> store = Value(measure->StoreErrors(staged.store, terms));
     csv.Row(scene.name, n, staged.bake_seconds, staged.rays, c.seconds,
             c.stats.at("nnz").get<int64_t>(), c.stats.at("bytes").at("transport").get<uint64_t>(),
-            c.stats.at("matrix_rel_rms").get<double>(), c.bits, run.threads);
+            c.stats.at("matrix_rel_rms").get<double>(), c.bits, run.threads,
+            std::filesystem::path(env).filename().string(), measure->reference().rel_se, dense,
+            store[0], store[1], dense_seconds);
     std::filesystem::remove_all(staged.store);
   }
 }
@@ -233,15 +255,18 @@ void Run(const RunConfig& run) {
                "scene,mode,target,bits,matrix_rel_rms,transport_bytes,nnz");
   Csv res_csv(run.out_dir / "bake_time.csv",
               "scene,light_res,bake_seconds,rays,column_seconds,nnz,transport_bytes,"
-              "matrix_rel_rms,bits,threads");
+              "matrix_rel_rms,bits,threads,env,reference_rel_se,dense_ref_rel_rms,"
+              "store_ref_rel_rms,store_ref_rel_rms_256,dense_seconds");
   const int light_res = run.quick ? 8 : 32;
-  for (const SceneCase& scene : ChartScenes()) {
+  for (const SceneCase& scene : run.light_res_only ? std::vector<SceneCase>{} : ChartScenes()) {
     const Staged staged = BakeStaging(scene, light_res, run);
     SweepSizeAndDepth(staged, run, size_csv, depth_csv);
     if (scene.name == "cubes-wall") SweepBits(staged, run, bits_csv);
     std::filesystem::remove_all(staged.store);
   }
-  SweepLightRes(ChartScenes()[0], run, res_csv);
+  // The bunny under grace.hdr: a mesh layout under a probe with small,
+  // very bright sources, where N matters (docs/results_auto.md).
+  SweepLightRes(ChartScenes()[1], std::string(WB_SHARED_DATA) + "/probes/grace.hdr", run, res_csv);
   std::fprintf(stderr, "bench_charts_data: done in %.0f s\n", SecondsSince(start));
 }
 
@@ -254,16 +279,18 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
       run.quick = true;
+    } else if (arg == "--light-res-only") {
+      run.light_res_only = true;
     } else if (arg == "--threads" && i + 1 < argc) {
       run.threads = std::atoi(argv[++i]);
     } else if (!arg.empty() && arg[0] != '-' && run.out_dir.empty()) {
       run.out_dir = arg;
     } else {
-      wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--threads T]");
+      wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]");
     }
   }
   if (run.out_dir.empty() || run.threads < 1)
-    wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--threads T]");
+    wavebake::Die("usage: bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]");
   run.work_dir =
       std::filesystem::temp_directory_path() / ("wavebake-charts-" + std::to_string(::getpid()));
   wavebake::Run(run);
