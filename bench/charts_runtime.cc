@@ -121,11 +121,21 @@ class Csv {
   std::ofstream out_;
 };
 
-LightingCoefficients GraceLighting(const EnvMap& env, double degrees, const Relighter& r) {
-  return Value(LightingFromEnv(Rotated(env, degrees), r.light_res(), r.row_filter()));
-}
-
 EnvMap Grace() { return Value(LoadEnvMap(std::string(WB_SHARED_DATA) + "/probes/grace.hdr")); }
+
+// grace.hdr and the overlap of its pixels with the stores' cubemap, built
+// once for every frame of a sweep.
+struct RotatingGrace {
+  explicit RotatingGrace(const Relighter& r)
+      : env(Grace()),
+        projector(
+            Value(EnvProjector::Create(env.width, env.height, r.light_res(), r.row_filter()))) {}
+  LightingCoefficients At(double degrees) const {
+    return Value(projector.Project(Rotated(env, degrees)));
+  }
+  EnvMap env;
+  EnvProjector projector;
+};
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -138,14 +148,14 @@ double Median(std::vector<double> v) {
 // fastest, so both see the same machine load (2 shared cores) and a burst of
 // it moves neither the median nor the ratio.
 void RelightTime(const std::vector<Store>& stores, const RunConfig& run, Csv& csv) {
-  const EnvMap env = Grace();
   const int frames = run.quick ? 3 : 9, repeats = 3;
   const int max_terms = run.quick ? 256 : 4096;
   std::vector<Relighter> relighters;
   for (const Store& s : stores)
     relighters.push_back(Value(Relighter::Create(s.columns, s.samples)));
+  const RotatingGrace grace(relighters[0]);
   std::vector<LightingCoefficients> lighting;
-  for (int f = 0; f < frames; ++f) lighting.push_back(GraceLighting(env, 5.0 * f, relighters[0]));
+  for (int f = 0; f < frames; ++f) lighting.push_back(grace.At(5.0 * f));
   std::vector<float> image(3 * static_cast<size_t>(relighters[0].cells()));
   for (int n = 16; n <= max_terms; n *= 2) {
     std::vector<std::vector<double>> times(stores.size());
@@ -211,8 +221,8 @@ std::vector<float> Approximation(const WaveletLights& lights, size_t size) {
 
 // Chart 4: one row per (speed, frame, method).
 void RotationError(const Store& store, const RunConfig& run, Csv& csv) {
-  const EnvMap env = Grace();
   Relighter relighter = Value(Relighter::Create(store.columns, store.samples));
+  const RotatingGrace grace(relighter);
   const std::vector<float> support = SupportSolidAngles(relighter.light_res());
   const int terms = run.quick ? 16 : 64, frames = run.quick ? 6 : 61;
   const std::vector<double> speeds =
@@ -226,7 +236,7 @@ void RotationError(const Store& store, const RunConfig& run, Csv& csv) {
         Value(IncrementalRelighter::Create(&relighter, terms, IncrementalPolicy::kPerBand));
     double sums[3] = {0, 0, 0};
     for (int f = 0; f < frames; ++f) {
-      const LightingCoefficients l = GraceLighting(env, speed * f, relighter);
+      const LightingCoefficients l = grace.At(speed * f);
       relighter.Relight(AllWaveletLights(l), full);
       const WaveletLights lights = Value(SelectWaveletLights(l, terms));
       relighter.Relight(lights, image);

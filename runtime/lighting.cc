@@ -7,7 +7,6 @@
 #include "core/cubemap.h"
 #include "core/nla.h"
 #include "runtime/env_map.h"
-#include "runtime/env_resample.h"
 #include "runtime/row_basis.h"
 
 namespace wavebake {
@@ -22,18 +21,36 @@ LightingCoefficients ProjectLighting(std::span<const float> cube_rgb, int light_
   return out;
 }
 
-absl::StatusOr<LightingCoefficients> LightingFromEnv(const EnvMap& env, int light_res,
-                                                     WaveletFilter row_filter) {
+absl::StatusOr<EnvProjector> EnvProjector::Create(int env_width, int env_height, int light_res,
+                                                  WaveletFilter row_filter) {
   if (light_res < 1 || light_res > 256 || (light_res & (light_res - 1)) != 0) {
     return absl::InvalidArgumentError(
         absl::StrCat("light_res: ", light_res, " is not a power of two in [1, 256]"));
   }
-  if (env.height <= 0 || env.width != 2 * env.height ||
-      env.rgb.size() != static_cast<size_t>(env.width) * env.height * 3) {
-    return absl::InvalidArgumentError(absl::StrCat("env: ", env.width, "x", env.height,
+  if (env_height <= 0 || env_width != 2 * env_height) {
+    return absl::InvalidArgumentError(absl::StrCat("env: ", env_width, "x", env_height,
                                                    " is not a lat-long map (width = 2 height)"));
   }
-  return ProjectLighting(ResampleToCubemap(env, Cubemap(light_res)), light_res, row_filter);
+  return EnvProjector(SphereOverlap(env_width, env_height, Cubemap(light_res)), env_width,
+                      env_height, light_res, row_filter);
+}
+
+absl::StatusOr<LightingCoefficients> EnvProjector::Project(const EnvMap& env) const {
+  if (env.width != width_ || env.height != height_ ||
+      env.rgb.size() != static_cast<size_t>(env.width) * env.height * 3) {
+    return absl::InvalidArgumentError(absl::StrCat("env: ", env.width, "x", env.height,
+                                                   " is not the ", width_, "x", height_,
+                                                   " map this projector was built for"));
+  }
+  return ProjectLighting(overlap_.CubeFromLatLong(env.rgb), light_res_, row_filter_);
+}
+
+absl::StatusOr<LightingCoefficients> LightingFromEnv(const EnvMap& env, int light_res,
+                                                     WaveletFilter row_filter) {
+  absl::StatusOr<EnvProjector> projector =
+      EnvProjector::Create(env.width, env.height, light_res, row_filter);
+  if (!projector.ok()) return projector.status();
+  return projector->Project(env);
 }
 
 std::vector<float> LightImportance(const LightingCoefficients& lighting,

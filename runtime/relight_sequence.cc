@@ -87,13 +87,15 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
   std::vector<float> frame(values), best(values);
   std::vector<SequenceFrame> frames;
   const RotateSequence& rot = o.rotation;
+  absl::StatusOr<EnvProjector> projector =
+      EnvProjector::Create(env->width, env->height, relighter.light_res(), relighter.row_filter());
+  if (!projector.ok()) return projector.status();
   for (int i = 0; i < rot.frames; ++i) {
     SequenceFrame f{.index = i};
     f.degrees =
         rot.start_degrees + (rot.end_degrees - rot.start_degrees) * i / std::max(rot.frames - 1, 1);
     const auto t0 = std::chrono::steady_clock::now();
-    absl::StatusOr<LightingCoefficients> lighting =
-        LightingFromEnv(Rotated(*env, f.degrees), relighter.light_res(), relighter.row_filter());
+    absl::StatusOr<LightingCoefficients> lighting = projector->Project(Rotated(*env, f.degrees));
     if (!lighting.ok()) return lighting.status();
     if (incremental) {
       if (absl::Status s = incremental->Frame(*lighting, frame); !s.ok()) return s;

@@ -12,7 +12,10 @@
 
 #include "core/cubemap.h"
 #include "core/wavelet2d.h"
+#include "runtime/env_map.h"
+#include "runtime/env_resample.h"
 #include "runtime/row_basis.h"
+#include "tests/runtime/env_test_util.h"
 
 namespace wavebake {
 namespace {
@@ -155,6 +158,35 @@ TEST(Lighting, TermsMustBePositive) {
     EXPECT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
     EXPECT_NE(r.status().message().find("terms"), std::string_view::npos);
   }
+}
+
+// One projector serves every frame of a rotation, in any order, and each
+// frame's lighting is what a fresh resampling of that frame gives.
+TEST(EnvProjector, ReusedAcrossFramesMatchesAFreshResamplingOfEach) {
+  absl::StatusOr<EnvMap> env = LoadEnvMap(testing::ProbePath("grace.hdr"));
+  ASSERT_TRUE(env.ok()) << env.status();
+  constexpr int kN = 8;
+  absl::StatusOr<EnvProjector> projector =
+      EnvProjector::Create(env->width, env->height, kN, WaveletFilter::kHaar);
+  ASSERT_TRUE(projector.ok()) << projector.status();
+  for (double degrees : {37.0, 0.0, 271.5, 37.0}) {
+    const EnvMap frame = Rotated(*env, degrees);
+    absl::StatusOr<LightingCoefficients> got = projector->Project(frame);
+    ASSERT_TRUE(got.ok()) << got.status();
+    const LightingCoefficients fresh =
+        ProjectLighting(ResampleToCubemap(frame, Cubemap(kN)), kN, WaveletFilter::kHaar);
+    EXPECT_EQ(got->rgb, fresh.rgb) << degrees << " degrees";
+  }
+}
+
+TEST(EnvProjector, RefusesAMapOfAnotherSize) {
+  absl::StatusOr<EnvProjector> projector = EnvProjector::Create(16, 8, 8, WaveletFilter::kHaar);
+  ASSERT_TRUE(projector.ok()) << projector.status();
+  absl::StatusOr<LightingCoefficients> got = projector->Project(testing::UniformEnv(32, 16, 1));
+  EXPECT_EQ(got.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(got.status().message().find("32x16"), std::string_view::npos);
+  EXPECT_FALSE(EnvProjector::Create(16, 16, 8, WaveletFilter::kHaar).ok());  // not lat-long
+  EXPECT_FALSE(EnvProjector::Create(16, 8, 12, WaveletFilter::kHaar).ok());  // N not 2^k
 }
 
 }  // namespace
