@@ -5,8 +5,8 @@
 #include "storage/atomic_file.h"
 #include "storage/chunk_region.h"
 #include "storage/delta_filter.h"
-#include "storage/shuffle_filter.h"
 #include "storage/json_file.h"
+#include "storage/shuffle_filter.h"
 #include "storage/zstd_codec.h"
 
 namespace wavebake {

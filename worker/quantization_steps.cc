@@ -49,8 +49,10 @@ void UniformMatrix(std::span<const ColumnQuantInput> cols, double budget, StepPl
     double rest = budget, unit = 0;
     for (size_t c = 0; c < cols.size(); ++c) {
       const double s = StepForMax(cols[c].max_abs, kMaxStoredCode);
-      if (own[c]) rest -= s * s * cols[c].step_unit;
-      else unit += cols[c].step_unit;
+      if (own[c])
+        rest -= s * s * cols[c].step_unit;
+      else
+        unit += cols[c].step_unit;
     }
     delta = unit > 0 && rest > 0 ? std::sqrt(rest / unit) : 0;
     bool grew = false;
@@ -100,8 +102,10 @@ StepPlan PlanSteps(std::span<const ColumnQuantInput> cols, const BakeParams& par
     MaxNormalized(cols, plan.bits_needed, &plan);
   } else {
     plan.max_code = kMaxStoredCode;
-    if (column_scope) UniformColumns(cols, params.target_error, &plan);
-    else UniformMatrix(cols, plan.budget, &plan);
+    if (column_scope)
+      UniformColumns(cols, params.target_error, &plan);
+    else
+      UniformMatrix(cols, plan.budget, &plan);
   }
   plan.expected_energy = SumEnergy(cols, plan.steps);
   return plan;

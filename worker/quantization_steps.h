@@ -35,12 +35,12 @@ struct ColumnQuantInput {
 };
 
 struct StepPlan {
-  std::vector<float> steps;  // Δ_c per column (0: nothing to quantize)
-  int max_code = 0;          // clamp of every code: Q_b, or 32767 for uniform auto
-  int bits = 0;              // b of the max-normalized rules; 0 for uniform auto
-  int bits_needed = 0;       // what --bits auto would pick with max normalization
-  int max_column_bits = 2;   // the largest single column's need with max normalization
-  double step = 0;           // uniform auto, matrix scope: the matrix-wide Δ
+  std::vector<float> steps;      // Δ_c per column (0: nothing to quantize)
+  int max_code = 0;              // clamp of every code: Q_b, or 32767 for uniform auto
+  int bits = 0;                  // b of the max-normalized rules; 0 for uniform auto
+  int bits_needed = 0;           // what --bits auto would pick with max normalization
+  int max_column_bits = 2;       // the largest single column's need with max normalization
+  double step = 0;               // uniform auto, matrix scope: the matrix-wide Δ
   int64_t overflow_columns = 0;  // uniform auto: columns that took a coarser step of their own
   double expected_energy = 0;    // Σ_c Δ_c²·U_c
   double budget = 0;             // Σ_c (target/2)²·E_ref,c

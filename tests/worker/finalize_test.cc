@@ -163,10 +163,10 @@ TEST(FinalizeTest, BiorthogonalFiltersReconstructWhenEverythingIsKept) {
       for (int i = 0; i < kW * kH; ++i) err2 += std::pow(double(recon[i]) - staged[i], 2);
       for (int64_t k = t->indptr[m]; k < t->indptr[m + 1]; ++k) {
         const uint32_t pos = t->indices[k];
-        quant2 += std::pow(
-            QuantizationBound(scales[m], SubbandAt(pos % kW, pos / kW, kW, kH, 5).level,
-                              p.level_scaling, MaxQuantCode(16)),
-            2);
+        quant2 +=
+            std::pow(QuantizationBound(scales[m], SubbandAt(pos % kW, pos / kW, kW, kH, 5).level,
+                                       p.level_scaling, MaxQuantCode(16)),
+                     2);
       }
       EXPECT_EQ(t->depth[m], 5);
       EXPECT_LE(std::sqrt(err2), 4 * std::sqrt(quant2) + 1e-6)

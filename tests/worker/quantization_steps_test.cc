@@ -21,8 +21,8 @@ BakeParams Auto(double target) {
 
 // Three ordinary columns: 100 kept coefficients each (U = 100/12), |v| ≤ 1.
 std::vector<ColumnQuantInput> Ordinary() {
-  return std::vector<ColumnQuantInput>(3, {.max_abs = 1.0, .step_unit = 100.0 / 12,
-                                           .reference_energy = 50.0});
+  return std::vector<ColumnQuantInput>(
+      3, {.max_abs = 1.0, .step_unit = 100.0 / 12, .reference_energy = 50.0});
 }
 
 TEST(QuantizationStepsTest, UniformStepSpendsExactlyTheHalfBudget) {
@@ -44,8 +44,8 @@ TEST(QuantizationStepsTest, UniformStepSpendsExactlyTheHalfBudget) {
 TEST(QuantizationStepsTest, Int16OverflowColumnTakesItsOwnCoarserStep) {
   std::vector<ColumnQuantInput> cols = Ordinary();
   const double delta0 = PlanSteps(cols, Auto(0.01)).step;
-  cols.push_back({.max_abs = 3 * kMaxStoredCode * delta0, .step_unit = 1.0 / 12,
-                  .reference_energy = 50.0});
+  cols.push_back(
+      {.max_abs = 3 * kMaxStoredCode * delta0, .step_unit = 1.0 / 12, .reference_energy = 50.0});
   const StepPlan plan = PlanSteps(cols, Auto(0.01));
   EXPECT_EQ(plan.overflow_columns, 1);
   EXPECT_EQ(plan.steps[3], StepForMax(cols[3].max_abs, kMaxStoredCode));

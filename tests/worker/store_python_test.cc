@@ -125,8 +125,8 @@ TEST_P(StorePythonTest, ZarrOpensEveryArrayAndNumpyRebuildsEveryColumnBitExact) 
     out.write(reinterpret_cast<const char*>(t->values.data()),
               static_cast<std::streamsize>(t->values.size() * sizeof(float)));
   }
-  const std::string script = absl::StrCat("SCALING = '", std::string(ToString(GetParam())),
-                                          "'\n", kCheckStore);
+  const std::string script =
+      absl::StrCat("SCALING = '", std::string(ToString(GetParam())), "'\n", kCheckStore);
   const column_testing::ProcessResult r = RunPython(dir.path(), script);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, ::testing::HasSubstr("python rebuilt 384 columns")) << r.output;
