@@ -39,19 +39,26 @@ def size_error(rows, out):
     for col, scene in enumerate(scenes):
         for mode, color in MODE_COLORS.items():
             for filt, style in FILTER_STYLES.items():
-                pts = sorted(
-                    (float(r["matrix_rel_rms"]), int(r["transport_bytes"]), int(r["nnz"]))
-                    for r in rows
-                    if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt
-                )
-                if not pts:
-                    continue
-                err = [p[0] for p in pts]
-                label = f"{mode} / {filt}"
-                axes[0][col].plot(err, [p[1] / 1e3 for p in pts], style, color=color,
-                                  marker="o", label=label)
-                axes[1][col].plot(err, [p[2] / 1e3 for p in pts], style, color=color,
-                                  marker="o", label=label)
+                # coding: uniform step (default) or the paper's 2^l scaling
+                # (issue 7 baseline, adaptive / haar only, drawn dotted).
+                for coding in ("uniform", "paper"):
+                    pts = sorted(
+                        (float(r["matrix_rel_rms"]), int(r["transport_bytes"]), int(r["nnz"]))
+                        for r in rows
+                        if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt
+                        and r.get("coding", "uniform") == coding
+                    )
+                    if not pts:
+                        continue
+                    err = [p[0] for p in pts]
+                    label = f"{mode} / {filt}" + (" / paper 2^l coding" if coding == "paper" else "")
+                    ls = ":" if coding == "paper" else style
+                    mk = "x" if coding == "paper" else "o"
+                    axes[0][col].plot(err, [p[1] / 1e3 for p in pts], ls, color=color,
+                                      marker=mk, label=label)
+                    if coding == "uniform":  # same coefficients either way
+                        axes[1][col].plot(err, [p[2] / 1e3 for p in pts], ls, color=color,
+                                          marker=mk, label=label)
         raw = next(int(r["raw_bytes"]) for r in rows if r["scene"] == scene)
         axes[0][col].set_title(f"{scene}  (dense float32 T: {raw / 1e6:.1f} MB)")
         axes[0][col].set_ylabel("transport bytes on disk (kB)")
@@ -63,7 +70,8 @@ def size_error(rows, out):
             ax.set_xlabel("relative RMS error of T (stats.matrix_rel_rms)")
             ax.grid(True, which="both", alpha=0.3)
         axes[0][col].legend(fontsize=8)
-    fig.suptitle("Store size vs matrix error: column modes x column filters (bits auto)")
+    fig.suptitle("Store size vs matrix error: column modes x column filters (bits auto, "
+                 "uniform step; dotted: adaptive with the paper's 2^l coding)")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 

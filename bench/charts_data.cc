@@ -162,12 +162,31 @@ class Csv {
 std::string Name(ColumnMode m) { return std::string(ToString(m)); }
 std::string Name(WaveletFilter f) { return std::string(ToString(f)); }
 
+void SizeRow(const Staged& staged, const BakeParams& p, const Compressed& c, Csv& size_csv) {
+  const nlohmann::json& bytes = c.stats.at("bytes");
+  size_csv.Row(staged.scene.name, Name(p.column_mode), Name(p.column_filter),
+               std::string(ToString(p.level_scaling)), p.target_error,
+               c.stats.at("nnz").get<int64_t>(), bytes.at("transport").get<uint64_t>(),
+               bytes.at("arrays").at("transport/indices").get<uint64_t>(),
+               bytes.at("arrays").at("transport/data").get<uint64_t>(),
+               bytes.at("raw_float32").get<uint64_t>(), c.bits,
+               c.stats.at("matrix_rel_rms").get<double>(), c.seconds);
+}
+
 // Chart 1 (4D paper Fig. 7) and chart 6 (Fig. 8): bytes and kept
-// coefficients against matrix error, per mode × column filter × target; the
-// adaptive Haar runs also give the mean depth by row level.
+// coefficients against matrix error, per mode × column filter × target with
+// the default (uniform) value coding, plus adaptive Haar with the paper's 2^l
+// level scaling as the baseline of issue 7; the adaptive Haar runs also give
+// the mean depth by row level.
 void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv, Csv& depth_csv) {
   const std::vector<double> targets = run.quick ? std::vector<double>{0.01, 0.05}
                                                 : std::vector<double>{0.003, 0.01, 0.02, 0.05, 0.1};
+  for (double target : targets) {
+    BakeParams p = staged.base;
+    p.target_error = target;
+    p.level_scaling = LevelScaling::kPaper;
+    SizeRow(staged, p, Compress(staged, p, run), size_csv);
+  }
   for (ColumnMode mode : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive}) {
     for (WaveletFilter filter : {WaveletFilter::kHaar, WaveletFilter::kLeGall53}) {
       for (double target : targets) {
@@ -176,13 +195,7 @@ void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv
         p.column_filter = filter;
         p.target_error = target;
         const Compressed c = Compress(staged, p, run);
-        const nlohmann::json& bytes = c.stats.at("bytes");
-        size_csv.Row(staged.scene.name, Name(mode), Name(filter), target,
-                     c.stats.at("nnz").get<int64_t>(), bytes.at("transport").get<uint64_t>(),
-                     bytes.at("arrays").at("transport/indices").get<uint64_t>(),
-                     bytes.at("arrays").at("transport/data").get<uint64_t>(),
-                     bytes.at("raw_float32").get<uint64_t>(), c.bits,
-                     c.stats.at("matrix_rel_rms").get<double>(), c.seconds);
+        SizeRow(staged, p, c, size_csv);
         if (mode != ColumnMode::kAdaptive || filter != WaveletFilter::kHaar) continue;
         const nlohmann::json& mean = c.stats.at("mean_depth_by_row_level");
         for (size_t level = 0; level < mean.size(); ++level)
@@ -248,7 +261,8 @@ void Run(const RunConfig& run) {
   std::filesystem::create_directories(run.work_dir);
   const auto start = std::chrono::steady_clock::now();
   Csv size_csv(run.out_dir / "size_error.csv",
-               "scene,mode,filter,target,nnz,transport_bytes,indices_bytes,data_bytes,raw_bytes,"
+               "scene,mode,filter,coding,target,nnz,transport_bytes,indices_bytes,data_bytes,"
+               "raw_bytes,"
                "bits,matrix_rel_rms,seconds");
   Csv depth_csv(run.out_dir / "depth_by_level.csv", "scene,target,row_level,mean_depth");
   Csv bits_csv(run.out_dir / "bits_error.csv",

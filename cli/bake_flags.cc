@@ -30,6 +30,10 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
   cmd.add_option("--column-terms", f.column_terms,
                  "keep exactly K coefficients per column instead of --target-error");
   cmd.add_option("--bits", f.bits, "quantization bits 2..16, or auto")->capture_default_str();
+  cmd.add_option("--level-scaling", f.level_scaling,
+                 "uniform: one step per column (auto: one matrix-wide step); paper: values of "
+                 "level l times 2^l first (4D paper §4.3)")
+      ->capture_default_str();
   cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
   cmd.add_flag("--keep-staging", f.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
@@ -57,6 +61,9 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   auto scope = ParseErrorScope(f.error_scope);
   if (!scope.ok()) return scope.status();
   p.error_scope = *scope;
+  auto scaling = ParseLevelScaling(f.level_scaling);
+  if (!scaling.ok()) return scaling.status();
+  p.level_scaling = *scaling;
   p.target_error = f.target_error;
   p.column_terms = f.column_terms;
   p.seed = f.seed;

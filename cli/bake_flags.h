@@ -20,6 +20,7 @@ struct BakeFlags {
   std::string error_scope = "matrix";
   int column_terms = 0;
   std::string bits = "auto";
+  std::string level_scaling = "uniform";
   uint64_t seed = 1;
   bool keep_staging = false;
   int tile_size = 32;      // BAKE_TILE edge (DESIGN.md §2)

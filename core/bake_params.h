@@ -9,6 +9,12 @@ namespace wavebake {
 enum class ColumnMode { k2d, kFull, kAdaptive };
 enum class WaveletFilter { kHaar, kDaub4, kLeGall53, kCdf97 };
 enum class ErrorScope { kMatrix, kColumn };
+// How kept coefficients are scaled before quantization (DESIGN.md §1
+// "Scaling and quantization", core/quantizer.h): kUniform quantizes every
+// value with the column's step (rate-distortion optimal for an MSE budget on
+// normalized filters); kPaper first multiplies level-l values by 2^l (4D
+// paper §4.3), spending ~l extra bits on fine levels.
+enum class LevelScaling { kUniform, kPaper };
 
 struct BakeParams {
   int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
@@ -21,6 +27,7 @@ struct BakeParams {
   ErrorScope error_scope = ErrorScope::kMatrix;
   int column_terms = 0;  // > 0: keep a fixed K per column instead of the target
   int bits = 0;          // 0 = auto, else 2..16
+  LevelScaling level_scaling = LevelScaling::kUniform;
   uint64_t seed = 1;
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task

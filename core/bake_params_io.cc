@@ -34,6 +34,10 @@ std::string_view ToString(WaveletFilter f) {
 
 std::string_view ToString(ErrorScope s) { return s == ErrorScope::kMatrix ? "matrix" : "column"; }
 
+std::string_view ToString(LevelScaling s) {
+  return s == LevelScaling::kUniform ? "uniform" : "paper";
+}
+
 absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s) {
   for (ColumnMode m : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive})
     if (s == ToString(m)) return m;
@@ -54,6 +58,13 @@ absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s) {
   if (s == "column") return ErrorScope::kColumn;
   return absl::InvalidArgumentError(
       absl::StrCat("error_scope: unknown scope '", std::string(s), "' (matrix|column)"));
+}
+
+absl::StatusOr<LevelScaling> ParseLevelScaling(std::string_view s) {
+  if (s == "uniform") return LevelScaling::kUniform;
+  if (s == "paper") return LevelScaling::kPaper;
+  return absl::InvalidArgumentError(
+      absl::StrCat("level_scaling: unknown scaling '", std::string(s), "' (uniform|paper)"));
 }
 
 absl::Status ValidateBakeParams(const BakeParams& p) {

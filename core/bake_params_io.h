@@ -14,9 +14,11 @@ namespace wavebake {
 std::string_view ToString(ColumnMode m);
 std::string_view ToString(WaveletFilter f);
 std::string_view ToString(ErrorScope s);
+std::string_view ToString(LevelScaling s);
 absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s);        // adaptive|full|2d
 absl::StatusOr<WaveletFilter> ParseWaveletFilter(std::string_view s);  // haar|daub4|legall53|cdf97
 absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s);        // matrix|column
+absl::StatusOr<LevelScaling> ParseLevelScaling(std::string_view s);    // uniform|paper
 
 // Checks every field; the message names the bad field (e.g. "light_res: 33 is
 // not a power of two in 8..256"). The layout string is checked by ParseLayout.

@@ -1,6 +1,7 @@
 #include "core/quantizer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace wavebake {
@@ -13,55 +14,71 @@ uint64_t Mix(uint64_t z) {
   return z ^ (z >> 31);
 }
 
-int MaxCode(int bits) { return (1 << (bits - 1)) - 1; }
-
 }  // namespace
+
+int MaxQuantCode(int bits) { return (1 << (bits - 1)) - 1; }
+
+int BitsForCode(int max_code) {
+  return std::max(2, static_cast<int>(std::bit_width(static_cast<unsigned>(max_code))) + 1);
+}
 
 float DitherAt(uint64_t seed, uint64_t column, uint32_t position) {
   const uint64_t h = Mix(Mix(Mix(seed) ^ column) ^ position);
   return static_cast<float>(static_cast<double>(h >> 40) * 0x1p-24 - 0.5);
 }
 
-QuantizedColumn Quantize(std::span<const float> values, std::span<const uint32_t> positions,
-                         std::span<const uint8_t> levels, int bits, uint64_t seed,
-                         uint64_t column) {
-  QuantizedColumn out;
-  out.q.assign(values.size(), 0);
-  double scale = 0;
+double LevelScaledMax(std::span<const float> values, std::span<const uint8_t> levels,
+                      LevelScaling scaling) {
+  double m = 0;
   for (size_t i = 0; i < values.size(); ++i) {
-    scale = std::max(scale, std::fabs(std::ldexp(static_cast<double>(values[i]), levels[i])));
+    // v / k = v · 2^−exponent; powers of two are exact.
+    const int e = LevelExponent(scaling, levels[i]);
+    m = std::max(m, std::fabs(std::ldexp(static_cast<double>(values[i]), -e)));
   }
-  // Stored as float, rounded up so that |y| ≤ 1 still holds exactly when we
-  // normalize by the stored number (the one dequantization will use).
-  out.scale = static_cast<float>(scale);
-  if (static_cast<double>(out.scale) < scale) out.scale = std::nextafter(out.scale, INFINITY);
-  if (out.scale == 0) return out;
-  const int qmax = MaxCode(bits);
+  return m;
+}
+
+float StepForMax(double max_abs, int max_code) {
+  const double step = max_abs / max_code;
+  // Rounded up so that the stored float step (the one decoding uses) still
+  // keeps the largest value within max_code.
+  float f = static_cast<float>(step);
+  if (static_cast<double>(f) < step) f = std::nextafter(f, INFINITY);
+  return f;
+}
+
+std::vector<int16_t> Quantize(std::span<const float> values, std::span<const uint32_t> positions,
+                              std::span<const uint8_t> levels, LevelScaling scaling, float step,
+                              int max_code, uint64_t seed, uint64_t column) {
+  std::vector<int16_t> q(values.size(), 0);
+  if (step == 0) return q;
+  const double c = std::clamp(max_code, 1, kMaxStoredCode);
   for (size_t i = 0; i < values.size(); ++i) {
-    const double y = std::ldexp(static_cast<double>(values[i]), levels[i]) / out.scale;
+    const int e = LevelExponent(scaling, levels[i]);
+    const double y = std::ldexp(static_cast<double>(values[i]), -e) / double{step};
     const double u = DitherAt(seed, column, positions[i]);
-    const double r = std::round(y * qmax + u);
-    out.q[i] = static_cast<int16_t>(std::clamp(r, -double(qmax), double(qmax)));
+    q[i] = static_cast<int16_t>(std::clamp(std::round(y + u), -c, c));
   }
-  return out;
+  return q;
 }
 
 void Dequantize(std::span<const int16_t> q, std::span<const uint32_t> positions,
-                std::span<const uint8_t> levels, float scale, int bits, uint64_t seed,
+                std::span<const uint8_t> levels, LevelScaling scaling, float step, uint64_t seed,
                 uint64_t column, std::span<float> out) {
-  const int qmax = MaxCode(bits);
   for (size_t i = 0; i < q.size(); ++i) {
-    if (scale == 0) {
+    if (step == 0) {
       out[i] = 0;
       continue;
     }
     const double u = DitherAt(seed, column, positions[i]);
-    out[i] = static_cast<float>(std::ldexp((q[i] - u) / qmax * scale, -levels[i]));
+    out[i] = static_cast<float>(
+        std::ldexp((q[i] - u) * double{step}, LevelExponent(scaling, levels[i])));
   }
 }
 
-double QuantizationBound(float scale, int level, int bits) {
-  return std::ldexp(static_cast<double>(scale) * (0.5 / MaxCode(bits) + 0x1p-23), -level);
+double QuantizationBound(float step, int level, LevelScaling scaling, int max_code) {
+  return std::ldexp(double{step} * (0.5 + 0x1p-24 * (max_code + 0.5)),
+                    LevelExponent(scaling, level));
 }
 
 }  // namespace wavebake

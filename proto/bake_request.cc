@@ -122,6 +122,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.error_scope = r.error_scope() == "column" ? ErrorScope::kColumn : ErrorScope::kMatrix;
   p.column_terms = r.column_terms();
   p.bits = r.bits();
+  p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
   p.seed = r.seed();
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
@@ -147,6 +148,7 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
                     {"haar", "legall53", "cdf97"}),
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
+        CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
         CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
@@ -171,6 +173,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_error_scope(std::string(ToString(p.error_scope)));
   r.set_column_terms(p.column_terms);
   r.set_bits(p.bits);
+  r.set_level_scaling(std::string(ToString(p.level_scaling)));
   r.set_seed(p.seed);
   r.set_row_filter(std::string(ToString(p.row_filter)));
   r.set_tile_size(p.tile_size);

@@ -79,21 +79,34 @@ absl::StatusOr<int> ParseCompressor(const nlohmann::json& zarray, absl::string_v
   return level->get<int>();
 }
 
-absl::StatusOr<bool> ParseFilters(const nlohmann::json& zarray, DType dtype,
-                                  absl::string_view source) {
+struct Filters {
+  bool delta = false, shuffle = false;
+};
+
+// null, [], [delta], [shuffle] or [delta, shuffle] (the order they encode in).
+absl::StatusOr<Filters> ParseFilters(const nlohmann::json& zarray, DType dtype,
+                                     absl::string_view source) {
   const auto it = zarray.find("filters");
-  if (it == zarray.end() || it->is_null() || (it->is_array() && it->empty())) return false;
+  if (it == zarray.end() || it->is_null() || (it->is_array() && it->empty())) return Filters{};
   const std::string name(ZarrName(dtype));
-  if (it->is_array() && it->size() == 1 && (*it)[0].is_object()) {
-    const nlohmann::json& f = (*it)[0];
-    if (FieldIs(f, "id", "delta") && FieldIs(f, "dtype", name) &&
-        (!f.contains("astype") || FieldIs(f, "astype", name))) {
-      return true;
-    }
+  const auto is_delta = [&](const nlohmann::json& f) {
+    return f.is_object() && FieldIs(f, "id", "delta") && FieldIs(f, "dtype", name) &&
+           (!f.contains("astype") || FieldIs(f, "astype", name));
+  };
+  const auto is_shuffle = [&](const nlohmann::json& f) {
+    return f.is_object() && FieldIs(f, "id", "shuffle") &&
+           FieldIs(f, "elementsize", static_cast<int>(ItemSize(dtype)));
+  };
+  if (it->is_array() && it->size() <= 2) {
+    Filters out;
+    size_t k = 0;
+    if (k < it->size() && is_delta((*it)[k])) out.delta = true, ++k;
+    if (k < it->size() && is_shuffle((*it)[k])) out.shuffle = true, ++k;
+    if (k == it->size()) return out;
   }
   return Bad(source, "filters",
-             absl::StrCat("unsupported (only null or one delta filter of dtype ", name,
-                          "): ", it->dump()));
+             absl::StrCat("unsupported (only null, delta of dtype ", name,
+                          " and/or shuffle of its size, in that order): ", it->dump()));
 }
 
 // Reads and checks every field; FromZarray catches any json exception left.
@@ -125,9 +138,10 @@ absl::StatusOr<ArraySpec> ParseZarray(const nlohmann::json& zarray, absl::string
   absl::StatusOr<int> level = ParseCompressor(zarray, source);
   if (!level.ok()) return level.status();
   spec.zstd_level = *level;
-  absl::StatusOr<bool> delta = ParseFilters(zarray, spec.dtype, source);
-  if (!delta.ok()) return delta.status();
-  spec.delta_filter = *delta;
+  absl::StatusOr<Filters> filters = ParseFilters(zarray, spec.dtype, source);
+  if (!filters.ok()) return filters.status();
+  spec.delta_filter = filters->delta;
+  spec.shuffle_filter = filters->shuffle;
   if (absl::Status s = ValidateSpec(spec, source); !s.ok()) return s;
   return spec;
 }
@@ -138,7 +152,8 @@ bool SameSpec(const ArraySpec& a, const ArraySpec& b) {
   const bool same_fill =
       a.fill_value == b.fill_value || (std::isnan(a.fill_value) && std::isnan(b.fill_value));
   return a.shape == b.shape && a.chunks == b.chunks && a.dtype == b.dtype && same_fill &&
-         a.zstd_level == b.zstd_level && a.delta_filter == b.delta_filter;
+         a.zstd_level == b.zstd_level && a.delta_filter == b.delta_filter &&
+         a.shuffle_filter == b.shuffle_filter;
 }
 
 absl::Status ValidateSpec(const ArraySpec& spec, absl::string_view source) {
@@ -184,9 +199,10 @@ std::vector<int64_t> ChunkGrid(const ArraySpec& spec) {
 nlohmann::json ToZarray(const ArraySpec& spec) {
   const std::string dtype(ZarrName(spec.dtype));
   nlohmann::json filters = nullptr;
-  if (spec.delta_filter) {
-    filters = nlohmann::json::array({{{"id", "delta"}, {"dtype", dtype}, {"astype", dtype}}});
-  }
+  if (spec.delta_filter || spec.shuffle_filter) filters = nlohmann::json::array();
+  if (spec.delta_filter) filters.push_back({{"id", "delta"}, {"dtype", dtype}, {"astype", dtype}});
+  if (spec.shuffle_filter)
+    filters.push_back({{"id", "shuffle"}, {"elementsize", static_cast<int>(ItemSize(spec.dtype))}});
   return {
       {"zarr_format", 2},
       {"shape", spec.shape},

@@ -22,6 +22,9 @@ struct ArraySpec {
   // numcodecs Delta filter (integer dtypes only); DESIGN.md §3 suggests it for
   // transport/indices, whose sorted runs become small differences.
   bool delta_filter = false;
+  // numcodecs Shuffle filter with elementsize = the dtype's size, after delta
+  // when both are on (storage/shuffle_filter.h).
+  bool shuffle_filter = false;
 };
 
 // Same array: fields equal, with NaN fill values equal to each other.

@@ -6,7 +6,9 @@
 
 namespace wavebake::store {
 
-inline constexpr char kFormat[] = "wavebake/1";
+// "wavebake/2": `scale` is each column's quantization step and values decode
+// as (q − u)·scale·2^(−s·l) (core/quantizer.h); "/1" divided by 2^(bits−1)−1.
+inline constexpr char kFormat[] = "wavebake/2";
 
 // Final arrays.
 inline constexpr char kTransport[] = "transport";        // group, attrs: encoding-type csc_matrix
@@ -14,7 +16,7 @@ inline constexpr char kIndptr[] = "transport/indptr";    // int64  [M+1]
 inline constexpr char kIndices[] = "transport/indices";  // uint32 [nnz]  y*W+x in the Mallat layout
 inline constexpr char kData[] = "transport/data";        // int16  [nnz]
 inline constexpr char kDepth[] = "transport/depth";      // uint8  [M]
-inline constexpr char kScale[] = "transport/scale";      // float32 [M]
+inline constexpr char kScale[] = "transport/scale";      // float32 [M]  quantization step
 inline constexpr char kSamples[] = "samples";
 inline constexpr char kGrid[] = "samples/grid";          // int32 [H, W]
 inline constexpr char kPosition[] = "samples/position";  // float32 [S, 3]

@@ -93,7 +93,8 @@ absl::Status DecodeColumn(const StoreInfo& info, int column, int depth, float sc
                                          .level);
   }
   values->resize(positions.size());
-  Dequantize(q, positions, levels, scale, info.bits, info.params.seed, column, *values);
+  Dequantize(q, positions, levels, info.params.level_scaling, scale, info.params.seed, column,
+             *values);
   return absl::OkStatus();
 }
 

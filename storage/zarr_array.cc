@@ -6,6 +6,7 @@
 #include "storage/chunk_region.h"
 #include "storage/delta_filter.h"
 #include "storage/json_file.h"
+#include "storage/shuffle_filter.h"
 #include "storage/zstd_codec.h"
 
 namespace wavebake {
@@ -79,9 +80,10 @@ absl::Status ZarrArray::WriteChunk(std::span<const int64_t> chunk_index,
                      " bytes, a full chunk is ", chunk_bytes(), " (edge chunks are padded)"));
   }
   absl::StatusOr<std::vector<std::byte>> frame;
-  if (spec_.delta_filter) {
+  if (spec_.delta_filter || spec_.shuffle_filter) {
     std::vector<std::byte> filtered(data.begin(), data.end());
-    DeltaEncode(spec_.dtype, filtered);
+    if (spec_.delta_filter) DeltaEncode(spec_.dtype, filtered);
+    if (spec_.shuffle_filter) ShuffleEncode(ItemSize(spec_.dtype), filtered);
     frame = ZstdCompress(filtered, spec_.zstd_level);
   } else {
     frame = ZstdCompress(data, spec_.zstd_level);
@@ -105,6 +107,7 @@ absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
   }
   if (!frame.ok()) return frame.status();
   if (absl::Status s = ZstdDecompressInto(*frame, out, path.string()); !s.ok()) return s;
+  if (spec_.shuffle_filter) ShuffleDecode(ItemSize(spec_.dtype), out);
   if (spec_.delta_filter) DeltaDecode(spec_.dtype, out);
   return absl::OkStatus();
 }

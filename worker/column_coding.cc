@@ -45,25 +45,20 @@ void Select(const ColumnCodingParams& p, std::span<const float> coeffs, std::spa
   out->dropped_energy = dropped;
 }
 
-// Σ_i (scale·2^−l_i·w_i)²/12 with scale = max_i |v_i·2^l_i| rounded up to
-// float exactly as core/quantizer.h Quantize stores it. Powers of two are
-// exact, so multiplying by them is ldexp.
-double QuantizationUnit(const ColumnCodingParams& p, std::span<const float> w,
-                        const CodedColumn& c) {
-  const std::vector<uint8_t>& levels = SubbandLevels(p.width, p.height, c.depth);
-  double scale = 0;
-  for (size_t i = 0; i < c.positions.size(); ++i) {
-    const double pow2 = double(uint64_t{1} << levels[c.positions[i]]);
-    scale = std::max(scale, std::fabs(double{c.values[i]}) * pow2);
-  }
-  float stored = static_cast<float>(scale);
-  if (stored < scale) stored = std::nextafter(stored, INFINITY);
+// What FINALIZE needs to pick this column's step (core/quantizer.h):
+// max_i |v_i/k_i| and Σ_i (k_i·w_i)²/12. Powers of two are exact (ldexp).
+void QuantizationInputs(const ColumnCodingParams& p, std::span<const float> w, CodedColumn* c) {
+  const std::vector<uint8_t>& level_map = SubbandLevels(p.width, p.height, c->depth);
+  std::vector<uint8_t> levels(c->positions.size());
+  for (size_t i = 0; i < levels.size(); ++i) levels[i] = level_map[c->positions[i]];
+  c->max_abs = LevelScaledMax(c->values, levels, p.level_scaling);
   double unit = 0;
-  for (uint32_t pos : c.positions) {
-    const double step = double{stored} / double(uint64_t{1} << levels[pos]) * WeightOf(w, pos);
-    unit += step * step / 12;
+  for (size_t i = 0; i < levels.size(); ++i) {
+    const double kw =
+        std::ldexp(WeightOf(w, c->positions[i]), LevelExponent(p.level_scaling, levels[i]));
+    unit += kw * kw / 12;
   }
-  return unit;
+  c->step_unit = unit;
 }
 
 }  // namespace
@@ -77,7 +72,8 @@ ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, i
           .target_error = params.target_error,
           .scope = params.error_scope,
           .column_terms = params.column_terms,
-          .matrix_energy = matrix_energy};
+          .matrix_energy = matrix_energy,
+          .level_scaling = params.level_scaling};
 }
 
 std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth) {
@@ -113,21 +109,24 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
   Select(p, choice.coefficients, w, budget, out);
   out->values.reserve(out->positions.size());
   for (uint32_t pos : out->positions) out->values.push_back(choice.coefficients[pos]);
-  out->quantization_unit = QuantizationUnit(p, w, *out);
-  out->min_bits = MinBitsFor(out->quantization_unit, p.target_error, out->reference_energy);
+  QuantizationInputs(p, w, out);
+  out->min_bits = MinBitsFor(out->max_abs, out->step_unit,
+                             QuantizationBudget(p.target_error, out->reference_energy));
 }
 
-int MaxQuantCode(int bits) { return (1 << (bits - 1)) - 1; }
-
-double QuantizationEnergy(double quantization_unit, int bits) {
-  const double q = MaxQuantCode(bits);
-  return quantization_unit / (q * q);
+double QuantizationBudget(double target_error, double reference_energy) {
+  return 0.25 * target_error * target_error * reference_energy;
 }
 
-int MinBitsFor(double quantization_unit, double target_error, double reference_energy) {
-  const double allowed = 0.25 * target_error * target_error * reference_energy;
+double QuantizationEnergy(double max_abs, double step_unit, int bits) {
+  // The step as Quantize will store it (a float rounded up).
+  const double step = StepForMax(max_abs, MaxQuantCode(bits));
+  return step * step * step_unit;
+}
+
+int MinBitsFor(double max_abs, double step_unit, double allowed) {
   for (int b = 2; b < 16; ++b) {
-    if (QuantizationEnergy(quantization_unit, b) <= allowed) return b;
+    if (QuantizationEnergy(max_abs, step_unit, b) <= allowed) return b;
   }
   return 16;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/bake_params.h"
+#include "core/quantizer.h"
 
 namespace wavebake {
 
@@ -20,6 +21,7 @@ struct ColumnCodingParams {
   ErrorScope scope = ErrorScope::kMatrix;
   int column_terms = 0;      // > 0: keep a fixed K per column instead of the target
   double matrix_energy = 0;  // mean column energy of the whole matrix (scope matrix)
+  LevelScaling level_scaling = LevelScaling::kUniform;
 };
 
 ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, int height,
@@ -34,10 +36,13 @@ struct CodedColumn {
   double energy = 0;                // Σ of the column's squared staged values
   double reference_energy = 0;      // E_ref: matrix_energy, or `energy` for scope column
   double dropped_energy = 0;        // Σ (c_i·w_i)² over dropped coefficients
-  // Σ_i (scale·2^−l_i·w_i)²/12 over kept coefficients: the expected energy of
-  // the subtractive-dither quantization error with Q = 1 (divide by Q_b²).
-  double quantization_unit = 0;
-  int min_bits = 2;  // fewest bits meeting the --bits auto rule
+  // max_i |v_i / k_i| (core/quantizer.h): the column's step Δ reaches its
+  // largest code C when Δ = max_abs / C.
+  double max_abs = 0;
+  // Σ_i (k_i·w_i)²/12 over kept coefficients: the expected energy of the
+  // subtractive-dither quantization error per unit step (multiply by Δ²).
+  double step_unit = 0;
+  int min_bits = 2;  // fewest bits b with Δ = max_abs/Q_b meeting the column's own budget
 };
 
 // Codes one W×H column image (row-major, staged values). Not thread-safe
@@ -49,16 +54,17 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
 std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth);
 
 // SubbandAt(x, y, W, H, depth).level of every position y*W + x, computed once
-// per thread and shape (the l of the quantizer's 2^l scaling).
+// per thread and shape (the l of the quantizer's level factor k = 2^−l).
 const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth);
 
-// Q_b = 2^(b−1) − 1, the largest code of b-bit signed quantization.
-int MaxQuantCode(int bits);
-// Expected quantization error energy of a column at `bits` (DESIGN.md §1 for
-// subtractive dither: uniform error of variance Δ²/12 per kept coefficient).
-double QuantizationEnergy(double quantization_unit, int bits);
-// --bits auto for one column: the fewest b in 2..16 with
-// QuantizationEnergy(unit, b) ≤ (target/2)²·E_ref; 16 if none is enough.
-int MinBitsFor(double quantization_unit, double target_error, double reference_energy);
+// The quantization half of the error budget: (target/2)²·E_ref (DESIGN.md §1).
+double QuantizationBudget(double target_error, double reference_energy);
+// Expected quantization error energy of a column quantized to `bits` with its
+// max normalized to Q_b (subtractive dither: variance Δ²/12 per kept
+// coefficient, weighted like the selection): (max_abs/Q_b)²·step_unit.
+double QuantizationEnergy(double max_abs, double step_unit, int bits);
+// The fewest b in 2..16 with QuantizationEnergy(max_abs, step_unit, b) ≤
+// `allowed`; 16 if none is enough.
+int MinBitsFor(double max_abs, double step_unit, double allowed);
 
 }  // namespace wavebake

@@ -14,6 +14,7 @@
 #include "storage/zarr_array.h"
 #include "worker/column_coding.h"
 #include "worker/group_result.h"
+#include "worker/quantization_steps.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
 
@@ -34,13 +35,12 @@ absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store,
       absl::StrCat(GroupResultPath(store, g).string(), ": columns do not match the job plan"));
 }
 
-// Pass 1: nnz (the length of indices/data) and what --bits auto needs to
-// know. A missing group is FailedPrecondition: FINALIZE ran too early.
+// Pass 1: nnz (the length of indices/data) and what the step choice needs to
+// know of every column (O(M)). A missing group is FailedPrecondition:
+// FINALIZE ran too early.
 struct GroupScan {
   int64_t nnz = 0;
-  int max_column_bits = 2;       // the largest single column's need
-  double quantization_unit = 0;  // Σ over columns (worker/column_coding.h)
-  double reference_energy = 0;   // Σ over columns of E_ref
+  std::vector<ColumnQuantInput> columns;
 };
 
 absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store, GroupScan* scan) {
@@ -54,37 +54,34 @@ absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
     if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
     scan->nnz += static_cast<int64_t>(r->positions.size());
     for (const GroupColumn& c : r->columns) {
-      scan->max_column_bits = std::max<int>(scan->max_column_bits, c.min_bits);
-      scan->quantization_unit += c.quantization_unit;
-      scan->reference_energy += c.reference_energy;
+      scan->columns.push_back({.max_abs = c.max_abs,
+                               .step_unit = c.step_unit,
+                               .reference_energy = c.reference_energy,
+                               .min_bits = c.min_bits});
     }
   }
   return absl::OkStatus();
-}
-
-// --bits auto (DESIGN.md §1: the fewest bits whose quantization error stays
-// under half the target). With the matrix error scope the target is a budget
-// on the whole matrix, so is the quantization half of it: the summed expected
-// dither energy ≤ (target/2)²·Σ E_ref. One rare column with a huge dynamic
-// range no longer sets the bits of all the others (a per-column max asked 15
-// bits where 12 meet the matrix budget). With the column scope every column
-// keeps its own promise: the max over columns.
-int AutoBits(const GroupScan& scan, const BakeParams& params) {
-  if (params.error_scope == ErrorScope::kColumn) return scan.max_column_bits;
-  return MinBitsFor(scan.quantization_unit, params.target_error, scan.reference_energy);
 }
 
 struct CscArrays {
   ZarrArray indptr, indices, data, depth, scale;
 };
 
+// zstd level of the nnz-long arrays: 9 packed cubes-wall indices 10 % and
+// values 4 % tighter than 3 at ~0.2 s per 20 MB; 19 gained 5 % more for 10×
+// the time (issue 7).
+constexpr int kNnzZstdLevel = 9;
+
 absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,
-                                 int64_t length, int64_t chunk, bool delta = false) {
+                                 int64_t length, int64_t chunk, bool delta = false,
+                                 bool shuffle = false, int level = kDefaultZstdLevel) {
   return ZarrArray::Create(store::Path(store, name),
                            {.shape = {length},
                             .chunks = {std::max<int64_t>(1, std::min(length, chunk))},
                             .dtype = t,
-                            .delta_filter = delta});
+                            .zstd_level = level,
+                            .delta_filter = delta,
+                            .shuffle_filter = shuffle});
 }
 
 absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, int columns,
@@ -92,9 +89,14 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
   if (absl::Status s = WriteGroup(store::Path(store, store::kTransport)); !s.ok()) return s;
   auto indptr = Create(store, store::kIndptr, DType::kInt64, columns + 1, kColumnChunk);
   // Indices rise inside a column: the delta filter turns them into small
-  // numbers zstd packs tighter (DESIGN.md §3; measured in the report).
-  auto indices = Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true);
-  auto data = Create(store, store::kData, DType::kInt16, nnz, kNnzChunk);
+  // numbers zstd packs tighter (DESIGN.md §3), and the byte shuffle puts
+  // their mostly-zero high bytes together: 5.1 → 3.3 bits per position on an
+  // adaptive cubes-wall store. The int16 values do not gain from a shuffle
+  // (adaptive: 6.4 → 6.5 bits), so data has none.
+  auto indices =
+      Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true, true, kNnzZstdLevel);
+  auto data =
+      Create(store, store::kData, DType::kInt16, nnz, kNnzChunk, false, false, kNnzZstdLevel);
   auto depth = Create(store, store::kDepth, DType::kUint8, columns, kColumnChunk);
   auto scale = Create(store, store::kScale, DType::kFloat32, columns, kColumnChunk);
   for (const auto* a : {&indptr, &indices, &data, &depth, &scale})
@@ -103,23 +105,30 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
                    *std::move(scale)};
 }
 
-// One column quantized (DESIGN.md §1 "Scaling and quantization") and its
-// achieved quantization error energy, weighted like the selection.
+// One column quantized (DESIGN.md §1 "Scaling and quantization"), its
+// achieved quantization error energy, weighted like the selection, and the
+// bits its largest code needs.
 struct QuantizedOutcome {
-  QuantizedColumn q;
+  std::vector<int16_t> q;
   double error_energy = 0;
+  int bits = 0;  // 0 for a column without codes
 };
 
-QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, int bits,
-                             std::span<const uint32_t> positions, std::span<const float> values) {
+QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, float step,
+                             int max_code, std::span<const uint32_t> positions,
+                             std::span<const float> values) {
   const JobPlan& plan = ctx.plan;
+  const LevelScaling scaling = ctx.params.level_scaling;
   const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, depth);
   std::vector<uint8_t> levels(positions.size());
   for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
   QuantizedOutcome out;
-  out.q = Quantize(values, positions, levels, bits, ctx.params.seed, column);
+  out.q = Quantize(values, positions, levels, scaling, step, max_code, ctx.params.seed, column);
   std::vector<float> decoded(positions.size());
-  Dequantize(out.q.q, positions, levels, out.q.scale, bits, ctx.params.seed, column, decoded);
+  Dequantize(out.q, positions, levels, scaling, step, ctx.params.seed, column, decoded);
+  int largest = 0;
+  for (int16_t q : out.q) largest = std::max(largest, std::abs(int{q}));
+  out.bits = positions.empty() ? 0 : BitsForCode(largest);
   const std::vector<float>& w =
       SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, depth);
   for (size_t i = 0; i < positions.size(); ++i) {
@@ -130,8 +139,8 @@ QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, int 
 }
 
 // Pass 2: groups in order → the CSC arrays, one group in memory at a time.
-absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store, int bits,
-                            int64_t nnz, StoreStats* stats) {
+absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store,
+                            const StepPlan& steps, int64_t nnz, StoreStats* stats) {
   const JobPlan& plan = ctx.plan;
   absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
   if (!arrays.ok()) return arrays.status();
@@ -151,12 +160,13 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
       const auto positions = std::span<const uint32_t>(r->positions).subspan(at, gc.kept);
       const auto values = std::span<const float>(r->values).subspan(at, gc.kept);
       at += gc.kept;
-      const QuantizedOutcome q = QuantizeOne(ctx, m, gc.depth, bits, positions, values);
+      const QuantizedOutcome q =
+          QuantizeOne(ctx, m, gc.depth, steps.steps[m], steps.max_code, positions, values);
       if (absl::Status s = indices.Append(positions); !s.ok()) return s;
-      if (absl::Status s = data.Append(q.q.q); !s.ok()) return s;
+      if (absl::Status s = data.Append(q.q); !s.ok()) return s;
       indptr[m + 1] = indptr[m] + gc.kept;
       depth[m] = gc.depth;
-      scale[m] = q.q.scale;
+      scale[m] = steps.steps[m];
       stats->Add({.column = m,
                   .depth = gc.depth,
                   .kept = gc.kept,
@@ -164,7 +174,8 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
                   .reference_energy = gc.reference_energy,
                   .dropped_energy = gc.dropped_energy,
                   .quantization_energy = q.error_energy,
-                  .min_bits = gc.min_bits});
+                  .min_bits = gc.min_bits,
+                  .bits = q.bits});
     }
   }
   for (absl::Status s :
@@ -213,16 +224,23 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   GroupScan scan;
   if (absl::Status s = ScanGroups(plan, store, &scan); !s.ok()) return s;
   const int64_t nnz = scan.nnz;
-  ManifestBits bits{.bits_needed = AutoBits(scan, ctx.params),
-                    .max_column_bits = scan.max_column_bits};
-  bits.bits = ctx.params.bits != 0 ? ctx.params.bits : bits.bits_needed;
+  const StepPlan steps = PlanSteps(scan.columns, ctx.params);
 
   StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));
-  if (absl::Status s = WriteTransport(ctx, store, bits.bits, nnz, &stats); !s.ok()) return s;
+  if (absl::Status s = WriteTransport(ctx, store, steps, nnz, &stats); !s.ok()) return s;
   if (absl::Status s = WriteSamples(store, ctx.samples); !s.ok()) return s;
+  // Uniform auto has no single b: "bits" is the widest column's.
+  const ManifestBits bits{.bits = steps.bits != 0 ? steps.bits : std::max(2, stats.max_bits()),
+                          .bits_needed = steps.bits_needed,
+                          .max_column_bits = steps.max_column_bits};
 
   nlohmann::json stats_json = stats.ToJson();
   stats_json["bytes"] = StoreBytes(ctx, store);
+  stats_json["quantization"] = {{"step", steps.step},
+                                {"max_code", steps.max_code},
+                                {"overflow_columns", steps.overflow_columns},
+                                {"expected_energy", steps.expected_energy},
+                                {"budget", steps.budget}};
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
   if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));

@@ -12,7 +12,7 @@
 namespace wavebake {
 namespace {
 
-constexpr char kMagic[8] = {'W', 'B', 'G', 'R', 'O', 'U', 'P', '1'};
+constexpr char kMagic[8] = {'W', 'B', 'G', 'R', 'O', 'U', 'P', '2'};
 constexpr size_t kPreamble = sizeof kMagic + sizeof(uint64_t);
 
 // Appends plain values as their little-endian bytes (the host order, dtype.h).
@@ -86,7 +86,8 @@ std::vector<std::byte> Payload(const GroupResult& r) {
     w.Put(c.energy);
     w.Put(c.reference_energy);
     w.Put(c.dropped_energy);
-    w.Put(c.quantization_unit);
+    w.Put(c.max_abs);
+    w.Put(c.step_unit);
   }
   w.PutAll(r.positions);
   w.PutAll(r.values);
@@ -115,7 +116,8 @@ absl::StatusOr<GroupResult> ParsePayload(std::span<const std::byte> bytes,
     c.energy = rd.Get<double>();
     c.reference_energy = rd.Get<double>();
     c.dropped_energy = rd.Get<double>();
-    c.quantization_unit = rd.Get<double>();
+    c.max_abs = rd.Get<double>();
+    c.step_unit = rd.Get<double>();
     kept_sum += c.kept;
   }
   rd.GetAll(r.positions, nnz);

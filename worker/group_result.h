@@ -3,12 +3,12 @@
 // §2): the group's coded columns, unquantized (the bit count is a
 // matrix-wide choice FINALIZE makes). Stored as one file per group,
 // staging/groups/<g>.wbg, replaced atomically, so a retried task simply
-// rewrites it. Format (little-endian): 8-byte magic "WBGROUP1", uint64 size of
+// rewrites it. Format (little-endian): 8-byte magic "WBGROUP2", uint64 size of
 // the payload, then the payload as one zstd frame (with checksum):
 //   int32 group, int32 first_column, int32 columns, int32 0, uint64 nnz,
 //   double matrix_energy,
 //   per column: uint8 depth, uint8 min_bits, uint16 0, uint32 kept,
-//               double energy, reference_energy, dropped_energy, quantization_unit,
+//               double energy, reference_energy, dropped_energy, max_abs, step_unit,
 //   uint32 positions[nnz], float values[nnz]   (columns concatenated in order).
 #include <cstdint>
 #include <filesystem>
@@ -26,7 +26,8 @@ struct GroupColumn {
   double energy = 0;
   double reference_energy = 0;
   double dropped_energy = 0;
-  double quantization_unit = 0;  // see CodedColumn (worker/column_coding.h)
+  double max_abs = 0;    // see CodedColumn (worker/column_coding.h)
+  double step_unit = 0;  // see CodedColumn
 };
 
 struct GroupResult {

@@ -5,6 +5,7 @@
 #include "core/bake_params_io.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
+#include "storage/zarr_array.h"
 
 namespace wavebake {
 namespace {
@@ -16,9 +17,10 @@ constexpr char kDither[] =
     "0x94D049BB133111EB; return z ^ (z >> 31)), uint64 wrapping; h = mix(mix(mix(seed) ^ "
     "column) ^ position); u = float32((h >> 40) * 2^-24 - 0.5)";
 constexpr char kDequantize[] =
-    "value = float32(ldexp((q - u) / (2^(bits-1) - 1) * scale, -l)) in float64, l = subband "
-    "level of the position at the column's depth (0 = coarsest: the LL block and the details "
-    "of the last step; details of step s have l = depth-1-s); scale 0 decodes to 0";
+    "value = float32(ldexp((q - u) * scale, -s*l)) in float64, scale = the column's "
+    "quantization step, s = 1 if level_scaling is 'paper' else 0, l = subband level of the "
+    "position at the column's depth (0 = coarsest: the LL block and the details of the last "
+    "step; details of step s have l = depth-1-s); scale 0 decodes to 0";
 
 }  // namespace
 
@@ -38,6 +40,7 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
            {{"row", std::string(ToString(p.row_filter))},
             {"column", std::string(ToString(p.column_filter))}}},
           {"bits", bits.bits},
+          {"level_scaling", std::string(ToString(p.level_scaling))},
           {"bits_auto", p.bits == 0},
           {"bits_needed", bits.bits_needed},
           {"max_column_bits", bits.max_column_bits},
@@ -46,6 +49,13 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
           {"dequantize", kDequantize},
           {"stats", std::move(stats)}};
 }
+
+namespace {
+int64_t ReadNnz(const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kIndices));
+  return a.ok() ? a->spec().shape.at(0) : 0;
+}
+}  // namespace
 
 uint64_t DirectoryBytes(const std::filesystem::path& dir) {
   uint64_t total = 0;
@@ -71,7 +81,14 @@ nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& s
       arrays[name] = DirectoryBytes(store::Path(store, name));
   }
   const uint64_t raw = uint64_t(ctx.samples.size()) * uint64_t(ctx.plan.columns) * 4;
+  // Bits per kept coefficient of each part of the sparse matrix (issue 7).
+  const double nnz = static_cast<double>(ReadNnz(store));
+  const auto per = [&](const char* name) {
+    return nnz > 0 ? 8.0 * arrays[name].get<double>() / nnz : 0.0;
+  };
   return {{"arrays", arrays},
+          {"bits_per_value", per(store::kData)},
+          {"bits_per_position", per(store::kIndices)},
           {"transport", transport},
           {"raw_float32", raw},
           {"compression_ratio", transport > 0 ? double(raw) / double(transport) : 0.0}};

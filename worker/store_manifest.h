@@ -12,7 +12,7 @@
 namespace wavebake {
 
 struct ManifestBits {
-  int bits = 0;             // what every column is quantized with
+  int bits = 0;             // max-normalized rules: b of every column; uniform auto: the widest
   int bits_needed = 0;      // what --bits auto asks (worker/finalize.cc AutoBits)
   int max_column_bits = 0;  // the largest single column's need
 };

@@ -21,6 +21,8 @@ void StoreStats::Add(const ColumnOutcome& c) {
   ++depth_histogram_.at(c.depth);
   ++depth_by_row_level_.at(row_level).at(c.depth);
   ++bits_needed_histogram_.at(c.min_bits);
+  ++column_bits_histogram_.at(c.bits);
+  max_bits_ = std::max(max_bits_, c.bits);
   ++columns_;
   nnz_ += c.kept;
   dropped_sum_ += c.dropped_energy;
@@ -54,9 +56,12 @@ nlohmann::json StoreStats::ToJson() const {
       {"depth_histogram", depth_histogram_},
       {"depth_by_row_level", depth_by_row_level_},
       {"mean_depth_by_row_level", mean_depth},
-      // How many columns need b bits (index b) for --bits auto on their own;
-      // FINALIZE uses the largest needed.
+      // How many columns need b bits (index b) on their own with max
+      // normalization (the paper's rule).
       {"bits_needed_histogram", bits_needed_histogram_},
+      // How many columns' largest code needs b bits (index b; 0: no codes):
+      // what a per-column bit width would cost with the steps used.
+      {"column_bits_histogram", column_bits_histogram_},
       {"column_error",
        {{"mean", nonzero_columns_ > 0 ? error_sum_ / double(nonzero_columns_) : 0.0},
         {"max", error_max_}}},

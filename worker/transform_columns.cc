@@ -69,7 +69,8 @@ void AppendColumn(const CodedColumn& coded, GroupResult* result) {
   c.energy = coded.energy;
   c.reference_energy = coded.reference_energy;
   c.dropped_energy = coded.dropped_energy;
-  c.quantization_unit = coded.quantization_unit;
+  c.max_abs = coded.max_abs;
+  c.step_unit = coded.step_unit;
   result->columns.push_back(c);
   result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
   result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());

@@ -33,103 +33,131 @@ Column RandomColumn(int n, uint32_t seed) {
   return c;
 }
 
-std::vector<float> RoundTrip(const Column& c, int bits, uint64_t seed, uint64_t column,
-                             QuantizedColumn* qc_out = nullptr) {
-  const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, bits, seed, column);
-  std::vector<float> out(c.values.size());
-  Dequantize(qc.q, c.positions, c.levels, qc.scale, bits, seed, column, out);
-  if (qc_out) *qc_out = qc;
-  return out;
+struct Coded {
+  std::vector<int16_t> q;
+  float step = 0;
+};
+
+// The paper's rule with b bits: the column's largest |v/k| gets code Q_b.
+std::vector<float> RoundTrip(const Column& c, LevelScaling s, int bits, uint64_t seed,
+                             uint64_t column, Coded* out = nullptr) {
+  const int qmax = MaxQuantCode(bits);
+  Coded coded;
+  coded.step = StepForMax(LevelScaledMax(c.values, c.levels, s), qmax);
+  coded.q = Quantize(c.values, c.positions, c.levels, s, coded.step, qmax, seed, column);
+  std::vector<float> v(c.values.size());
+  Dequantize(coded.q, c.positions, c.levels, s, coded.step, seed, column, v);
+  if (out) *out = coded;
+  return v;
 }
 
-TEST(QuantizerTest, ErrorWithinBoundForAllBitDepths) {
+TEST(QuantizerTest, ErrorWithinBoundForAllBitDepthsAndScalings) {
   const Column c = RandomColumn(2000, 1);
-  for (int bits = 2; bits <= 16; ++bits) {
-    QuantizedColumn qc;
-    const std::vector<float> out = RoundTrip(c, bits, 42, 7, &qc);
-    const int qmax = (1 << (bits - 1)) - 1;
-    double worst_ratio = 0;
-    for (size_t i = 0; i < out.size(); ++i) {
-      ASSERT_LE(std::abs(qc.q[i]), qmax);
-      const double err = std::fabs(double(out[i]) - c.values[i]);
-      const double bound = QuantizationBound(qc.scale, c.levels[i], bits);
-      ASSERT_LE(err, bound) << "bits " << bits << " i " << i;
-      // Half a step, independently: scale / (2Q) / 2^l.
-      worst_ratio =
-          std::max(worst_ratio, err / (qc.scale / (2.0 * qmax) / std::ldexp(1.0, c.levels[i])));
+  for (LevelScaling s : {LevelScaling::kPaper, LevelScaling::kUniform}) {
+    for (int bits = 2; bits <= 16; ++bits) {
+      Coded qc;
+      const std::vector<float> out = RoundTrip(c, s, bits, 42, 7, &qc);
+      const int qmax = MaxQuantCode(bits);
+      double worst_ratio = 0;
+      for (size_t i = 0; i < out.size(); ++i) {
+        ASSERT_LE(std::abs(qc.q[i]), qmax);
+        const double err = std::fabs(double(out[i]) - c.values[i]);
+        ASSERT_LE(err, QuantizationBound(qc.step, c.levels[i], s, qmax)) << bits << " " << i;
+        // Half a step, independently: Δ/2 · 2^−l (paper) or Δ/2 (uniform).
+        const double k = s == LevelScaling::kPaper ? std::ldexp(1.0, -c.levels[i]) : 1.0;
+        worst_ratio = std::max(worst_ratio, err / (qc.step * k / 2));
+      }
+      // Dither spreads errors over the whole half step: the bound is nearly met.
+      EXPECT_GT(worst_ratio, 0.9) << "bits " << bits;
     }
-    // Dither spreads errors over the whole half step: the bound is nearly met.
-    EXPECT_GT(worst_ratio, 0.9) << "bits " << bits;
   }
 }
 
-TEST(QuantizerTest, ScaleIsLargestLevelScaledMagnitude) {
+TEST(QuantizerTest, StepReachesTheLargestLevelScaledMagnitude) {
   const Column c = RandomColumn(300, 2);
-  double expected = 0;
+  double paper = 0, uniform = 0;
   for (size_t i = 0; i < c.values.size(); ++i) {
-    expected = std::max(expected, std::fabs(std::ldexp(double(c.values[i]), c.levels[i])));
+    paper = std::max(paper, std::fabs(std::ldexp(double(c.values[i]), c.levels[i])));
+    uniform = std::max(uniform, std::fabs(double(c.values[i])));
   }
-  const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, 9, 1, 1);
-  EXPECT_GE(double(qc.scale), expected);
-  EXPECT_NEAR(qc.scale, expected, 1e-7 * expected);
+  EXPECT_EQ(LevelScaledMax(c.values, c.levels, LevelScaling::kPaper), paper);
+  EXPECT_EQ(LevelScaledMax(c.values, c.levels, LevelScaling::kUniform), uniform);
+  const float step = StepForMax(paper, 255);
+  EXPECT_GE(double(step) * 255, paper);
+  EXPECT_LT(double(std::nextafter(step, 0.0f)) * 255, paper);  // the smallest such float
 }
 
 TEST(QuantizerTest, SubtractiveDitherErrorIsUniformAndUnbiased) {
   // A constant input sits at the same spot between two levels for every
   // coefficient; without dither every error would be equal. With subtractive
   // dither the error is uniform on ±½ step: mean 0, variance step²/12.
-  const int n = 20000, bits = 6, qmax = (1 << (bits - 1)) - 1;
+  const int n = 20000;
+  const float step = 1.0f / 31;
   Column c;
   for (int i = 0; i < n; ++i) {
-    c.values.push_back(i == 0 ? 1.0f : 0.3137f);  // first one fixes scale = 1
+    c.values.push_back(0.3137f);
     c.positions.push_back(static_cast<uint32_t>(i));
-    c.levels.push_back(0);
+    c.levels.push_back(3);  // uniform: the level does not change the step
   }
-  const std::vector<float> out = RoundTrip(c, bits, 5, 11);
-  const double step = 1.0 / qmax;
+  const auto s = LevelScaling::kUniform;
+  const std::vector<int16_t> q = Quantize(c.values, c.positions, c.levels, s, step, 31, 5, 11);
+  std::vector<float> out(n);
+  Dequantize(q, c.positions, c.levels, s, step, 5, 11, out);
   double mean = 0, var = 0;
-  for (int i = 1; i < n; ++i) mean += (out[i] - c.values[i]) / step;
-  mean /= n - 1;
-  for (int i = 1; i < n; ++i) var += std::pow((out[i] - c.values[i]) / step - mean, 2);
-  var /= n - 2;
+  for (int i = 0; i < n; ++i) mean += (out[i] - c.values[i]) / step;
+  mean /= n;
+  for (int i = 0; i < n; ++i) var += std::pow((out[i] - c.values[i]) / step - mean, 2);
+  var /= n - 1;
   EXPECT_NEAR(mean, 0.0, 0.01);       // σ/√n ≈ 0.002
   EXPECT_NEAR(var, 1.0 / 12, 0.004);  // 1/12 ≈ 0.0833
 }
 
-TEST(QuantizerTest, ZeroAndEmptyColumns) {
+TEST(QuantizerTest, ZeroStepDecodesToZero) {
   Column zero{{0, 0, 0}, {1, 2, 3}, {0, 2, 5}};
-  QuantizedColumn qc;
-  const std::vector<float> out = RoundTrip(zero, 8, 1, 2, &qc);
-  EXPECT_EQ(qc.scale, 0.0f);
+  Coded qc;
+  const std::vector<float> out = RoundTrip(zero, LevelScaling::kPaper, 8, 1, 2, &qc);
+  EXPECT_EQ(qc.step, 0.0f);
   for (size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(qc.q[i], 0);
     EXPECT_EQ(out[i], 0.0f);
   }
-  const QuantizedColumn empty = Quantize({}, {}, {}, 8, 1, 2);
-  EXPECT_TRUE(empty.q.empty());
-  EXPECT_EQ(empty.scale, 0.0f);
+  EXPECT_TRUE(Quantize({}, {}, {}, LevelScaling::kUniform, 1.0f, 127, 1, 2).empty());
 }
 
 TEST(QuantizerTest, ExtremesMapToFullScaleCodes) {
-  // ±scale has y = ±1: y·Q + u ∈ [Q − ½, Q + ½) rounds (half away from zero)
-  // to Q, and −Q + u ∈ [−Q − ½, −Q + ½) to −Q (−Q − 1 at u = −½ is clamped).
-  Column c{{1.0f, -0.5f, 0.25f}, {0, 1, 2}, {0, 1, 2}};  // all scale to ±1 after 2^l
+  // ±max has y = ±Q: Q + u ∈ [Q − ½, Q + ½) rounds (half away from zero) to
+  // Q, and −Q + u ∈ [−Q − ½, −Q + ½) to −Q (−Q − 1 at u = −½ is clamped).
+  Column c{{1.0f, -0.5f, 0.25f}, {0, 1, 2}, {0, 1, 2}};  // all ±1 after 2^l (paper)
   for (int bits = 2; bits <= 16; ++bits) {
-    const int qmax = (1 << (bits - 1)) - 1;
-    const QuantizedColumn qc = Quantize(c.values, c.positions, c.levels, bits, 3, 4);
-    EXPECT_EQ(qc.scale, 1.0f);
+    const int qmax = MaxQuantCode(bits);
+    Coded qc;
+    RoundTrip(c, LevelScaling::kPaper, bits, 3, 4, &qc);
     EXPECT_EQ(qc.q[0], qmax);
     EXPECT_EQ(qc.q[1], -qmax);
     EXPECT_EQ(qc.q[2], qmax);
   }
 }
 
+TEST(QuantizerTest, CodesAreClampedToTheLargestCode) {
+  // A step too fine for int16 must not wrap: codes saturate at ±max_code.
+  Column c{{1.0f, -1.0f}, {0, 1}, {0, 0}};
+  const auto q = Quantize(c.values, c.positions, c.levels, LevelScaling::kUniform, 1e-6f,
+                          kMaxStoredCode, 1, 1);
+  EXPECT_EQ(q[0], kMaxStoredCode);
+  EXPECT_EQ(q[1], -kMaxStoredCode);
+  EXPECT_EQ(BitsForCode(kMaxStoredCode), 16);
+  EXPECT_EQ(BitsForCode(1), 2);
+  EXPECT_EQ(BitsForCode(4), 4);  // 100b plus sign
+}
+
 TEST(QuantizerTest, DeterministicForSeedAndColumn) {
   const Column c = RandomColumn(500, 3);
-  const QuantizedColumn a = Quantize(c.values, c.positions, c.levels, 10, 99, 5);
-  const QuantizedColumn b = Quantize(c.values, c.positions, c.levels, 10, 99, 5);
+  const auto s = LevelScaling::kPaper;
+  Coded a, b, other;
+  RoundTrip(c, s, 10, 99, 5, &a);
+  RoundTrip(c, s, 10, 99, 5, &b);
   EXPECT_EQ(a.q, b.q);
-  const QuantizedColumn other = Quantize(c.values, c.positions, c.levels, 10, 100, 5);
+  RoundTrip(c, s, 10, 100, 5, &other);
   EXPECT_NE(a.q, other.q);
 }
 

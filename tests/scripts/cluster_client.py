@@ -53,7 +53,7 @@ for path, data in files.items():
         f.write(data)
 
 store = zarr.open(out, mode="r")
-assert store.attrs["format"] == "wavebake/1", dict(store.attrs)
+assert store.attrs["format"] == "wavebake/2", dict(store.attrs)
 indptr = store["transport/indptr"][:]
 columns = 6 * 8 * 8
 assert indptr.shape == (columns + 1,) and indptr[0] == 0 and np.all(np.diff(indptr) >= 0)

@@ -50,8 +50,8 @@ const std::vector<HandColumn>& Columns() {
 
 float Expected(const HandColumn& c, size_t k) {
   const double u = DitherAt(kSeed, c.column, c.positions[k]);
-  const double qmax = (1 << (kBits - 1)) - 1;
-  return static_cast<float>((c.q[k] - u) / qmax * c.scale / std::pow(2.0, c.levels[k]));
+  // wavebake/2 with level scaling "paper": (q − u)·step·2^−l, `scale` the step.
+  return static_cast<float>((c.q[k] - u) * c.scale / std::pow(2.0, c.levels[k]));
 }
 
 nlohmann::json Attrs() {
@@ -59,6 +59,7 @@ nlohmann::json Attrs() {
   p.light_res = kN;
   p.seed = kSeed;
   p.bits = kBits;
+  p.level_scaling = LevelScaling::kPaper;
   p.layout = "camera:4x4";
   return {{"format", store::kFormat},
           {"scene", "builtin:furnace"},
@@ -169,7 +170,7 @@ TEST(StoreReaderTest, ErrorsNameTheProblem) {
   EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(s.message(), HasSubstr("format"));
   EXPECT_THAT(s.message(), HasSubstr("wavebake/0"));
-  EXPECT_THAT(s.message(), HasSubstr("wavebake/1"));
+  EXPECT_THAT(s.message(), HasSubstr("wavebake/2"));
 
   attrs = Attrs();
   attrs["params"]["column_filter"] = "db8";

@@ -113,7 +113,7 @@ void ExpectWithinTargetPlusQuantization(const BakeParams& p) {
     for (int64_t k = t->indptr[m]; k < t->indptr[m + 1]; ++k) {
       const uint32_t pos = t->indices[k];
       const int level = SubbandAt(pos % kW, pos / kW, kW, kH, t->depth[m]).level;
-      quant2 += std::pow(QuantizationBound(scales[m], level, info->bits), 2);
+      quant2 += std::pow(QuantizationBound(scales[m], level, p.level_scaling), 2);
     }
     const double reference = p.error_scope == ErrorScope::kColumn ? energy : matrix_energy;
     const double bound = std::sqrt(p.target_error * p.target_error * reference + quant2);
@@ -125,16 +125,20 @@ void ExpectWithinTargetPlusQuantization(const BakeParams& p) {
 }
 
 TEST(FinalizeTest, ReconstructsWithinTargetPlusQuantizationMatrixScope) {
-  for (double target : {0.003, 0.03}) {
-    BakeParams p = SmallJob();
-    p.target_error = target;
-    ExpectWithinTargetPlusQuantization(p);
+  for (LevelScaling s : {LevelScaling::kUniform, LevelScaling::kPaper}) {
+    for (double target : {0.003, 0.03}) {
+      BakeParams p = SmallJob();
+      p.target_error = target;
+      p.level_scaling = s;
+      ExpectWithinTargetPlusQuantization(p);
+    }
   }
 }
 
 TEST(FinalizeTest, ReconstructsWithinTargetPlusQuantizationColumnScope) {
   BakeParams p = SmallJob();
   p.error_scope = ErrorScope::kColumn;
+  ExpectWithinTargetPlusQuantization(p);  // uniform auto: each column's own step
   p.bits = 10;
   ExpectWithinTargetPlusQuantization(p);
 }
@@ -159,8 +163,10 @@ TEST(FinalizeTest, BiorthogonalFiltersReconstructWhenEverythingIsKept) {
       for (int i = 0; i < kW * kH; ++i) err2 += std::pow(double(recon[i]) - staged[i], 2);
       for (int64_t k = t->indptr[m]; k < t->indptr[m + 1]; ++k) {
         const uint32_t pos = t->indices[k];
-        quant2 += std::pow(
-            QuantizationBound(scales[m], SubbandAt(pos % kW, pos / kW, kW, kH, 5).level, 16), 2);
+        quant2 +=
+            std::pow(QuantizationBound(scales[m], SubbandAt(pos % kW, pos / kW, kW, kH, 5).level,
+                                       p.level_scaling, MaxQuantCode(16)),
+                     2);
       }
       EXPECT_EQ(t->depth[m], 5);
       EXPECT_LE(std::sqrt(err2), 4 * std::sqrt(quant2) + 1e-6)
@@ -169,9 +175,10 @@ TEST(FinalizeTest, BiorthogonalFiltersReconstructWhenEverythingIsKept) {
   }
 }
 
-// Σ_i (Δ_b 2^−l_i)²/12 of one coded column per unit Δ² (the expected
-// subtractive-dither error energy), recomputed here from the kept
-// coefficients in staging, one entry per column in column order.
+// The paper's rule (--level-scaling paper): Δ_b = max_i |v_i·2^l_i| / Q_b and
+// the expected subtractive-dither error energy Σ_i (Δ_b 2^−l_i)²/12, here
+// per unit 1/Q_b², recomputed from the kept coefficients in staging, one
+// entry per column in column order.
 std::vector<double> DitherUnits(const Baked& b) {
   std::vector<double> units;
   for (int g = 0; g < b.ctx->plan.groups; ++g) {
@@ -208,6 +215,7 @@ double ExpectedDitherEnergy(double unit, int bits) {
 TEST(FinalizeTest, BitsAutoIsTheFewestMeetingHalfTheMatrixTarget) {
   BakeParams p = SmallJob();
   p.target_error = 0.01;
+  p.level_scaling = LevelScaling::kPaper;
   auto b = Bake(p, /*keep_staging=*/true);
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
   ASSERT_TRUE(info.ok()) << info.status();
@@ -231,6 +239,7 @@ TEST(FinalizeTest, BitsAutoColumnScopeMeetsEveryColumn) {
   BakeParams p = SmallJob();
   p.target_error = 0.01;
   p.error_scope = ErrorScope::kColumn;
+  p.level_scaling = LevelScaling::kPaper;
   auto b = Bake(p, /*keep_staging=*/true);
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
   ASSERT_TRUE(info.ok()) << info.status();
@@ -249,6 +258,49 @@ TEST(FinalizeTest, BitsAutoColumnScopeMeetsEveryColumn) {
   EXPECT_TRUE(tight) << bits << " bits is more than the column scope needs";
 }
 
+// --bits auto, uniform scaling (the default): one matrix-wide step Δ whose
+// expected dither energy Σ n_c·Δ²/12 uses the quantization half budget
+// (t/2)²·Σ E_ref. Checked on the decoded store against the unquantized kept
+// values left in staging (Haar: every weight is 1), not on FINALIZE's own
+// bookkeeping. The achieved energy is a sum of n independent (uniform
+// error)² terms of variance Δ⁴/180 each, so it lands within a few σ of the
+// budget: neither over it nor far under it (an unspent budget is wasted bits).
+TEST(FinalizeTest, UniformStepSpendsTheQuantizationHalfBudget) {
+  BakeParams p = SmallJob();
+  p.target_error = 0.01;
+  auto b = Bake(p, /*keep_staging=*/true);
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  absl::StatusOr<CompressedColumns> t = ReadTransport(b->store);
+  ASSERT_TRUE(t.ok()) << t.status();
+  const std::vector<float> scales = ReadScales(b->store);
+  const double step = info->attrs["stats"]["quantization"]["step"].get<double>();
+  ASSERT_GT(step, 0);
+  EXPECT_EQ(info->attrs["stats"]["quantization"]["overflow_columns"], 0);
+  double achieved = 0, variance = 0;
+  int64_t k = 0;
+  for (int g = 0; g < b->ctx->plan.groups; ++g) {
+    absl::StatusOr<GroupResult> r = ReadGroupResult(b->store, g);
+    ASSERT_TRUE(r.ok()) << r.status();
+    for (size_t i = 0; i < r->values.size(); ++i, ++k) {
+      ASSERT_EQ(t->indices[k], r->positions[i]);
+      achieved += std::pow(double(t->values[k]) - r->values[i], 2);
+      variance += std::pow(step, 4) / 180;
+    }
+  }
+  ASSERT_EQ(k, t->indptr.back());
+  for (int m = 0; m < kColumns; ++m) {
+    if (t->indptr[m + 1] > t->indptr[m]) {
+      EXPECT_EQ(scales[m], float(step)) << "column " << m;
+    }
+  }
+  const double budget = 0.25 * p.target_error * p.target_error * MatrixEnergy() * kColumns;
+  EXPECT_LE(achieved, budget + 5 * std::sqrt(variance));
+  EXPECT_GE(achieved, budget - 5 * std::sqrt(variance));
+  std::cout << "uniform step " << step << ": achieved/budget " << achieved / budget << " (σ "
+            << std::sqrt(variance) / budget << ")\n";
+}
+
 TEST(FinalizeTest, ManifestAndStatsAddUp) {
   BakeParams p = SmallJob();
   p.target_error = 0.01;
@@ -256,7 +308,8 @@ TEST(FinalizeTest, ManifestAndStatsAddUp) {
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);
   ASSERT_TRUE(info.ok()) << info.status();
   const nlohmann::json& a = info->attrs;
-  EXPECT_EQ(a["format"], "wavebake/1");
+  EXPECT_EQ(a["format"], "wavebake/2");
+  EXPECT_EQ(a["level_scaling"], "uniform");
   EXPECT_EQ(info->scene_spec, "builtin:furnace");
   EXPECT_EQ(info->scene_hash, b->ctx->scene_hash);
   EXPECT_EQ(info->width, kW);

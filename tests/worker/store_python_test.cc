@@ -8,6 +8,8 @@
 
 #include <fstream>
 
+#include "absl/strings/str_cat.h"
+#include "core/bake_params_io.h"
 #include "storage/store_reader.h"
 #include "tests/worker/column_test_support.h"
 #include "worker/finalize.h"
@@ -26,7 +28,8 @@ constexpr char kCheckStore[] = R"PY(
 import numpy as np, numcodecs, scipy.sparse, zarr
 root = zarr.open('out.wbk', mode='r')
 a = root.attrs.asdict()
-assert a['format'] == 'wavebake/1', a['format']
+assert a['format'] == 'wavebake/2', a['format']
+assert a['level_scaling'] == a['params']['level_scaling'] == SCALING, a['level_scaling']
 W, H, N, M, bits, seed = a['W'], a['H'], a['N'], a['M'], a['bits'], a['params']['seed']
 S = a['S']
 assert M == 6 * N * N
@@ -46,7 +49,7 @@ for name, (dtype, shape) in expected.items():
     if shape is not None:
         assert z.shape == shape, (name, z.shape, shape)
     arrays[name] = z[...]
-assert [f.codec_id for f in root['transport/indices'].filters] == ['delta']
+assert [f.codec_id for f in root['transport/indices'].filters] == ['delta', 'shuffle']
 t = root['transport']
 assert t.attrs['encoding-type'] == 'csc_matrix' and t.attrs['encoding-version'] == '0.1.0'
 assert list(t.attrs['shape']) == [W * H, M]
@@ -82,7 +85,7 @@ def levels(positions, d):
     bl[nz] = np.floor(np.log2(m[nz])).astype(np.int64) + 1
     return np.maximum(0, bl - (log2w - d) - 1)
 
-qmax = float(2 ** (bits - 1) - 1)
+s = 1 if a['level_scaling'] == 'paper' else 0
 ours = np.fromfile('values.f32', dtype='<f4')
 assert ours.size == data.size, (ours.size, data.size)
 with np.errstate(over='ignore'):
@@ -91,14 +94,16 @@ with np.errstate(over='ignore'):
         pos = indices[b:e]
         u = dither(m, pos).astype(np.float64)
         l = levels(pos, int(depth[m]))
-        v = ((data[b:e].astype(np.float64) - u) / qmax * np.float64(scale[m]) * 2.0 ** -l)
+        v = (data[b:e].astype(np.float64) - u) * np.float64(scale[m]) * 2.0 ** (-s * l)
         v = v.astype(np.float32) if scale[m] != 0 else np.zeros(e - b, np.float32)
         bad = np.flatnonzero(v.view('<u4') != ours[b:e].view('<u4'))
         assert bad.size == 0, ('column', m, 'first bad', bad[:1], v[bad[:1]], ours[b:e][bad[:1]])
 print('python rebuilt', M, 'columns,', data.size, 'values bit-exact')
 )PY";
 
-TEST(StorePythonTest, ZarrOpensEveryArrayAndNumpyRebuildsEveryColumnBitExact) {
+class StorePythonTest : public ::testing::TestWithParam<LevelScaling> {};
+
+TEST_P(StorePythonTest, ZarrOpensEveryArrayAndNumpyRebuildsEveryColumnBitExact) {
   ScratchDir dir;
   const auto store = dir.path() / "out.wbk";
   BakeParams p;
@@ -107,6 +112,7 @@ TEST(StorePythonTest, ZarrOpensEveryArrayAndNumpyRebuildsEveryColumnBitExact) {
   p.tile_size = 16;
   p.column_group = 100;
   p.seed = 0xDEADBEEFCAFEull;  // high bits set: the uint64 arithmetic must wrap alike
+  p.level_scaling = GetParam();
   auto ctx = MakeContext(p);
   WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(32, 32));
   TransformAll(*ctx, store);
@@ -119,11 +125,16 @@ TEST(StorePythonTest, ZarrOpensEveryArrayAndNumpyRebuildsEveryColumnBitExact) {
     out.write(reinterpret_cast<const char*>(t->values.data()),
               static_cast<std::streamsize>(t->values.size() * sizeof(float)));
   }
-  const column_testing::ProcessResult r = RunPython(dir.path(), kCheckStore);
+  const std::string script =
+      absl::StrCat("SCALING = '", std::string(ToString(GetParam())), "'\n", kCheckStore);
+  const column_testing::ProcessResult r = RunPython(dir.path(), script);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, ::testing::HasSubstr("python rebuilt 384 columns")) << r.output;
   std::cout << r.output;
 }
+
+INSTANTIATE_TEST_SUITE_P(Scalings, StorePythonTest,
+                         ::testing::Values(LevelScaling::kUniform, LevelScaling::kPaper));
 
 }  // namespace
 }  // namespace wavebake
