@@ -32,45 +32,57 @@ def scenes_of(rows):
     return seen
 
 
+# Chart 1's panels, top to bottom: (x column, y column, y scale, x label, y label).
+SIZE_PANELS = [
+    ("matrix_rel_rms", "transport_bytes", 1e3, "relative RMS error of T (stats.matrix_rel_rms)",
+     "transport bytes on disk (kB)"),
+    ("matrix_rel_rms", "nnz", 1e3, "relative RMS error of T (stats.matrix_rel_rms)",
+     "kept coefficients (thousands)"),
+    ("grace_rel_rms", "transport_bytes", 1e3,
+     "relit error under grace.hdr, all lights, vs the dense T", "transport bytes on disk (kB)"),
+    ("pisa_rel_rms", "transport_bytes", 1e3,
+     "relit error under pisa.hdr, all lights, vs the dense T", "transport bytes on disk (kB)"),
+]
+
+
 def size_error(rows, out):
-    """Chart 1 (4D paper Fig. 7): bytes and kept coefficients vs matrix error."""
+    """Chart 1 (4D paper Fig. 7): bytes and kept coefficients vs matrix error,
+    and bytes vs the relighting error under each probe."""
     scenes = scenes_of(rows)
-    fig, axes = plt.subplots(2, len(scenes), figsize=(5 * len(scenes), 8), squeeze=False)
+    panels = [p for p in SIZE_PANELS if p[0] in rows[0]]
+    fig, axes = plt.subplots(len(panels), len(scenes), figsize=(5 * len(scenes), 4 * len(panels)),
+                             squeeze=False)
     for col, scene in enumerate(scenes):
         for mode, color in MODE_COLORS.items():
             for filt, style in FILTER_STYLES.items():
                 # coding: uniform step (default) or the paper's 2^l scaling
                 # (issue 7 baseline, adaptive / haar only, drawn dotted).
                 for coding in ("uniform", "paper"):
-                    pts = sorted(
-                        (float(r["matrix_rel_rms"]), int(r["transport_bytes"]), int(r["nnz"]))
-                        for r in rows
-                        if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt
-                        and r.get("coding", "uniform") == coding
-                    )
-                    if not pts:
+                    sel = [r for r in rows
+                           if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt
+                           and r.get("coding", "uniform") == coding]
+                    if not sel:
                         continue
-                    err = [p[0] for p in pts]
                     label = f"{mode} / {filt}" + (" / paper 2^l coding" if coding == "paper" else "")
                     ls = ":" if coding == "paper" else style
                     mk = "x" if coding == "paper" else "o"
-                    axes[0][col].plot(err, [p[1] / 1e3 for p in pts], ls, color=color,
-                                      marker=mk, label=label)
-                    if coding == "uniform":  # same coefficients either way
-                        axes[1][col].plot(err, [p[2] / 1e3 for p in pts], ls, color=color,
-                                          marker=mk, label=label)
+                    for row, (xk, yk, scale, _, _) in enumerate(panels):
+                        if yk == "nnz" and coding == "paper":
+                            continue  # same coefficients either way
+                        pts = sorted((float(r[xk]), float(r[yk]) / scale) for r in sel)
+                        axes[row][col].plot([p[0] for p in pts], [p[1] for p in pts], ls,
+                                            color=color, marker=mk, label=label)
         raw = next(int(r["raw_bytes"]) for r in rows if r["scene"] == scene)
         axes[0][col].set_title(f"{scene}  (dense float32 T: {raw / 1e6:.1f} MB)")
-        axes[0][col].set_ylabel("transport bytes on disk (kB)")
-        axes[1][col].set_ylabel("kept coefficients (thousands)")
-        for row in (0, 1):
+        for row, (_, _, _, xlabel, ylabel) in enumerate(panels):
             ax = axes[row][col]
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlabel("relative RMS error of T (stats.matrix_rel_rms)")
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(ylabel)
             ax.grid(True, which="both", alpha=0.3)
         axes[0][col].legend(fontsize=8)
-    fig.suptitle("Store size vs matrix error: column modes x column filters (bits auto, "
+    fig.suptitle("Store size vs error: column modes x column filters (bits auto, "
                  "uniform step; dotted: adaptive with the paper's 2^l coding)")
     fig.tight_layout()
     fig.savefig(out, dpi=90)
