@@ -84,32 +84,40 @@ def size_error(rows, out):
         axes[0][col].legend(fontsize=8)
     fig.suptitle("Store size vs error: column modes x column filters (bits auto, "
                  "uniform step; dotted: adaptive with the paper's 2^l coding)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.98))
     fig.savefig(out, dpi=90)
 
 
 def bits_error(rows, out):
-    """Chart 5: matrix error and bytes vs fixed quantization bits."""
+    """Chart 5: matrix error vs fixed quantization bits, and bytes vs error
+    for fixed bits (curve) against bits auto, the uniform step (star)."""
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.5))
     for mode, color in MODE_COLORS.items():
         pts = sorted((int(r["bits"]), float(r["matrix_rel_rms"]), int(r["transport_bytes"]))
-                     for r in rows if r["mode"] == mode)
+                     for r in rows if r["mode"] == mode and int(r["bits"]) > 0)
         if not pts:
             continue
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "-o", color=color, label=mode)
-        bx.plot([p[0] for p in pts], [p[2] / 1e3 for p in pts], "-o", color=color, label=mode)
+        bx.plot([p[1] for p in pts], [p[2] / 1e3 for p in pts], "-o", color=color,
+                label=f"{mode}, fixed bits {pts[0][0]}..{pts[-1][0]}")
+        for r in rows:
+            if r["mode"] == mode and int(r["bits"]) == 0:
+                bx.plot(float(r["matrix_rel_rms"]), int(r["transport_bytes"]) / 1e3, "*",
+                        color=color, markersize=14, markeredgecolor="black",
+                        label=f"{mode}, bits auto (uniform step)")
     target = float(rows[0]["target"])
     ax.axhline(target, color="gray", ls=":", label=f"target {target}")
     ax.set_yscale("log")
-    ax.set_xlabel("quantization bits")
+    ax.set_xlabel("quantization bits (fixed)")
     ax.set_ylabel("relative RMS error of T")
     ax.set_title(f"{rows[0]['scene']}: error vs bits (selection at target {target})")
-    bx.set_xlabel("quantization bits")
+    bx.set_xscale("log")
+    bx.set_xlabel("relative RMS error of T")
     bx.set_ylabel("transport bytes on disk (kB)")
-    bx.set_title("bytes vs bits")
+    bx.set_title("bytes vs error: fixed bits against bits auto")
     for a in (ax, bx):
         a.grid(True, which="both", alpha=0.3)
-        a.legend()
+        a.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
