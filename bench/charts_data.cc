@@ -333,7 +333,7 @@ void Run(const RunConfig& run) {
     std::filesystem::remove_all(staged.store);
   }
   // The bunny under grace.hdr: a mesh layout under a probe with small,
-  // very bright sources, where N matters (docs/results_auto.md).
+  // very bright sources, where N matters (docs/RESULTS.md, chart 2).
   SweepLightRes(ChartScenes()[1], std::string(WB_SHARED_DATA) + "/probes/grace.hdr", run, res_csv);
   std::fprintf(stderr, "bench_charts_data: done in %.0f s\n", SecondsSince(start));
 }
