@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "bench/chart_util.h"
 #include "cli/reference_measure.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
@@ -49,24 +50,11 @@
 namespace wavebake {
 namespace {
 
-[[noreturn]] void Die(const std::string& what) {
-  std::fprintf(stderr, "bench_charts_data: %s\n", what.c_str());
-  std::exit(1);
-}
-
-void Check(const absl::Status& s) {
-  if (!s.ok()) Die(s.ToString());
-}
-
-template <typename T>
-T Value(absl::StatusOr<T> v) {
-  if (!v.ok()) Die(v.status().ToString());
-  return *std::move(v);
-}
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using charts::Check;
+using charts::Csv;
+using charts::Die;
+using charts::SecondsSince;
+using charts::Value;
 
 struct SceneCase {
   std::string name;    // short label for the CSVs
@@ -183,26 +171,6 @@ std::vector<double> ProbeErrors(const Staged& staged, const std::vector<ProbeCas
         CompareToReference(Value(RelightImage(store, p.env, all_lights)), p.dense).rel_rms);
   return errors;
 }
-
-// CSV writer: a header, then rows of already formatted fields.
-class Csv {
- public:
-  Csv(const std::filesystem::path& path, const std::string& header) : out_(path), path_(path) {
-    if (!out_) Die("cannot write " + path.string());
-    out_ << header << '\n';
-  }
-  template <typename... Fields>
-  void Row(const Fields&... fields) {
-    const char* sep = "";
-    ((out_ << sep << fields, sep = ","), ...);
-    out_ << '\n';
-    out_.flush();
-  }
-
- private:
-  std::ofstream out_;
-  std::filesystem::path path_;
-};
 
 std::string Name(ColumnMode m) { return std::string(ToString(m)); }
 std::string Name(WaveletFilter f) { return std::string(ToString(f)); }
@@ -342,6 +310,7 @@ void Run(const RunConfig& run) {
 }  // namespace wavebake
 
 int main(int argc, char** argv) {
+  wavebake::charts::program = "bench_charts_data";
   wavebake::RunConfig run;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

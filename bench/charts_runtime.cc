@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "bench/chart_util.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
 #include "runtime/env_map.h"
@@ -46,16 +47,9 @@
 namespace wavebake {
 namespace {
 
-[[noreturn]] void Die(const std::string& what) {
-  std::fprintf(stderr, "bench_charts_runtime: %s\n", what.c_str());
-  std::exit(1);
-}
-
-template <typename T>
-T Value(absl::StatusOr<T> v) {
-  if (!v.ok()) Die(v.status().ToString());
-  return *std::move(v);
-}
+using charts::Csv;
+using charts::Die;
+using charts::Value;
 
 double ThreadSeconds() {
   timespec ts;
@@ -101,25 +95,6 @@ Store BakeStore(ColumnMode mode, const RunConfig& run) {
                static_cast<long long>(summary.nnz), s.matrix_rel_rms);
   return s;
 }
-
-// CSV writer: a header, then rows of already formatted fields.
-class Csv {
- public:
-  Csv(const std::filesystem::path& path, const std::string& header) : out_(path) {
-    if (!out_) Die("cannot write " + path.string());
-    out_ << header << '\n';
-  }
-  template <typename... Fields>
-  void Row(const Fields&... fields) {
-    const char* sep = "";
-    ((out_ << sep << fields, sep = ","), ...);
-    out_ << '\n';
-    out_.flush();
-  }
-
- private:
-  std::ofstream out_;
-};
 
 EnvMap Grace() { return Value(LoadEnvMap(std::string(WB_SHARED_DATA) + "/probes/grace.hdr")); }
 
@@ -283,6 +258,7 @@ void Run(const RunConfig& run) {
 }  // namespace wavebake
 
 int main(int argc, char** argv) {
+  wavebake::charts::program = "bench_charts_runtime";
   wavebake::RunConfig run;
   const char* usage = "usage: bench_charts_runtime OUT_DIR [--quick] [--threads T]";
   for (int i = 1; i < argc; ++i) {

@@ -1,7 +1,5 @@
 #include "cli/auto_bake.h"
 
-#include <stdlib.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdarg>
@@ -13,6 +11,7 @@
 #include "cli/embedded_bake.h"
 #include "cli/job_watch.h"
 #include "cli/reference_measure.h"
+#include "storage/scoped_dir.h"
 #include "storage/zarr_group.h"
 #include "worker/publish_store.h"
 
@@ -24,32 +23,6 @@ using Clock = std::chrono::steady_clock;
 double SecondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// The candidates' directory, beside the output so the chosen store moves
-// there by rename; removed with everything in it.
-class ScratchDir {
- public:
-  static absl::StatusOr<std::unique_ptr<ScratchDir>> Beside(const std::filesystem::path& out) {
-    const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
-    std::string pattern =
-        (parent / absl::StrCat(".", out.filename().string(), ".auto-XXXXXX")).string();
-    if (!::mkdtemp(pattern.data()))
-      return absl::InvalidArgumentError(
-          absl::StrCat("out: cannot create a directory in ", parent.string()));
-    return std::unique_ptr<ScratchDir>(new ScratchDir(pattern));
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  explicit ScratchDir(std::filesystem::path path) : path_(std::move(path)) {}
-  std::filesystem::path path_;
-};
 
 int64_t DirectoryBytes(const std::filesystem::path& dir) {
   int64_t bytes = 0;
@@ -196,7 +169,8 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
   absl::StatusOr<std::unique_ptr<ReferenceMeasure>> measurer = MakeMeasure(scene, base, options);
   if (!measurer.ok()) return measurer.status();
-  absl::StatusOr<std::unique_ptr<ScratchDir>> dir = ScratchDir::Beside(out);
+  // The candidates, beside the output so the chosen store moves by rename.
+  absl::StatusOr<ScopedDir> dir = ScopedDir::CreateBeside(out, "auto");
   if (!dir.ok()) return dir.status();
 
   AutoBakeReport report;
@@ -204,7 +178,7 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
   report.reference_rel_se = (*measurer)->reference().rel_se;
   report.reference_seconds = (*measurer)->reference().seconds;
   std::filesystem::path chosen;
-  if (absl::Status s = Search(scene, base, **measurer, (*dir)->path(), options, report, &chosen);
+  if (absl::Status s = Search(scene, base, **measurer, dir->path(), options, report, &chosen);
       !s.ok())
     return s;
   report.seconds = SecondsSince(t0);

@@ -1,7 +1,6 @@
 #include "cli/embedded_bake.h"
 
 #include <spdlog/spdlog.h>
-#include <stdlib.h>
 
 #include <map>
 #include <memory>
@@ -17,6 +16,7 @@
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
 #include "proto/bake_request.h"
+#include "storage/scoped_dir.h"
 #include "worker/publish_store.h"
 #include "worker/worker_loop.h"
 
@@ -25,32 +25,6 @@ namespace {
 
 // The store's name inside the temporary store root (any valid output_name).
 constexpr char kStoreName[] = "bake.wbk";
-
-// The coordinator's data directory: created beside the output (so the store
-// moves to it by rename), removed with everything in it.
-class DataDir {
- public:
-  static absl::StatusOr<std::unique_ptr<DataDir>> Beside(const std::filesystem::path& out) {
-    const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
-    std::string pattern =
-        (parent / absl::StrCat(".", out.filename().string(), ".bake-XXXXXX")).string();
-    if (!::mkdtemp(pattern.data()))
-      return absl::InvalidArgumentError(
-          absl::StrCat("out: cannot create a directory in ", parent.string()));
-    return std::make_unique<DataDir>(pattern);
-  }
-  explicit DataDir(std::filesystem::path path) : path_(std::move(path)) {}
-  DataDir(const DataDir&) = delete;
-  DataDir& operator=(const DataDir&) = delete;
-  ~DataDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // The worker loops, each on its own thread, drained and joined on destruction.
 class Workers {
@@ -138,19 +112,21 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
     if (!file.ok()) return file.status();
     local_scenes[file->sha256] = scene;
   }
-  absl::StatusOr<std::unique_ptr<DataDir>> data = DataDir::Beside(out);
+  // The coordinator's data directory, beside the output so the store moves
+  // to it by rename.
+  absl::StatusOr<ScopedDir> data = ScopedDir::CreateBeside(out, "bake");
   if (!data.ok()) return data.status();
-  const std::filesystem::path store_root = (*data)->path() / "store";
+  const std::filesystem::path store_root = data->path() / "store";
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
       {.listen_address = "",  // in-process only
-       .data_dir = (*data)->path(),
+       .data_dir = data->path(),
        .store_root = store_root,
        // One process: excluding one of its loops for failing tasks helps
        // nobody; max_attempts still fails a job that fails everywhere.
        .worker_failure_limit = 1 << 30,
        .wait_ms = 10},  // idle workers ask again soon: a phase's last task is not a wait
       MakeJobPlanner(
-          {.data_dir = (*data)->path(), .store_root = store_root, .local_scenes = local_scenes}),
+          {.data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes}),
       MakeJobCleanup(store_root));
   if (!coordinator.ok()) return coordinator.status();
   const Client client((*coordinator)->InProcessChannel(), "");

@@ -1,35 +1,17 @@
 #include "cli/store_fetch.h"
 
-#include <stdlib.h>
-
 #include <fstream>
 #include <optional>
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
+#include "storage/scoped_dir.h"
 #include "storage/store_reader.h"
 #include "storage/zarr_array.h"
 
 namespace wavebake::cli {
 namespace {
-
-// Removes the temporary directory unless it was renamed into place.
-class TempDir {
- public:
-  explicit TempDir(std::filesystem::path path) : path_(std::move(path)) {}
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir() {
-    std::error_code ec;
-    if (!path_.empty()) std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-  void Release() { path_.clear(); }
-
- private:
-  std::filesystem::path path_;
-};
 
 // A relative path inside the store: no root, no "..", no empty name.
 bool SafeRelative(const std::string& path) {
@@ -120,15 +102,11 @@ absl::StatusOr<FetchSummary> FetchStore(const Client& client, const std::string&
   if (!std::filesystem::is_directory(parent, ec))
     return absl::InvalidArgumentError(
         absl::StrCat("--out: directory ", parent.string(), " does not exist"));
-  std::string pattern =
-      (parent / absl::StrCat(".", out.filename().string(), ".fetch-XXXXXX")).string();
-  if (!::mkdtemp(pattern.data()))
-    return absl::InternalError(
-        absl::StrCat("--out: cannot create a directory in ", parent.string()));
-  TempDir temp(pattern);
+  absl::StatusOr<ScopedDir> temp = ScopedDir::CreateBeside(out, "fetch");
+  if (!temp.ok()) return temp.status();
   // mkdtemp makes it private; the store is an ordinary directory once in place.
   std::filesystem::permissions(
-      temp.path(),
+      temp->path(),
       std::filesystem::perms::owner_all | std::filesystem::perms::group_read |
           std::filesystem::perms::group_exec | std::filesystem::perms::others_read |
           std::filesystem::perms::others_exec,
@@ -139,22 +117,21 @@ absl::StatusOr<FetchSummary> FetchStore(const Client& client, const std::string&
   std::unique_ptr<grpc::ClientContext> ctx = client.Call(0);
   std::unique_ptr<grpc::ClientReader<v1::FileChunk>> reader =
       client.jobs().ReadStore(ctx.get(), id);
-  absl::StatusOr<FetchSummary> summary = Receive(*reader, temp.path());
+  absl::StatusOr<FetchSummary> summary = Receive(*reader, temp->path());
   if (!summary.ok()) {
     ctx->TryCancel();
     reader->Finish();
     return summary.status();
   }
   if (grpc::Status s = reader->Finish(); !s.ok()) return FromGrpc(s);
-  absl::StatusOr<int> arrays = VerifyStore(temp.path());
+  absl::StatusOr<int> arrays = VerifyStore(temp->path());
   if (!arrays.ok())
     return absl::DataLossError(
         absl::StrCat("fetched store does not verify: ", arrays.status().message()));
   summary->arrays = *arrays;
-  std::filesystem::rename(temp.path(), out, ec);
+  std::filesystem::rename(temp->path(), out, ec);
   if (ec)
     return absl::InternalError(absl::StrCat("--out: rename to ", out.string(), ": ", ec.message()));
-  temp.Release();
   return summary;
 }
 

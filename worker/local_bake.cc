@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "storage/scoped_dir.h"
 #include "storage/store_reader.h"
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
@@ -18,22 +19,6 @@
 
 namespace wavebake {
 namespace {
-
-// Removes the partial store unless the bake got as far as publishing it.
-class PartialDir {
- public:
-  explicit PartialDir(std::filesystem::path path) : path_(std::move(path)) {}
-  PartialDir(const PartialDir&) = delete;
-  PartialDir& operator=(const PartialDir&) = delete;
-  ~PartialDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Progress and counters shared by the pool threads; callbacks serialized.
 class Progress {
@@ -123,7 +108,8 @@ absl::StatusOr<BakeSummary> RunLocalBake(std::string_view scene_spec, const Bake
                           ? options.threads
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
-  PartialDir partial(out.string() + absl::StrCat(".partial-", ::getpid()));
+  // Removed unless the bake got as far as publishing it (by rename).
+  ScopedDir partial(out.string() + absl::StrCat(".partial-", ::getpid()));
   std::error_code ec;
   std::filesystem::remove_all(partial.path(), ec);  // a stale one of a crashed namesake
   const JobPlan& plan = (*ctx)->plan;

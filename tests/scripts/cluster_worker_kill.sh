@@ -8,8 +8,11 @@
 # "Determinism").
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 
-# 16 tiles of 8×8 cells, each long enough (N = 16, K = 64: ~3 Mrays) to be killed in.
-BAKE=(builtin:cubes-wall --light-res 16 --supersample 64 --layout camera:32x32
+# 16 tiles of 8×8 cells, each long enough (N = 16, K = 256: ~12 Mrays, about
+# a second on one thread) that neither the gap between two tasks nor a status
+# poll on a loaded machine is likely to span the kill: the victim must hold a
+# lease when it dies, and the job must still be baking.
+BAKE=(builtin:cubes-wall --light-res 16 --supersample 256 --layout camera:32x32
       --tile-size 8 --column-group 512)
 
 start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 2
@@ -18,7 +21,7 @@ victim=$WORKER_PID
 start_worker w2 "$TMP/data/store" --threads 1
 
 job=$("$WB" submit "${BAKE[@]}" --output-name cubes.wbk --coordinator "$ADDR")
-wait_until 60 "three tiles done" job_at_least "$job" tasks_done 3
+wait_until 60 "two tiles done" job_at_least "$job" tasks_done 2
 job_phase_is "$job" BAKING || fail "the job left BAKING before the kill; make its tiles longer"
 grep -q "BAKE_TILE" "$TMP/w1.log" || fail "w1 has run no tile"
 kill_now "$victim"
