@@ -1,0 +1,70 @@
+// ArrayAppender writes chunks on a helper thread while the caller fills the
+// next: whatever the sizes of the pieces appended, the array reads back as
+// the values in order (through ZarrArray, the same bytes WriteAll writes),
+// and a wrong total length is an error naming the array.
+#include "storage/array_appender.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <span>
+
+#include "storage/atomic_file.h"
+#include "tests/storage/array_values.h"
+#include "tests/storage/test_support.h"
+
+namespace wavebake {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::TempDir;
+using testing::TestValues;
+
+ArraySpec Spec(int64_t length) {
+  return {.shape = {length}, .chunks = {64}, .dtype = DTypeOf<uint32_t>(), .delta_filter = true};
+}
+
+TEST(ArrayAppender, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite) {
+  TempDir tmp;
+  const int64_t length = 64 * 9 + 17;  // nine full chunks and a partial one
+  const std::vector<uint32_t> values = TestValues<uint32_t>(length, 7);
+  absl::StatusOr<ZarrArray> appended = ZarrArray::Create(tmp.path() / "appended", Spec(length));
+  absl::StatusOr<ZarrArray> whole = ZarrArray::Create(tmp.path() / "whole", Spec(length));
+  ASSERT_TRUE(appended.ok() && whole.ok());
+  {
+    ArrayAppender<uint32_t> appender(*appended);
+    size_t at = 0;
+    for (size_t piece = 1; at < values.size(); piece = piece * 3 % 101 + 1) {
+      const size_t n = std::min(piece, values.size() - at);
+      ASSERT_TRUE(appender.Append(std::span(values).subspan(at, n)).ok());
+      at += n;
+    }
+    ASSERT_TRUE(appender.Close().ok());
+  }
+  ASSERT_TRUE(whole->WriteAll<uint32_t>(values).ok());
+  absl::StatusOr<std::vector<uint32_t>> back = appended->ReadAll<uint32_t>();
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(*back, values);
+  for (int c = 0; c < 10; ++c) {  // the same chunk files, byte for byte
+    const std::string name = std::to_string(c);
+    EXPECT_EQ(ReadFile(tmp.path() / "appended" / name).value(),
+              ReadFile(tmp.path() / "whole" / name).value())
+        << "chunk " << c;
+  }
+}
+
+TEST(ArrayAppender, AShortArrayIsAnErrorNamingIt) {
+  TempDir tmp;
+  absl::StatusOr<ZarrArray> array = ZarrArray::Create(tmp.path() / "short", Spec(200));
+  ASSERT_TRUE(array.ok());
+  ArrayAppender<uint32_t> appender(*array);
+  const std::vector<uint32_t> values = TestValues<uint32_t>(150, 3);
+  ASSERT_TRUE(appender.Append(values).ok());
+  const absl::Status closed = appender.Close();
+  EXPECT_FALSE(closed.ok());
+  EXPECT_THAT(std::string(closed.message()), HasSubstr("short"));
+  EXPECT_THAT(std::string(closed.message()), HasSubstr("appended 150 elements to an array of 200"));
+}
+
+}  // namespace
+}  // namespace wavebake
