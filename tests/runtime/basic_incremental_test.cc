@@ -19,19 +19,11 @@ namespace {
 
 using testing::Compare;
 using testing::MiniBake;
-using testing::MiniBakeOptions;
-using testing::RunMiniBake;
 
 // cubes-wall on a 32×32 camera grid, N = 16: a real transport matrix with
 // several sharp shadows.
 const MiniBake& CubesBake16() {
-  static const MiniBake* bake = [] {
-    MiniBakeOptions o;
-    o.scene = "builtin:cubes-wall";
-    o.light_res = 16;
-    return new MiniBake(RunMiniBake(o));
-  }();
-  return *bake;
+  return testing::SharedBake({.scene = "builtin:cubes-wall", .light_res = 16});
 }
 
 LightingCoefficients GraceAt(const EnvMap& env, double degrees, int light_res) {

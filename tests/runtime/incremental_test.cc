@@ -17,18 +17,9 @@ namespace {
 
 using testing::Compare;
 using testing::MiniBake;
-using testing::MiniBakeOptions;
-using testing::RunMiniBake;
 using testing::SunAndSky;
 
-const MiniBake& CubesBake() {
-  static const MiniBake* bake = [] {
-    MiniBakeOptions o;
-    o.scene = "builtin:cubes-wall";
-    return new MiniBake(RunMiniBake(o));
-  }();
-  return *bake;
-}
+const MiniBake& CubesBake() { return testing::SharedBake({.scene = "builtin:cubes-wall"}); }
 
 struct Frames {
   Relighter relighter;

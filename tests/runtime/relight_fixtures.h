@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/bake_params.h"
@@ -196,6 +198,16 @@ inline MiniBake RunMiniBake(const MiniBakeOptions& o) {
   }
   CompressColumns(b, o);
   return b;
+}
+
+// A bake shared by the tests of one binary (gtest runs them in turn), made
+// on first use: scenes with several sharp shadows are worth baking once.
+inline const MiniBake& SharedBake(const MiniBakeOptions& o) {
+  static std::map<std::tuple<std::string, int>, MiniBake> bakes;
+  const auto key = std::make_tuple(o.scene, o.light_res);
+  auto it = bakes.find(key);
+  if (it == bakes.end()) it = bakes.emplace(key, RunMiniBake(o)).first;
+  return it->second;
 }
 
 // B = Σ_m T[s,m] L[m] in double from the pixel-basis rows, × albedo, NaN

@@ -21,10 +21,7 @@ using testing::MiniBakeOptions;
 using testing::RunMiniBake;
 using testing::SunAndSky;
 
-const MiniBake& DiskBake() {
-  static const MiniBake* bake = new MiniBake(RunMiniBake(MiniBakeOptions{}));
-  return *bake;
-}
+const MiniBake& DiskBake() { return testing::SharedBake(MiniBakeOptions{}); }
 
 std::vector<float> RelightWith(const MiniBake& b, const std::vector<float>& cube_rgb, int terms) {
   auto relighter = Relighter::Create(b.compressed, b.samples);
