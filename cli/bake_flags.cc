@@ -21,15 +21,20 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
       ->capture_default_str();
   cmd.add_option("--column-filter", f.column_filter, "column filter: haar | legall53 | cdf97")
       ->capture_default_str();
-  cmd.add_option("--target-error", f.target_error,
-                 "relative RMS error budget per column (DESIGN.md §1)")
+  cmd.add_option(
+         "--target-error", f.target_error,
+         "relative RMS error budget of the stored columns (DESIGN.md §1, see --error-scope)")
       ->capture_default_str();
   cmd.add_option("--error-scope", f.error_scope,
                  "matrix: budget relative to the mean column energy; column: to each column's own")
       ->capture_default_str();
   cmd.add_option("--column-terms", f.column_terms,
                  "keep exactly K coefficients per column instead of --target-error");
-  cmd.add_option("--bits", f.bits, "quantization bits 2..16, or auto")->capture_default_str();
+  cmd.add_option(
+         "--bits", f.bits,
+         "quantization bits 2..16 (each column's max to the largest code), or auto (the error "
+         "budget's quantization half)")
+      ->capture_default_str();
   cmd.add_option("--level-scaling", f.level_scaling,
                  "uniform: one step per column (auto: one matrix-wide step); paper: values of "
                  "level l times 2^l first (4D paper §4.3)")
