@@ -70,11 +70,30 @@ size_t DropWithinBin(std::vector<Entry>& entries, double budget, double& dropped
   return lo;
 }
 
-Cut FindCut(std::span<const float> v, std::span<const float> w, double budget) {
+// What FindCut computed per entry, kept for the caller's next pass over the
+// same column (SelectForBudget): each magnitude and bin is worked out once.
+// Per thread, reused column after column.
+struct CutScratch {
+  std::vector<double> mag;    // Magnitude(v, w, i)
+  std::vector<uint16_t> bin;  // BinOf(mag[i]) for nonzero mag[i]
+  std::array<double, kBins> energy{};
+  std::array<uint32_t, kBins> count{};
+  std::vector<Entry> entries;  // the cut bin's entries
+};
+
+CutScratch& ThreadCutScratch() {
+  thread_local CutScratch scratch;
+  return scratch;
+}
+
+Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, CutScratch& s) {
   Cut cut;
+  const size_t n = v.size();
+  s.mag.resize(n);
   double max_mag = 0, total = 0;
-  for (size_t i = 0; i < v.size(); ++i) {
+  for (size_t i = 0; i < n; ++i) {
     const double m = Magnitude(v, w, i);
+    s.mag[i] = m;
     max_mag = std::max(max_mag, m);
     total += m * m;
   }
@@ -83,36 +102,34 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget) {
     return cut;
   }
   cut.max_top = std::bit_cast<uint64_t>(max_mag) >> 48;
-  thread_local std::array<double, kBins> energy;
-  thread_local std::array<uint32_t, kBins> count;
-  energy.fill(0);
-  count.fill(0);
-  for (size_t i = 0; i < v.size(); ++i) {
-    const double m = Magnitude(v, w, i);
+  s.bin.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double m = s.mag[i];
     if (m == 0) continue;
     const int b = BinOf(m, cut.max_top);
-    energy[b] += m * m;
-    ++count[b];
+    s.bin[i] = static_cast<uint16_t>(b);
+    s.energy[b] += m * m;
+    ++s.count[b];
   }
   // Whole bins go while they fit; the first that does not is the cut bin.
   double dropped = 0;
   int b = 0;
-  while (b < kBins && dropped + energy[b] <= budget) dropped += energy[b++];
+  while (b < kBins && dropped + s.energy[b] <= budget) dropped += s.energy[b++];
   cut.bin = b;  // < kBins, since total > budget
-  thread_local std::vector<Entry> entries;
-  entries.clear();
-  for (size_t i = 0; i < v.size(); ++i) {
-    const double m = Magnitude(v, w, i);
-    if (m > 0 && BinOf(m, cut.max_top) == b) entries.push_back({m, static_cast<uint32_t>(i)});
+  s.entries.clear();
+  for (size_t i = 0; i < n; ++i) {
+    if (s.mag[i] > 0 && s.bin[i] == b) s.entries.push_back({s.mag[i], static_cast<uint32_t>(i)});
   }
-  const size_t lo = DropWithinBin(entries, budget, dropped);
-  cut.kept_in_bin = entries.size() - lo;
+  const size_t lo = DropWithinBin(s.entries, budget, dropped);
+  cut.kept_in_bin = s.entries.size() - lo;
   if (cut.kept_in_bin > 0) {
-    cut.least_kept = *std::min_element(entries.begin() + lo, entries.end(), LessImportant);
+    cut.least_kept = *std::min_element(s.entries.begin() + lo, s.entries.end(), LessImportant);
   }
   cut.kept = cut.kept_in_bin;
-  for (int k = b + 1; k < kBins; ++k) cut.kept += count[k];
+  for (int k = b + 1; k < kBins; ++k) cut.kept += s.count[k];
   cut.dropped_energy = dropped;
+  s.energy.fill(0);  // ready for the next column
+  s.count.fill(0);
   return cut;
 }
 
@@ -132,7 +149,8 @@ std::vector<uint32_t> TopK(std::span<const float> v, std::span<const float> w, i
 
 Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
                           double energy_budget) {
-  const Cut cut = FindCut(v, w, energy_budget);
+  CutScratch& s = ThreadCutScratch();
+  const Cut cut = FindCut(v, w, energy_budget, s);
   Selection sel;
   sel.dropped_energy = cut.dropped_energy;
   if (cut.kept == 0) return sel;
@@ -141,9 +159,9 @@ Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
   // order gives the list sorted without a sort.
   sel.kept.reserve(cut.kept);
   for (size_t i = 0; i < v.size(); ++i) {
-    const Entry e{Magnitude(v, w, i), static_cast<uint32_t>(i)};
+    const Entry e{s.mag[i], static_cast<uint32_t>(i)};
     if (e.mag == 0) continue;
-    const int b = BinOf(e.mag, cut.max_top);
+    const int b = s.bin[i];
     if (b > cut.bin || (b == cut.bin && cut.kept_in_bin > 0 && !LessImportant(e, cut.least_kept))) {
       sel.kept.push_back(e.index);
     }
@@ -152,7 +170,7 @@ Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
 }
 
 int CountForBudget(std::span<const float> v, std::span<const float> w, double energy_budget) {
-  return static_cast<int>(FindCut(v, w, energy_budget).kept);
+  return static_cast<int>(FindCut(v, w, energy_budget, ThreadCutScratch()).kept);
 }
 
 }  // namespace wavebake
