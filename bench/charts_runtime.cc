@@ -37,6 +37,7 @@
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
 #include "runtime/env_map.h"
+#include "runtime/eval.h"
 #include "runtime/incremental.h"
 #include "runtime/lighting.h"
 #include "runtime/relighter.h"
@@ -162,16 +163,6 @@ void RelightTime(const std::vector<Store>& stores, const RunConfig& run, Csv& cs
   }
 }
 
-double RelRms(const std::vector<float>& got, const std::vector<float>& ref) {
-  double num = 0, den = 0;
-  for (size_t i = 0; i < ref.size(); ++i) {
-    if (std::isnan(ref[i])) continue;
-    num += std::pow(double{got[i]} - ref[i], 2);
-    den += double{ref[i]} * ref[i];
-  }
-  return std::sqrt(num / den);
-}
-
 // ‖L − L̃‖ / ‖L‖, both Σ_m Ω_m Σ_c |·| (the §6.2.2 norm over all bands).
 double LightingError(const LightingCoefficients& l, std::span<const float> approx,
                      std::span<const float> support) {
@@ -215,17 +206,17 @@ void RotationError(const Store& store, const RunConfig& run, Csv& csv) {
       relighter.Relight(AllWaveletLights(l), full);
       const WaveletLights lights = Value(SelectWaveletLights(l, terms));
       relighter.Relight(lights, image);
-      const double e_none = RelRms(image, full);
+      const double e_none = CompareToReference(image, full).rel_rms;
       csv.Row(speed, f, speed * f, "none", terms, e_none,
               LightingError(l, Approximation(lights, l.rgb.size()), support), relighter.width(),
               relighter.light_res());
       if (!basic.Frame(l, image).ok()) Die("basic frame");
-      const double e_basic = RelRms(image, full);
+      const double e_basic = CompareToReference(image, full).rel_rms;
       csv.Row(speed, f, speed * f, "basic", terms, e_basic,
               LightingError(l, basic.approximation(), support), relighter.width(),
               relighter.light_res());
       if (!per_band.Frame(l, image).ok()) Die("per-band frame");
-      const double e_per_band = RelRms(image, full);
+      const double e_per_band = CompareToReference(image, full).rel_rms;
       csv.Row(speed, f, speed * f, "per-band", terms, e_per_band,
               LightingError(l, per_band.approximation(), support), relighter.width(),
               relighter.light_res());

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "runtime/env_map.h"
+#include "runtime/eval.h"
 #include "runtime/incremental.h"
 #include "runtime/lighting.h"
 #include "runtime/store_relight.h"
@@ -21,16 +22,6 @@ namespace {
 absl::Status BadSequence(std::string_view spec, const char* why) {
   return absl::InvalidArgumentError(
       absl::StrCat("rotate-sequence: '", std::string(spec), "' ", why, " (START:END:FRAMES)"));
-}
-
-double RelRms(std::span<const float> got, std::span<const float> ref) {
-  double num = 0, den = 0;
-  for (size_t i = 0; i < ref.size(); ++i) {
-    if (std::isnan(ref[i])) continue;
-    num += std::pow(double{got[i]} - ref[i], 2);
-    den += double{ref[i]} * ref[i];
-  }
-  return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
 }
 
 std::filesystem::path FramePath(const SequenceOptions& o, int i) {
@@ -106,7 +97,7 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
     }
     f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relighter.Relight(AllWaveletLights(*lighting), best);
-    f.rel_rms = RelRms(frame, best);
+    f.rel_rms = CompareToReference(frame, best).rel_rms;
     frames.push_back(f);
     if (!o.out_dir.empty()) {
       if (absl::Status s = WriteRelit(*opened, frame, o.exposure_stops, FramePath(o, i)); !s.ok())

@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 
+#include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 #include "worker/local_bake.h"
 
@@ -20,20 +21,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
+using test_support::ReadTree;
 using test_support::ScratchDir;
-
-// Every file under `dir` by relative path, with its bytes.
-std::map<std::string, std::string> Files(const std::filesystem::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
-    std::ifstream in(e.path(), std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    files[std::filesystem::relative(e.path(), dir).string()] = bytes.str();
-  }
-  return files;
-}
 
 std::vector<std::string> Names(const std::filesystem::path& dir) {
   std::vector<std::string> names;
@@ -59,7 +48,7 @@ TEST(EmbeddedBakeTest, StoreIsBitIdenticalToTheLocalDriver) {
   local.threads = 2;
   ASSERT_TRUE(
       RunLocalBake("builtin:cylinder-bump", SmallJob(), dir.path() / "local.wbk", local).ok());
-  const auto expected = Files(dir.path() / "local.wbk");
+  const auto expected = ReadTree(dir.path() / "local.wbk");
   ASSERT_TRUE(expected.contains("transport/indptr/0"));
   for (int workers : {1, 3}) {
     const std::filesystem::path out = dir.path() / ("embedded" + std::to_string(workers) + ".wbk");
@@ -70,7 +59,7 @@ TEST(EmbeddedBakeTest, StoreIsBitIdenticalToTheLocalDriver) {
     EXPECT_EQ(job->tiles(), 4);
     EXPECT_EQ(job->groups(), 4);
     EXPECT_GT(job->rays_traced(), 0);
-    EXPECT_TRUE(Files(out) == expected) << workers << " workers";
+    EXPECT_TRUE(ReadTree(out) == expected) << workers << " workers";
   }
   // Nothing but the three stores: the coordinator's data dirs are gone.
   EXPECT_THAT(Names(dir.path()),
@@ -91,7 +80,7 @@ TEST(EmbeddedBakeTest, SceneFilesAreBakedInPlace) {
       EmbeddedBake(scene, SmallJob(), dir.path() / "embedded.wbk", {.workers = 2, .quiet = true});
   ASSERT_TRUE(job.ok()) << job.status();
   ASSERT_EQ(job->phase(), v1::PHASE_DONE) << job->error();
-  EXPECT_TRUE(Files(dir.path() / "embedded.wbk") == Files(dir.path() / "local.wbk"));
+  EXPECT_TRUE(ReadTree(dir.path() / "embedded.wbk") == ReadTree(dir.path() / "local.wbk"));
 }
 
 // The planner cannot see that the camera looks away from everything (it does

@@ -44,16 +44,6 @@ std::filesystem::path Bake(const TempDir& dir, const std::string& name, const ch
   return out;
 }
 
-double RelRms(const std::vector<float>& got, const std::vector<float>& ref) {
-  double num = 0, den = 0;
-  for (size_t i = 0; i < ref.size(); ++i) {
-    if (std::isnan(ref[i])) continue;
-    num += std::pow(double{got[i]} - ref[i], 2);
-    den += double{ref[i]} * ref[i];
-  }
-  return std::sqrt(num / den);
-}
-
 // DESIGN.md §1 white furnace through the whole pipeline: bake, quantize,
 // store, read, Eq. 8 — L ≡ 1 relights every sample to its albedo.
 TEST(RelightStore, WhiteFurnace) {
@@ -105,7 +95,7 @@ TEST(RelightStore, CompressedMatchesDenseRetrace) {
     for (int terms : {4, 16, 64, 384}) {
       auto rgb = RelightImage(*opened, *env, terms);
       ASSERT_TRUE(rgb.ok());
-      const double err = RelRms(*rgb, dense->rgb);
+      const double err = CompareToReference(*rgb, dense->rgb).rel_rms;
       std::printf("%s terms %3d: rel_rms vs dense %.5f\n", spec, terms, err);
       EXPECT_LE(err, previous * 1.0001 + 1e-6);
       previous = err;

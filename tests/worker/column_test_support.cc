@@ -138,18 +138,6 @@ void TransformAll(const BakeContext& ctx, const std::filesystem::path& store,
   }
 }
 
-std::map<std::string, std::string> ReadTree(const std::filesystem::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
-    if (!e.is_regular_file()) continue;
-    std::ifstream in(e.path(), std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    files[std::filesystem::relative(e.path(), dir).string()] = bytes.str();
-  }
-  return files;
-}
-
 ProcessResult RunPython(const std::filesystem::path& work_dir, const std::string& script) {
   {
     std::ofstream out(work_dir / "check.py");

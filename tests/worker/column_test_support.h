@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/bake_params.h"
+#include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 #include "worker/bake_context.h"
 
@@ -43,8 +44,7 @@ void WriteSyntheticStaging(const JobPlan& plan, const std::filesystem::path& sto
 void TransformAll(const BakeContext& ctx, const std::filesystem::path& store,
                   std::vector<int> order = {});
 
-// Every regular file under `dir` by relative path → its bytes.
-std::map<std::string, std::string> ReadTree(const std::filesystem::path& dir);
+using test_support::ReadTree;
 
 struct ProcessResult {
   int exit_code = -1;
