@@ -39,6 +39,10 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "uniform: one step per column (auto: one matrix-wide step); paper: values of "
                  "level l times 2^l first (4D paper §4.3)")
       ->capture_default_str();
+  cmd.add_option("--transport", f.transport,
+                 "what a row holds: diffuse (T = V cos/π) or visibility (V alone, for glossy "
+                 "relighting by the triple product; needs --row-filter haar)")
+      ->capture_default_str();
   cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
   cmd.add_flag("--keep-staging", f.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
@@ -69,6 +73,9 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   auto scaling = ParseLevelScaling(f.level_scaling);
   if (!scaling.ok()) return scaling.status();
   p.level_scaling = *scaling;
+  auto transport = ParseTransport(f.transport);
+  if (!transport.ok()) return transport.status();
+  p.transport = *transport;
   p.target_error = f.target_error;
   p.column_terms = f.column_terms;
   p.seed = f.seed;

@@ -21,6 +21,7 @@ struct BakeFlags {
   int column_terms = 0;
   std::string bits = "auto";
   std::string level_scaling = "uniform";
+  std::string transport = "diffuse";
   uint64_t seed = 1;
   bool keep_staging = false;
   int tile_size = 32;      // BAKE_TILE edge (DESIGN.md §2)

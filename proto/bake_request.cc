@@ -123,6 +123,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.column_terms = r.column_terms();
   p.bits = r.bits();
   p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
+  p.transport = r.transport() == "visibility" ? Transport::kVisibility : Transport::kDiffuse;
   p.seed = r.seed();
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
@@ -149,6 +150,7 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
+        CheckChoice("transport", *r.mutable_transport(), "diffuse", {"diffuse", "visibility"}),
         CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
@@ -174,6 +176,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_column_terms(p.column_terms);
   r.set_bits(p.bits);
   r.set_level_scaling(std::string(ToString(p.level_scaling)));
+  r.set_transport(std::string(ToString(p.transport)));
   r.set_seed(p.seed);
   r.set_row_filter(std::string(ToString(p.row_filter)));
   r.set_tile_size(p.tile_size);

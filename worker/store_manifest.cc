@@ -26,28 +26,33 @@ constexpr char kDequantize[] =
 
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats) {
   const BakeParams& p = ctx.params;
-  return {{"format", store::kFormat},
-          {"scene", ctx.scene_spec},
-          {"scene_hash", ctx.scene_hash},
-          {"params", ToJson(p)},
-          {"layout", ToString(ctx.layout)},
-          {"N", p.light_res},
-          {"W", ctx.plan.width},
-          {"H", ctx.plan.height},
-          {"S", ctx.samples.size()},
-          {"M", ctx.plan.columns},
-          {"filters",
-           {{"row", std::string(ToString(p.row_filter))},
-            {"column", std::string(ToString(p.column_filter))}}},
-          {"bits", bits.bits},
-          {"level_scaling", std::string(ToString(p.level_scaling))},
-          {"bits_auto", p.bits == 0},
-          {"bits_needed", bits.bits_needed},
-          {"max_column_bits", bits.max_column_bits},
-          {"ray_epsilon", ctx.epsilon},
-          {"dither", kDither},
-          {"dequantize", kDequantize},
-          {"stats", std::move(stats)}};
+  nlohmann::json manifest = {{"format", store::kFormat},
+                             {"scene", ctx.scene_spec},
+                             {"scene_hash", ctx.scene_hash},
+                             {"params", ToJson(p)},
+                             {"layout", ToString(ctx.layout)},
+                             {"N", p.light_res},
+                             {"W", ctx.plan.width},
+                             {"H", ctx.plan.height},
+                             {"S", ctx.samples.size()},
+                             {"M", ctx.plan.columns},
+                             {"filters",
+                              {{"row", std::string(ToString(p.row_filter))},
+                               {"column", std::string(ToString(p.column_filter))}}},
+                             {"bits", bits.bits},
+                             {"level_scaling", std::string(ToString(p.level_scaling))},
+                             {"bits_auto", p.bits == 0},
+                             {"bits_needed", bits.bits_needed},
+                             {"max_column_bits", bits.max_column_bits},
+                             {"ray_epsilon", ctx.epsilon},
+                             {"dither", kDither},
+                             {"dequantize", kDequantize},
+                             {"stats", std::move(stats)}};
+  // DESIGN.md §1 "What a row holds": said only when the rows are not the
+  // diffuse T, so diffuse stores stay byte-identical to older ones.
+  if (p.transport != Transport::kDiffuse)
+    manifest["transport"] = std::string(ToString(p.transport));
+  return manifest;
 }
 
 namespace {
