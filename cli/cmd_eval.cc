@@ -7,6 +7,7 @@
 #include "cli/command_error.h"
 #include "cli/runtime_commands.h"
 #include "runtime/eval.h"
+#include "runtime/glossy_store.h"
 
 namespace wavebake::cli {
 namespace {
@@ -17,6 +18,8 @@ struct EvalFlags {
   double rotate = 0;
   bool reference = false, json = false, no_dense = false;
   double reference_se = 0.002;
+  std::string brdf = "lambert", view;
+  int brdf_terms = 128;
 };
 
 void PrintRow(const char* name, const ErrorStats& e) {
@@ -34,6 +37,13 @@ void Run(const EvalFlags& f) {
   options.rotate_degrees = f.rotate;
   options.dense = !f.no_dense;
   options.reference.target_rel_se = f.reference_se;
+  options.glossy.brdf = f.brdf;
+  options.glossy.slices.terms = f.brdf_terms;
+  if (!f.view.empty()) {
+    absl::StatusOr<Vec3> eye = ParseView(f.view);
+    if (!eye.ok()) Fail("eval", eye.status());
+    options.glossy.eye = *eye;
+  }
   absl::StatusOr<EvalReport> report = Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   if (f.json) {
@@ -64,7 +74,16 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--reference-se", flags->reference_se,
                   "target relative standard error of the reference")
       ->capture_default_str();
-  cmd->add_flag("--no-dense", flags->no_dense, "skip retracing the uncompressed T");
+  cmd->add_option("--brdf", flags->brdf,
+                  "material, for the store and the reference (visibility stores): lambert | "
+                  "phong:EXP | blinn:EXP | ggx:ROUGHNESS")
+      ->capture_default_str();
+  cmd->add_option("--brdf-terms", flags->brdf_terms,
+                  "Haar coefficients kept per sample's BRDF slice (0: all)")
+      ->capture_default_str();
+  cmd->add_option("--view", flags->view, "X,Y,Z eye position (mesh layouts, glossy BRDFs)");
+  cmd->add_flag("--no-dense", flags->no_dense,
+                "skip retracing the uncompressed rows (T, or V for a visibility store)");
   cmd->add_flag("--json", flags->json,
                 "print {\"terms\", \"dense\": {rel_rms, max_abs, psnr, seconds}, "
                 "\"compressed\": {...}, \"reference\": {...}}");

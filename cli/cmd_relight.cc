@@ -8,8 +8,8 @@
 
 #include "cli/command_error.h"
 #include "cli/runtime_commands.h"
+#include "runtime/glossy_store.h"
 #include "runtime/relight_sequence.h"
-#include "runtime/store_relight.h"
 
 namespace wavebake::cli {
 namespace {
@@ -20,7 +20,20 @@ struct RelightFlags {
   double rotate = 0;
   float exposure = 0;
   std::string rotate_sequence, incremental = "per-band", frame_format = "png";
+  std::string brdf = "lambert", view;
+  int brdf_terms = 128;
 };
+
+GlossyOptions GlossyOf(const RelightFlags& f) {
+  GlossyOptions g{.brdf = f.brdf};
+  g.slices.terms = f.brdf_terms;
+  if (!f.view.empty()) {
+    absl::StatusOr<Vec3> eye = ParseView(f.view);
+    if (!eye.ok()) Fail("relight", eye.status());
+    g.eye = *eye;
+  }
+  return g;
+}
 
 // --incremental, already checked to be none, basic or per-band.
 SequenceMode ModeOf(const std::string& name) {
@@ -59,7 +72,8 @@ void RunSequence(const RelightFlags& f) {
 
 void Run(const RelightFlags& f) {
   if (!f.rotate_sequence.empty()) return RunSequence(f);
-  absl::Status s = RelightToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out);
+  absl::Status s =
+      RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out, GlossyOf(f));
   if (!s.ok()) Fail("relight", s);
   std::printf("wrote %s\n", f.out.c_str());
 }
@@ -81,6 +95,16 @@ void AddRelightCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--exposure", flags->exposure, "PNG/PLY exposure in stops")
       ->capture_default_str();
+  cmd->add_option("--brdf", flags->brdf,
+                  "material (visibility stores; a diffuse store is lambert): lambert | phong:EXP "
+                  "| blinn:EXP | ggx:ROUGHNESS")
+      ->capture_default_str();
+  cmd->add_option("--brdf-terms", flags->brdf_terms,
+                  "Haar coefficients kept per sample's BRDF slice (0: all)")
+      ->capture_default_str();
+  cmd->add_option("--view", flags->view,
+                  "X,Y,Z eye position for glossy BRDFs on mesh layouts (camera layouts use the "
+                  "baked camera)");
   cmd->add_option("--rotate-sequence", flags->rotate_sequence,
                   "START:END:FRAMES: relight a rotating environment; --out is then a directory "
                   "of frames and errors.csv (error vs all wavelet lights, per frame)");

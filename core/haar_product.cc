@@ -103,24 +103,11 @@ HaarFactor HaarFactor::FromDense(int n, std::span<const float> rgb) {
   return f;
 }
 
-HaarProduct::HaarProduct(int n)
-    : n_(n),
-      levels_(haar::LevelsOf(n)),
-      w_(static_cast<size_t>(18) * n * n, 0.0f),
-      g_(static_cast<size_t>(n) * n, 0.0f) {}
-
-void HaarProduct::Clear() {
-  const size_t per_face = 3 * static_cast<size_t>(n_) * n_;
-  for (int face = 0; face < 6; ++face) {
-    if (!touched_[face]) continue;
-    std::fill_n(w_.begin() + face * per_face, per_face, 0.0f);
-    touched_[face] = false;
-  }
-}
+HaarProduct::HaarProduct(int n) : n_(n), g_(static_cast<size_t>(n) * n, 0.0f) {}
 
 void HaarProduct::Accumulate(const HaarFactor& f, std::span<const uint32_t> g_index,
-                             std::span<const float> g_value) {
-  CheckOrDie(f.n() == n_, "factor was built for another face edge");
+                             std::span<const float> g_value, RgbCube& w) {
+  CheckOrDie(f.n() == n_ && w.n == n_, "factor or output made for another face edge");
   CheckOrDie(g_index.size() == g_value.size(), "g index and value sizes differ");
   const uint32_t per_face = static_cast<uint32_t>(n_) * n_;
   size_t first = 0;
@@ -133,19 +120,19 @@ void HaarProduct::Accumulate(const HaarFactor& f, std::span<const uint32_t> g_in
       ++last;
     }
     AccumulateFace(f, static_cast<int>(face), g_index.subspan(first, last - first),
-                   g_value.subspan(first, last - first));
+                   g_value.subspan(first, last - first), w);
     first = last;
   }
 }
 
 void HaarProduct::AccumulateFace(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
-                                 std::span<const float> g_value) {
+                                 std::span<const float> g_value, RgbCube& out) {
   const int n = n_;
   const uint32_t per_face = static_cast<uint32_t>(n) * n;
   const uint32_t base = static_cast<uint32_t>(face) * per_face;
   const float* fc = f.coeff_.data() + 3 * static_cast<size_t>(base);
   const float* fhat = f.parent_sum_.data() + 3 * static_cast<size_t>(face) * f.squares_;
-  float* w = w_.data() + 3 * static_cast<size_t>(base);
+  float* w = out.face(face);
   for (size_t k = 0; k < g_index.size(); ++k) g_[g_index[k] - base] = g_value[k];
 
   float dot[3] = {0, 0, 0};
@@ -165,8 +152,8 @@ void HaarProduct::AccumulateFace(const HaarFactor& f, int face, std::span<const 
       if (t == pos.type) continue;
       const int third = 3 - t - pos.type;
       const float* f3 = fc + 3 * haar::FaceIndex(n, pos.level, third, pos.sx, pos.sy);
-      float* out = w + 3 * haar::FaceIndex(n, pos.level, t, pos.sx, pos.sy);
-      for (int c = 0; c < 3; ++c) out[c] += amp * v * f3[c];
+      float* wt = w + 3 * haar::FaceIndex(n, pos.level, t, pos.sx, pos.sy);
+      for (int c = 0; c < 3; ++c) wt[c] += amp * v * f3[c];
     }
     // Case 3, the repeated wavelet f_k g_k onto every coarser wavelet above it.
     if (!NonZero(fp)) continue;
@@ -177,8 +164,8 @@ void HaarProduct::AccumulateFace(const HaarFactor& f, int face, std::span<const 
       const float a = static_cast<float>(1 << l) / n;
       for (int t = 0; t < 3; ++t) {
         const float s = haar::QuadrantSign(t, q) * a;
-        float* out = w + 3 * haar::FaceIndex(n, l, t, sx, sy);
-        for (int c = 0; c < 3; ++c) out[c] += s * prod[c];
+        float* wt = w + 3 * haar::FaceIndex(n, l, t, sx, sy);
+        for (int c = 0; c < 3; ++c) wt[c] += s * prod[c];
       }
     }
   }
@@ -202,11 +189,11 @@ void HaarProduct::AccumulateFace(const HaarFactor& f, int face, std::span<const 
     const uint32_t m = f.term_index_[t];
     const float gh = g_hat_[f.term_node_[t] - first_node];
     const float* fm = f.coeff_.data() + 3 * static_cast<size_t>(m);
-    float* out = w_.data() + 3 * static_cast<size_t>(m);
-    for (int c = 0; c < 3; ++c) out[c] += fm[c] * gh;
+    float* wm = out.rgb.data() + 3 * static_cast<size_t>(m);
+    for (int c = 0; c < 3; ++c) wm[c] += fm[c] * gh;
   }
   for (size_t k = 0; k < g_index.size(); ++k) g_[g_index[k] - base] = 0;
-  touched_[face] = true;
+  out.touched[face] = true;
 }
 
 }  // namespace wavebake

@@ -25,6 +25,8 @@
 #include <span>
 #include <vector>
 
+#include "core/rgb_cube.h"
+
 namespace wavebake {
 
 // The shared factor f: dense RGB coefficients rgb[3m + c] of the row basis
@@ -60,30 +62,24 @@ class HaarFactor {
   std::array<uint32_t, 7> term_start_{};  // per face
 };
 
-// W = P(f·g) accumulated in a dense RGB cube, reusable across products.
+// The product's scratch (dense g of one face, ĝ on f's tree), reusable
+// across products; one per thread.
 class HaarProduct {
  public:
   explicit HaarProduct(int n);
 
-  // w += P(f·g). g: sparse scalar terms, indices strictly increasing and
-  // < 6n², f built for the same n (checked: a mismatch aborts).
+  // w += P(f·g), marking the faces it writes. g: sparse scalar terms,
+  // indices strictly increasing and < 6n²; f and w made for the same n
+  // (checked: a mismatch aborts).
   void Accumulate(const HaarFactor& f, std::span<const uint32_t> g_index,
-                  std::span<const float> g_value);
-
-  // W, rgb[3m + c]; zero on faces not touched since the last Clear.
-  std::span<const float> rgb() const { return w_; }
-  bool touched(int face) const { return touched_[face]; }
-  // Zeroes the faces Accumulate touched (O(touched faces · N²)).
-  void Clear();
+                  std::span<const float> g_value, RgbCube& w);
 
  private:
   void AccumulateFace(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
-                      std::span<const float> g_value);
-  int n_ = 0, levels_ = 0;
-  std::vector<float> w_;      // [3M]
+                      std::span<const float> g_value, RgbCube& w);
+  int n_ = 0;
   std::vector<float> g_;      // dense g of the face being processed, [N²]
-  std::vector<float> g_hat_;  // ĝ per node of f's tree, scratch
-  std::array<bool, 6> touched_{};
+  std::vector<float> g_hat_;  // ĝ per node of f's tree
 };
 
 }  // namespace wavebake

@@ -52,11 +52,17 @@ class EnvSampler {
   struct Draw {
     Vec3 direction;                // unit
     std::array<double, 3> weight;  // L_c(ω) / pdf(ω), pdf in solid angle
+    double pdf = 0;
   };
   // One direction from the receiver distribution `cdf` (from ReceiverCdf, with
   // total > 0) and five uniforms in [0, 1): block, row, column, and the
   // position inside the pixel.
   Draw Sample(std::span<const double> cdf, const std::array<double, 5>& u) const;
+  // The density in solid angle with which Sample(cdf, ·) draws `direction`
+  // (for multiple importance sampling against a BRDF's lobe), and the
+  // radiance the map has there.
+  double Pdf(std::span<const double> cdf, Vec3 direction) const;
+  Vec3 Radiance(Vec3 direction) const;
 
  private:
   int width_ = 0, height_ = 0;  // of the (possibly refined) map
@@ -69,6 +75,7 @@ class EnvSampler {
   std::vector<Vec3> block_centre_;      // unit direction of each block's (θ, φ) centre
   std::vector<float> block_radius_;     // angular radius bound of each block
   std::vector<int32_t> curve_;          // block id of the k-th block along the Hilbert curve
+  std::vector<int32_t> curve_position_;  // inverse of curve_
 };
 
 }  // namespace wavebake

@@ -11,6 +11,7 @@
 #include "core/scene_hash.h"
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
+#include "runtime/glossy_eval.h"
 #include "runtime/store_relight.h"
 #include "storage/scene_loader.h"
 
@@ -52,20 +53,7 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
   return s;
 }
 
-absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
-                                    int terms, const EvalOptions& options) {
-  if (terms <= 0) {
-    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
-  }
-  absl::StatusOr<OpenedStore> opened = OpenStore(store);
-  if (!opened.ok()) return opened.status();
-  absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
-  if (!env.ok()) return env.status();
-  if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
-
-  // The scene the store was baked from, checked by content hash: a scene file
-  // edited since the bake would make every comparison meaningless.
-  const StoreInfo& info = opened->info;
+absl::StatusOr<RayCaster> BakedSceneCaster(const StoreInfo& info) {
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
   if (!info.scene_hash.empty() && SceneHash(*scene) != info.scene_hash) {
@@ -73,7 +61,30 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
         absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ",
                      SceneHash(*scene), " vs ", info.scene_hash, ")"));
   }
-  absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
+  return RayCaster::Build(*scene);
+}
+
+absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
+                                    int terms, const EvalOptions& options) {
+  if (terms <= 0) {
+    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
+  }
+  absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
+  if (!store_info.ok()) return store_info.status();
+  if (store_info->params.transport == Transport::kVisibility)
+    return EvaluateGlossy(store, env_spec, terms, options);
+  // A diffuse store is Lambertian by construction.
+  absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
+  if (!brdf.ok()) return brdf.status();
+  if ((*brdf)->Name() != "lambert") return CheckVisibilityStore(*store_info);
+  absl::StatusOr<OpenedStore> opened = OpenStore(store);
+  if (!opened.ok()) return opened.status();
+  absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
+  if (!env.ok()) return env.status();
+  if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
+
+  const StoreInfo& info = opened->info;
+  absl::StatusOr<RayCaster> caster = BakedSceneCaster(info);
   if (!caster.ok()) return caster.status();
   const float eps =
       info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster->DefaultEpsilon();

@@ -11,7 +11,10 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
+#include "core/ray_caster.h"
+#include "runtime/glossy_store.h"
 #include "runtime/reference.h"
+#include "storage/store_reader.h"
 
 namespace wavebake {
 
@@ -19,6 +22,10 @@ struct EvalOptions {
   ReferenceOptions reference;  // its epsilon is replaced by the bake's
   double rotate_degrees = 0;   // environment rotation about +Y (Rotated)
   bool dense = true;           // also retrace and evaluate the uncompressed T
+  // The material. A visibility store is relit through the triple product
+  // (runtime/glossy_eval.h) with this BRDF, its reference traced with it; a
+  // diffuse store takes lambert only (anything else is an error saying why).
+  GlossyOptions glossy;
 };
 
 // Over all unmasked cells and the three channels of image vs reference:
@@ -44,6 +51,10 @@ struct EvalReport {
   bool reference_converged = true;
   int64_t dense_rays = 0;
 };
+
+// The Embree scene of the store's bake, checked by content hash: a scene
+// file edited since the bake would make every comparison meaningless.
+absl::StatusOr<RayCaster> BakedSceneCaster(const StoreInfo& info);
 
 // Errors: terms ≤ 0; the store (missing, another format version, damaged);
 // the env spec; the scene spec recorded in the store no longer loading or no

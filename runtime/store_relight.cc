@@ -25,15 +25,14 @@ std::string LowerExtension(const std::filesystem::path& p) {
 
 // Per-vertex colours for a mesh layout: sample s colours global vertex
 // samples.vertex[s]; vertices without a sample stay NaN (black in the PLY).
-absl::Status WriteMeshColours(const OpenedStore& store, std::span<const float> rgb,
+absl::Status WriteMeshColours(const StoreInfo& info, const SampleSet& s, std::span<const float> rgb,
                               float exposure_stops, const std::filesystem::path& out) {
-  const SampleSet& s = store.samples;
   if (s.vertex.size() != s.position.size()) {
     return absl::InvalidArgumentError(absl::StrCat(
         "out: ", out.string(), ": a .ply needs a mesh layout (grid|hilbert), the store has ",
-        store.info.params.layout));
+        info.params.layout));
   }
-  absl::StatusOr<Scene> scene = LoadScene(store.info.scene_spec);
+  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
   size_t vertices = 0;
   for (const Mesh& m : scene->meshes) vertices += m.positions.size();
@@ -103,11 +102,16 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
 
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out) {
+  return WriteRelit(store.info, store.samples, rgb, exposure_stops, out);
+}
+
+absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::span<const float> rgb,
+                        float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
-  const int w = store.samples.width, h = store.samples.height;
+  const int w = samples.width, h = samples.height;
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
-  if (ext == ".ply") return WriteMeshColours(store, rgb, exposure_stops, out);
+  if (ext == ".ply") return WriteMeshColours(info, samples, rgb, exposure_stops, out);
   return absl::InvalidArgumentError(
       absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
 }

@@ -44,5 +44,7 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
 // One relit image [W*H*3] written by out's extension, as RelightToFile does.
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out);
+absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::span<const float> rgb,
+                        float exposure_stops, const std::filesystem::path& out);
 
 }  // namespace wavebake

@@ -107,8 +107,9 @@ TEST_P(HaarProductTest, ProductEqualsForwardTransformOfPixelProduct) {
   const auto [f_density, g_density] = GetParam();
   const Factors x = RandomFactors(17, f_density, g_density);
   const HaarFactor f = HaarFactor::FromDense(kN, x.f);
-  HaarProduct product(kN);
-  product.Accumulate(f, x.g_index, x.g_value);
+  HaarProduct kernel(kN);
+  RgbCube product(kN);
+  kernel.Accumulate(f, x.g_index, x.g_value, product);
 
   std::vector<float> f_pix = x.f, g_pix = x.g_dense;
   ToPixels(f_pix, 3);
@@ -119,12 +120,12 @@ TEST_P(HaarProductTest, ProductEqualsForwardTransformOfPixelProduct) {
   ToHaar(expected, 3);
   double err = 0, norm = 0;
   for (int i = 0; i < 3 * kM; ++i) {
-    err += std::pow(product.rgb()[i] - expected[i], 2);
+    err += std::pow(product.rgb[i] - expected[i], 2);
     norm += expected[i] * expected[i];
   }
   EXPECT_LT(std::sqrt(err / norm), 1e-5);
-  EXPECT_FALSE(product.touched(5));
-  for (int i = 3 * 5 * kPerFace; i < 3 * kM; ++i) ASSERT_EQ(product.rgb()[i], 0.0f);
+  EXPECT_FALSE(product.touched[5]);
+  for (int i = 3 * 5 * kPerFace; i < 3 * kM; ++i) ASSERT_EQ(product.rgb[i], 0.0f);
 }
 
 TEST_P(HaarProductTest, TripleProductEqualsPixelIntegral) {
@@ -135,8 +136,9 @@ TEST_P(HaarProductTest, TripleProductEqualsPixelIntegral) {
   std::vector<float> v(kM);
   for (float& e : v) e = value(rng);  // a dense "visibility" row, Haar domain
   const HaarFactor f = HaarFactor::FromDense(kN, x.f);
-  HaarProduct product(kN);
-  product.Accumulate(f, x.g_index, x.g_value);
+  HaarProduct kernel(kN);
+  RgbCube product(kN);
+  kernel.Accumulate(f, x.g_index, x.g_value, product);
 
   std::vector<float> f_pix = x.f, g_pix = x.g_dense, v_pix = v;
   ToPixels(f_pix, 3);
@@ -145,7 +147,7 @@ TEST_P(HaarProductTest, TripleProductEqualsPixelIntegral) {
   for (int c = 0; c < 3; ++c) {
     double tree = 0, pixels = 0, scale = 0;
     for (int m = 0; m < kM; ++m) {
-      tree += double{v[m]} * product.rgb()[3 * m + c];
+      tree += double{v[m]} * product.rgb[3 * m + c];
       pixels += double{f_pix[3 * m + c]} * v_pix[m] * g_pix[m];
       scale += std::fabs(double{f_pix[3 * m + c]} * v_pix[m] * g_pix[m]);
     }
@@ -157,8 +159,9 @@ TEST_P(HaarProductTest, ProductMatchesTriplingCoefficientSums) {
   const auto [f_density, g_density] = GetParam();
   const Factors x = RandomFactors(41, f_density, g_density);
   const HaarFactor f = HaarFactor::FromDense(kN, x.f);
-  HaarProduct product(kN);
-  product.Accumulate(f, x.g_index, x.g_value);
+  HaarProduct kernel(kN);
+  RgbCube product(kN);
+  kernel.Accumulate(f, x.g_index, x.g_value, product);
   for (int face = 0; face < 6; ++face) {
     for (int j = 0; j < kPerFace; ++j) {
       double w[3] = {0, 0, 0};
@@ -171,7 +174,7 @@ TEST_P(HaarProductTest, ProductMatchesTriplingCoefficientSums) {
         }
       }
       for (int ch = 0; ch < 3; ++ch)
-        ASSERT_NEAR(product.rgb()[3 * (face * kPerFace + j) + ch], w[ch], 1e-5)
+        ASSERT_NEAR(product.rgb[3 * (face * kPerFace + j) + ch], w[ch], 1e-5)
             << "face " << face << " j " << j;
     }
   }
@@ -184,11 +187,12 @@ INSTANTIATE_TEST_SUITE_P(Densities, HaarProductTest,
 TEST(HaarProduct, ClearZeroesWhatAccumulateTouched) {
   const Factors x = RandomFactors(3, 0.5, 0.5);
   const HaarFactor f = HaarFactor::FromDense(kN, x.f);
-  HaarProduct product(kN);
-  product.Accumulate(f, x.g_index, x.g_value);
+  HaarProduct kernel(kN);
+  RgbCube product(kN);
+  kernel.Accumulate(f, x.g_index, x.g_value, product);
   product.Clear();
-  for (float v : product.rgb()) ASSERT_EQ(v, 0.0f);
-  for (int face = 0; face < 6; ++face) EXPECT_FALSE(product.touched(face));
+  for (float v : product.rgb) ASSERT_EQ(v, 0.0f);
+  for (int face = 0; face < 6; ++face) EXPECT_FALSE(product.touched[face]);
 }
 
 TEST(HaarTree, DecodeInvertsFaceIndex) {

@@ -1,0 +1,66 @@
+#pragma once
+// Per-sample lighting (DESIGN.md §1 "Per-sample lighting"): when the lighting
+// factor differs per sample — a sample's glossy BRDF slice times the
+// environment (the triple product, runtime/glossy_relighter.h), a near-field
+// light's image on the cubemap — relighting is, per grid cell x,
+//
+//   B(x) = Σ_j R_j(x) · W_j(x)
+//
+// with R the store's matrix in the row basis and W(x) the cell's weights in
+// the same basis. Eq. 8's grouping by shared lights no longer applies, so the
+// 4D-compressed columns are decoded once, at load: every column image
+// through the inverse column transform at its own depth, its nonzero cells
+// kept as per-cell sparse rows. The matrix is static, so no frame decodes
+// anything again; a frame is one sparse dot product per cell against
+// whatever RgbCube (core/rgb_cube.h) the caller filled, restricted to the
+// faces it touched.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/compressed_columns.h"
+#include "core/rgb_cube.h"
+
+namespace wavebake {
+
+class SampleRows {
+ public:
+  SampleRows() = default;  // no cells
+  struct Stats {
+    int64_t nonzeros = 0;  // kept row entries, all cells
+    size_t bytes = 0;      // memory of the rows
+    double seconds = 0;    // decode and transpose
+  };
+
+  // Decodes every column (Relighter::Create's checks apply: sizes, depths,
+  // positions; errors name the field). Entries with |value| ≤ drop_below are
+  // dropped (0: only exact zeros, which is every cell no kept basis function
+  // of the column reaches). Uses all cores; the result does not depend on
+  // their number.
+  static absl::StatusOr<SampleRows> Decode(const CompressedColumns& columns, float drop_below = 0);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int cells() const { return width_ * height_; }
+  int light_res() const { return light_res_; }
+  const Stats& stats() const { return stats_; }
+
+  // Row of `cell` restricted to `face`: row-basis indices (increasing) and values.
+  std::span<const uint32_t> terms(int cell, int face) const;
+  std::span<const float> values(int cell, int face) const;
+
+  // Σ_j R_j(cell) · w_j over the faces w touched, per channel.
+  std::array<float, 3> Dot(int cell, const RgbCube& w) const;
+
+ private:
+  int width_ = 0, height_ = 0, light_res_ = 0;
+  std::vector<int64_t>
+      first_;  // [cells·6 + 1]: segment (cell, face) is [first_[6c+f], first_[6c+f+1])
+  std::vector<uint32_t> terms_;
+  std::vector<float> values_;
+  Stats stats_;
+};
+
+}  // namespace wavebake
