@@ -19,7 +19,7 @@ struct EvalFlags {
   bool reference = false, json = false, no_dense = false;
   double reference_se = 0.002;
   std::string brdf = "lambert", view;
-  int brdf_terms = 128;
+  int brdf_terms = 256;
 };
 
 void PrintRow(const char* name, const ErrorStats& e) {

@@ -21,7 +21,7 @@ struct RelightFlags {
   float exposure = 0;
   std::string rotate_sequence, incremental = "per-band", frame_format = "png";
   std::string brdf = "lambert", view;
-  int brdf_terms = 128;
+  int brdf_terms = 256;
 };
 
 GlossyOptions GlossyOf(const RelightFlags& f) {

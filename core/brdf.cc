@@ -24,6 +24,13 @@ Vec3 AroundAxis(Vec3 axis, double c, double phi) {
 
 bool Above(Vec3 n, Vec3 w) { return Dot(n, w) > 0; }
 
+double AngleBetween(Vec3 a, Vec3 b) { return std::acos(std::clamp(double{Dot(a, b)}, -1.0, 1.0)); }
+
+// The smallest angle to `axis` of any direction in the cap (centre, radius).
+double NearestAngle(Vec3 axis, Vec3 centre, double radius) {
+  return std::max(0.0, AngleBetween(axis, centre) - radius);
+}
+
 // The half vector of (wi, wo) on n's side, for the half-vector samplers: the
 // sampled h maps to wi = Reflect(wo, h), and back by this.
 Vec3 HalfVector(Vec3 n, Vec3 wo, Vec3 wi) {
@@ -45,6 +52,9 @@ class Lambert final : public Brdf {
   double Pdf(Vec3 n, Vec3, Vec3 wi) const override { return std::max(0.0f, Dot(n, wi)) / kPi; }
   LobeCone Support(Vec3 n, Vec3, double relative) const override {
     return {n, static_cast<float>(relative)};
+  }
+  double CapBound(Vec3 n, Vec3, Vec3 centre, double radius) const override {
+    return CosineOverCap(n, centre, radius) / kPi;
   }
   bool ViewDependent() const override { return false; }
   std::string Name() const override { return "lambert"; }
@@ -68,6 +78,11 @@ class Phong final : public Brdf {
   }
   LobeCone Support(Vec3 n, Vec3 wo, double relative) const override {
     return {Reflect(wo, n), static_cast<float>(std::pow(relative, 1 / e_))};
+  }
+  double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
+    const double a = NearestAngle(Reflect(wo, n), centre, radius);
+    if (a >= kPi / 2) return 0;
+    return (e_ + 2) / (2 * kPi) * std::pow(std::cos(a), e_) * CosineOverCap(n, centre, radius);
   }
   std::string Name() const override { return absl::StrCat("phong:", e_); }
 
@@ -98,6 +113,12 @@ class Blinn final : public Brdf {
     // mirror direction by at most 2β.
     const double beta = std::acos(std::clamp(std::pow(relative, 1 / e_), -1.0, 1.0));
     return {Reflect(wo, n), static_cast<float>(std::cos(std::min(kPi, 2 * beta)))};
+  }
+  // A half vector h' off n by β puts ω off the mirror direction by at most
+  // 2β (a reflection doubles angles), so n·h ≤ cos(angle(ω, r)/2).
+  double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
+    const double half = NearestAngle(Reflect(wo, n), centre, radius) / 2;
+    return k_ * std::pow(std::cos(std::min(half, kPi / 2)), e_) * CosineOverCap(n, centre, radius);
   }
   std::string Name() const override { return absl::StrCat("blinn:", e_); }
 
@@ -135,6 +156,13 @@ class Ggx final : public Brdf {
     const double theta = std::acos(std::sqrt(std::min(1.0, c2)));
     return {Reflect(wo, n), static_cast<float>(std::cos(std::min(kPi, 2 * theta)))};
   }
+  // f cos θ_i = D G₂ / (4 cos θ_o) ≤ D(θ_h) / (4 cos θ_o), θ_h ≥ angle(ω, r)/2.
+  double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
+    const double co = Dot(n, wo);
+    if (!(co > 0) || CosineOverCap(n, centre, radius) == 0) return 0;
+    const double half = NearestAngle(Reflect(wo, n), centre, radius) / 2;
+    return ggx::D(a_, std::cos(std::min(half, kPi / 2))) / (4 * co);
+  }
   std::string Name() const override { return absl::StrCat("ggx:", a_); }
 
  private:
@@ -148,6 +176,13 @@ absl::Status BadBrdf(std::string_view spec, std::string_view why) {
 }
 
 }  // namespace
+
+double CosineOverCap(Vec3 n, Vec3 c, double r) {
+  const double alpha = AngleBetween(n, c);
+  if (alpha <= r) return 1;
+  if (alpha - r >= kPi / 2) return 0;
+  return std::cos(alpha - r);
+}
 
 void OrthonormalFrame(Vec3 axis, Vec3& t, Vec3& b) {
   // Duff et al. 2017, "Building an orthonormal basis, revisited".

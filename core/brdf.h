@@ -44,6 +44,10 @@ class Brdf {
   virtual double Pdf(Vec3 n, Vec3 wo, Vec3 wi) const = 0;
   // The cone outside which f_r · cos < relative · (the lobe's maximum).
   virtual LobeCone Support(Vec3 n, Vec3 wo, double relative) const = 0;
+  // An upper bound of f_r(ω) · max(0, n·ω) over the cap of angular radius
+  // `radius` around the unit direction `centre` (the reference's per-block
+  // importance, runtime/env_sampler.h).
+  virtual double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const = 0;
   virtual bool ViewDependent() const { return true; }
   virtual std::string Name() const = 0;  // the spec ParseBrdf reads back
 };
@@ -51,6 +55,9 @@ class Brdf {
 // "lambert" | "phong:E" | "blinn:E" (E in (0, 100000]) | "ggx:A" (A in (0, 1]).
 // Errors name the `brdf` field.
 absl::StatusOr<std::unique_ptr<Brdf>> ParseBrdf(std::string_view spec);
+
+// Upper bound of max(0, n·ω) over the cap of angular radius r around c.
+double CosineOverCap(Vec3 n, Vec3 c, double r);
 
 // Unit t, b with (t, b, axis) right-handed and orthonormal.
 void OrthonormalFrame(Vec3 axis, Vec3& t, Vec3& b);

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "absl/strings/str_cat.h"
+#include "core/cubemap.h"
 #include "core/nla.h"
 #include "core/wavelet2d.h"
 #include "runtime/parallel_for.h"
@@ -79,6 +80,15 @@ std::array<bool, 6> BrdfTexels::Slice(const Brdf& brdf, Vec3 n, Vec3 wo, double 
       Forward2d(WaveletFilter::kHaar, cube.subspan(face * per_face, per_face), nn, nn, depth);
   }
   return touched;
+}
+
+absl::StatusOr<JitterPattern> BrdfQuadrature(int light_res, int store_supersample, uint64_t seed,
+                                             const SliceOptions& options) {
+  if (options.quadrature < 0 || options.quadrature > 256)
+    return absl::InvalidArgumentError(absl::StrCat("brdf quadrature: ", options.quadrature,
+                                                   " directions per texel is not in 0..256"));
+  return MakeJitterPattern(Cubemap(light_res),
+                           options.quadrature > 0 ? options.quadrature : store_supersample, seed);
 }
 
 absl::StatusOr<BrdfSlices> ProjectBrdfSlices(const Brdf& brdf, const SampleSet& samples,

@@ -65,7 +65,10 @@ absl::StatusOr<DenseTraceResult> TraceDenseGlossy(const RayCaster& caster, const
         absl::StrCat("views: ", views.size(), " for ", samples.cells(), " grid cells"));
   absl::StatusOr<JitterPattern> jitter = MakeJitterPattern(cube, o.supersample, o.seed);
   if (!jitter.ok()) return jitter.status();
-  const BrdfTexels texels(&*jitter);
+  absl::StatusOr<JitterPattern> rho_jitter =
+      MakeJitterPattern(cube, o.brdf_supersample > 0 ? o.brdf_supersample : o.supersample, o.seed);
+  if (!rho_jitter.ok()) return rho_jitter.status();
+  const BrdfTexels texels(&*rho_jitter);
   const float eps = o.epsilon > 0 ? o.epsilon : caster.DefaultEpsilon();
   DenseTraceResult r;
   r.rgb.assign(3 * static_cast<size_t>(samples.cells()), std::numeric_limits<float>::quiet_NaN());

@@ -22,6 +22,9 @@ struct DenseTraceOptions {
   int supersample = 4;  // K of the store
   uint64_t seed = 1;    // job seed of the store (jitter pattern)
   float epsilon = 0;    // ray offset; 0: caster.DefaultEpsilon() as in the bake
+  // Glossy only: directions per texel of the BRDF factor's quadrature
+  // (runtime/brdf_slices.h); 0 = supersample.
+  int brdf_supersample = 0;
 };
 
 struct DenseTraceResult {

@@ -48,6 +48,20 @@ class EnvSampler {
   // block along the curve; cdf.size() must be blocks() + 1. Returns the
   // total (0: no light above the horizon).
   double ReceiverCdf(Vec3 normal, std::span<double> cdf) const;
+  // The same with every block's light times bound(centre, radius), an upper
+  // bound of the receiver's integrand weight over the block's cap (a glossy
+  // lobe's Brdf::CapBound): the blocks the lobe sees get the draws.
+  template <typename Bound>
+  double ReceiverCdf(const Bound& bound, std::span<double> cdf) const {
+    cdf[0] = 0;
+    for (int k = 0; k < blocks(); ++k) {
+      const int b = curve_[k];
+      const double p =
+          block_light_[b] > 0 ? block_light_[b] * bound(block_centre_[b], block_radius_[b]) : 0.0;
+      cdf[k + 1] = cdf[k] + p;
+    }
+    return cdf[blocks()];
+  }
 
   struct Draw {
     Vec3 direction;                // unit

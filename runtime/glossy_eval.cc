@@ -60,7 +60,7 @@ absl::StatusOr<EvalReport> EvaluateGlossy(const std::filesystem::path& store,
     t0 = std::chrono::steady_clock::now();
     const std::vector<float> cube = ResampleToCubemap(*env, Cubemap(info.light_res));
     const DenseTraceOptions dense_options{info.light_res, info.params.supersample, info.params.seed,
-                                          eps};
+                                          eps, g.pattern().per_texel};
     absl::StatusOr<DenseTraceResult> dense =
         TraceDenseGlossy(*caster, samples, cube, dense_options, g.brdf(), g.views());
     if (!dense.ok()) return dense.status();

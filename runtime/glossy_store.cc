@@ -87,7 +87,7 @@ absl::StatusOr<std::unique_ptr<GlossyStore>> GlossyStore::Open(const std::filesy
   absl::StatusOr<SampleRows> rows = SampleRows::Decode(*columns);
   if (!rows.ok()) return rows.status();
   absl::StatusOr<JitterPattern> pattern =
-      MakeJitterPattern(Cubemap(info->light_res), info->params.supersample, info->params.seed);
+      BrdfQuadrature(info->light_res, info->params.supersample, info->params.seed, options.slices);
   if (!pattern.ok()) return pattern.status();
 
   std::unique_ptr<GlossyStore> g(new GlossyStore());

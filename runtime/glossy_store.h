@@ -32,7 +32,7 @@ namespace wavebake {
 struct GlossyOptions {
   std::string brdf = "lambert";  // ParseBrdf spelling
   std::optional<Vec3> eye;       // mesh layouts
-  SliceOptions slices;           // BRDF terms per sample, lobe cutoff
+  SliceOptions slices;           // BRDF terms per sample, quadrature, lobe cutoff
   int threads = 0;               // relighting threads; 0 = all cores
 };
 
@@ -58,7 +58,7 @@ class GlossyStore {
   const StoreInfo& info() const { return info_; }
   const SampleSet& samples() const { return samples_; }
   const SampleRows& rows() const { return rows_; }
-  const JitterPattern& pattern() const { return pattern_; }
+  const JitterPattern& pattern() const { return pattern_; }  // the slices' quadrature
   std::span<const Vec3> views() const { return views_; }
   const Brdf& brdf() const { return *brdf_; }
   GlossyRelighter& relighter() { return *relighter_; }

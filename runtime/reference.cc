@@ -212,7 +212,13 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
   };
   auto run = [&](int s, const auto& keep_going) {
     std::vector<double> cdf(sampler.blocks() + 1);
-    cdf_total[s] = sampler.ReceiverCdf(samples.normal[s], cdf);
+    if (glossy) {
+      const Vec3 n = samples.normal[s], wo = o.views[s];
+      cdf_total[s] =
+          sampler.ReceiverCdf([&](Vec3 c, float r) { return o.brdf->CapBound(n, wo, c, r); }, cdf);
+    } else {
+      cdf_total[s] = sampler.ReceiverCdf(samples.normal[s], cdf);
+    }
     if (cdf_total[s] == 0) return;  // no light above the horizon: B = 0 exactly
     const Receiver rec = receiver(s);
     if (glossy) {

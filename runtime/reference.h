@@ -31,7 +31,9 @@
 //
 // Glossy materials (options.brdf, not Lambert): B(x) = albedo · ∫ V L f_r
 // max(0, n·ω) dω with f_r evaluated for the sample's view (options.views).
-// Half of every batch is drawn from the environment as above, half from
+// Half of every batch is drawn from the environment as above — with each
+// block weighted by a bound of f_r·cos over it (Brdf::CapBound) instead of
+// the cosine alone, so the draws go where the lobe looks — half from
 // the BRDF's lobe (Brdf::Sample), and each draw is weighted by the balance
 // heuristic f / (½ p_env + ½ p_brdf) (Veach 1997, the multi-sample
 // estimator with equal counts): the tiny bright sources of grace.hdr are
