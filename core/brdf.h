@@ -48,6 +48,11 @@ class Brdf {
   // `radius` around the unit direction `centre` (the reference's per-block
   // importance, runtime/env_sampler.h).
   virtual double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const = 0;
+  // Σ_q f_r(n, wo, ω_q) · max(0, n·ω_q) over `count` unit directions given
+  // as coordinate arrays: a texel's quadrature (runtime/brdf_slices.h), the
+  // hot loop of projecting slices, so the models set up their lobe once.
+  virtual double SumOverDirections(Vec3 n, Vec3 wo, const float* x, const float* y, const float* z,
+                                   int count) const;
   virtual bool ViewDependent() const { return true; }
   virtual std::string Name() const = 0;  // the spec ParseBrdf reads back
 };

@@ -4,18 +4,14 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/haar_product_util.h"
 #include "core/haar_tree.h"
 
 namespace wavebake {
 namespace {
 
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "HaarProduct: %s\n", what);
-  std::abort();
-}
-
-bool NonZero(const float* rgb) { return rgb[0] != 0 || rgb[1] != 0 || rgb[2] != 0; }
+using haar_product::CheckOrDie;
+using haar_product::NonZero;
 
 // f̂ on every square of one face, top-down: the root gets the scaling
 // function's 1/N share, each child its parent's value plus the parent's three
@@ -51,6 +47,8 @@ HaarFactor HaarFactor::FromDense(int n, std::span<const float> rgb) {
   f.n_ = n;
   f.squares_ = haar::SquaresOf(n);
   f.coeff_.assign(rgb.begin(), rgb.end());
+  f.nonzero_.resize(rgb.size() / 3);
+  for (size_t m = 0; m < f.nonzero_.size(); ++m) f.nonzero_[m] = NonZero(&rgb[3 * m]);
   f.parent_sum_.assign(static_cast<size_t>(3) * 6 * f.squares_, 0.0f);
   const size_t per_face = static_cast<size_t>(n) * n;
   std::vector<int32_t> node_of(f.squares_);
@@ -103,7 +101,12 @@ HaarFactor HaarFactor::FromDense(int n, std::span<const float> rgb) {
   return f;
 }
 
-HaarProduct::HaarProduct(int n) : n_(n), g_(static_cast<size_t>(n) * n, 0.0f) {}
+HaarProduct::HaarProduct(int n)
+    : n_(n),
+      g_(static_cast<size_t>(n) * n, 0.0f),
+      tables_(n),
+      subtree_(3 * tables_.square.size(), 0.0f),
+      stamp_(tables_.square.size(), 0) {}
 
 void HaarProduct::Accumulate(const HaarFactor& f, std::span<const uint32_t> g_index,
                              std::span<const float> g_value, RgbCube& w) {

@@ -25,6 +25,7 @@
 #include <span>
 #include <vector>
 
+#include "core/haar_tree.h"
 #include "core/rgb_cube.h"
 
 namespace wavebake {
@@ -54,6 +55,7 @@ class HaarFactor {
   };
   int n_ = 0, squares_ = 0;
   std::vector<float> coeff_;              // [3M]
+  std::vector<uint8_t> nonzero_;          // [M]: coefficient m is not 0 in some channel
   std::vector<float> parent_sum_;         // f̂, [3 · 6 · squares]
   std::vector<Node> nodes_;               // all faces, face-major
   std::array<uint32_t, 7> node_start_{};  // per face
@@ -74,12 +76,32 @@ class HaarProduct {
   void Accumulate(const HaarFactor& f, std::span<const uint32_t> g_index,
                   std::span<const float> g_value, RgbCube& w);
 
+  // Only the coefficients W_j at `wanted` (global indices, increasing, all
+  // on `face`) into rgb_out[3·t + c] for wanted[t]: what a sparse row dotted
+  // with W needs (runtime/sample_rows.h). g_index/g_value: g's terms on that
+  // face (increasing). Per wanted j the four cases above are read off
+  // directly — f̂ from the factor, ĝ by walking j's ancestors in a dense copy
+  // of g, only when f_j ≠ 0; case 3 with j coarser from subtree sums
+  // S(c) = Σ f_k g_k over the common terms at or below square c, which each
+  // common term adds to its ancestors once: W_{s,t} gets 2^l/N Σ_q
+  // sign_t(q) S(child_q(s)) — so the cost is O(|g| + |f ∩ g| · levels +
+  // |wanted| + |wanted ∩ f| · levels).
+  void AtTerms(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
+               std::span<const float> g_value, std::span<const uint32_t> wanted,
+               std::span<float> rgb_out);
+
  private:
   void AccumulateFace(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
                       std::span<const float> g_value, RgbCube& w);
   int n_ = 0;
   std::vector<float> g_;      // dense g of the face being processed, [N²]
   std::vector<float> g_hat_;  // ĝ per node of f's tree
+  haar::FaceTables tables_;
+  // AtTerms: per square, Σ f_k g_k (RGB) of the common terms at it or below,
+  // valid where stamp_ == epoch_ (so nothing is cleared between products).
+  std::vector<float> subtree_;
+  std::vector<uint32_t> stamp_;
+  uint32_t epoch_ = 0;
 };
 
 }  // namespace wavebake

@@ -18,6 +18,7 @@
 // parent's id is smaller than its children's.
 #include <bit>
 #include <cstdint>
+#include <vector>
 
 namespace wavebake::haar {
 
@@ -63,5 +64,28 @@ constexpr int QuadrantSign(int type, int q) {
 
 // Quadrant of its parent that square (sx, sy) occupies.
 constexpr int QuadrantInParent(int sx, int sy) { return (sx & 1) | ((sy & 1) << 1); }
+
+// Everything above, tabulated for one face edge n, for the product kernels
+// (core/haar_product.h) that look it up per coefficient.
+struct FaceTables {
+  explicit FaceTables(int n);
+
+  struct Term {           // per face-local index y·n + x
+    int32_t square = -1;  // −1: the scaling function
+    uint8_t level = 0, type = 0;
+    int32_t other[2] = {0, 0};  // face-local indices of the square's other two types
+  };
+  struct Square {
+    int32_t parent = -1;              // −1: the face root
+    uint8_t level = 0, quadrant = 0;  // quadrant of this square in its parent
+    int32_t wavelet[3] = {0, 0, 0};   // face-local indices of its three wavelets
+    int32_t child = -1;               // id of its top-left child (−1: finest level)
+    int32_t child_row = 0;            // + child_row: the children of the next row
+  };
+  int n = 0;
+  std::vector<Term> term;
+  std::vector<Square> square;
+  std::vector<float> amplitude;  // 2^l / n per level
+};
 
 }  // namespace wavebake::haar

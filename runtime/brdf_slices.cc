@@ -8,7 +8,6 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/cubemap.h"
-#include "core/nla.h"
 #include "core/wavelet2d.h"
 #include "runtime/parallel_for.h"
 
@@ -58,12 +57,9 @@ std::array<bool, 6> BrdfTexels::Evaluate(const Brdf& brdf, Vec3 n, Vec3 wo, doub
       if (Dot(centre_[m], cone.axis) < cos_c * cos_r_[m] - sin_c * sin_r_[m]) continue;
     }
     if (BelowHorizon(p, m, n)) continue;
-    double sum = 0;
-    for (int k = 0; k < p.per_texel; ++k) {
-      const Vec3 w = p.Direction(m, k);
-      const float c = Dot(n, w);
-      if (c > 0) sum += brdf.Eval(n, wo, w) * c;
-    }
+    const size_t first = static_cast<size_t>(m) * p.per_texel;
+    const double sum =
+        brdf.SumOverDirections(n, wo, &p.x[first], &p.y[first], &p.z[first], p.per_texel);
     if (sum == 0) continue;
     cube[m] = static_cast<float>(p.solid_angle[m] * sum * inv_k);
     touched[m / per_face] = true;
@@ -128,7 +124,16 @@ absl::StatusOr<BrdfSlices> ProjectBrdfSlices(const Brdf& brdf, const SampleSet& 
     if (options.terms == 0 || static_cast<int>(candidates.size()) <= options.terms) {
       kept = where;
     } else {
-      for (uint32_t i : TopK(candidates, {}, options.terms)) kept.push_back(where[i]);
+      // The `terms` largest |c| (ties: the lower index), in linear time.
+      thread_local std::vector<std::pair<float, uint32_t>> order;
+      order.clear();
+      for (size_t i = 0; i < candidates.size(); ++i)
+        order.push_back({std::fabs(candidates[i]), where[i]});
+      const auto first = [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
+      };
+      std::nth_element(order.begin(), order.begin() + options.terms, order.end(), first);
+      for (int i = 0; i < options.terms; ++i) kept.push_back(order[i].second);
       std::sort(kept.begin(), kept.end());
     }
     value[cell].reserve(kept.size());

@@ -1,5 +1,6 @@
 #include "runtime/glossy_relighter.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <thread>
@@ -70,14 +71,29 @@ void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& sl
   CheckOrDie(lighting.n() == light_res(), "lighting made for another light resolution");
   CheckOrDie(slices.first.size() == static_cast<size_t>(cells()) + 1, "slices of another grid");
   CheckOrDie(rgb_out.size() == 3 * static_cast<size_t>(cells()), "output is not W*H*3 floats");
+  const uint32_t per_face = static_cast<uint32_t>(light_res()) * light_res();
   ParallelForWorkers(cells(), threads_, kBlock, [&](int worker, int cell) {
     float* out = rgb_out.data() + 3 * static_cast<size_t>(cell);
     out[0] = out[1] = out[2] = 0;
     if (masked_[cell]) return;
     Scratch& s = *scratch_[worker];
-    s.product.Accumulate(lighting, slices.Index(cell), slices.Value(cell), s.w);
-    const std::array<float, 3> b = rows_->Dot(cell, s.w);
-    s.w.Clear();
+    const std::span<const uint32_t> gi = slices.Index(cell);
+    const std::span<const float> gv = slices.Value(cell);
+    // ρ_x's terms face by face (indices increase, so faces are contiguous).
+    std::array<uint32_t, 7> start{};
+    std::array<bool, 6> faces{};
+    for (uint32_t face = 0; face < 6; ++face) {
+      start[face + 1] = static_cast<uint32_t>(
+          std::lower_bound(gi.begin() + start[face], gi.end(), (face + 1) * per_face) - gi.begin());
+      faces[face] = start[face + 1] > start[face];
+    }
+    const std::array<float, 3> b = rows_->Apply(
+        cell, faces,
+        [&](int face, std::span<const uint32_t> terms, std::span<float> rgb) {
+          const size_t b0 = start[face], n0 = start[face + 1] - b0;
+          s.product.AtTerms(lighting, face, gi.subspan(b0, n0), gv.subspan(b0, n0), terms, rgb);
+        },
+        s.weights);
     for (int c = 0; c < 3; ++c) out[c] = b[c];
   });
 }

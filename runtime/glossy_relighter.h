@@ -9,10 +9,11 @@
 // L: the frame's n-term lighting; V(x): the store's visibility rows decoded
 // once (runtime/sample_rows.h); ρ_x: the sample's BRDF slice for its normal
 // and view (runtime/brdf_slices.h). A frame builds L's factor once (dense
-// coefficients, parent sums, square tree: O(M)); then per cell the tree
-// algorithm forms W in an RgbCube (O(|ρ_x| · levels + |L on ρ_x's faces|),
-// core/haar_product.h) and SampleRows::Dot takes ⟨V(x), W⟩ over the faces W
-// touched. Nothing per frame decodes the 4D columns.
+// coefficients, parent sums: O(M)); then per cell SampleRows::Apply asks,
+// face by face where ρ_x has terms, for W at the terms the row V(x) has, and
+// the tree algorithm (HaarProduct::AtTerms) forms just those:
+// O(|ρ_x| + |L ∩ ρ_x| · levels + |V(x)| · levels). Nothing per frame
+// decodes the 4D columns.
 #include <memory>
 #include <span>
 #include <vector>
@@ -55,9 +56,9 @@ class GlossyRelighter {
 
  private:
   struct Scratch {
-    explicit Scratch(int n) : product(n), w(n) {}
+    explicit Scratch(int n) : product(n) {}
     HaarProduct product;
-    RgbCube w;
+    std::vector<float> weights;
   };
   GlossyRelighter() = default;
   const SampleRows* rows_ = nullptr;

@@ -51,8 +51,36 @@ class SampleRows {
   std::span<const uint32_t> terms(int cell, int face) const;
   std::span<const float> values(int cell, int face) const;
 
-  // Σ_j R_j(cell) · w_j over the faces w touched, per channel.
+  // Σ_j R_j(cell) · w_j over the faces w touched, per channel: weights
+  // given densely.
   std::array<float, 3> Dot(int cell, const RgbCube& w) const;
+
+  // The same with the weights asked for where the row has entries only:
+  // for every face in `faces` holding some, weights(face, terms, rgb) must
+  // fill rgb[3k + c] with W_{terms[k]}(cell) (a weight that is cheap per
+  // term — the triple product's, a near-field light's — need not be formed
+  // on the whole cube). scratch: reused between calls.
+  template <typename Weights>
+  std::array<float, 3> Apply(int cell, const std::array<bool, 6>& faces, Weights&& weights,
+                             std::vector<float>& scratch) const {
+    float b[3] = {0, 0, 0};
+    for (int face = 0; face < 6; ++face) {
+      if (!faces[face]) continue;
+      const int64_t begin = first_[cell * 6 + face], end = first_[cell * 6 + face + 1];
+      if (begin == end) continue;
+      scratch.resize(3 * static_cast<size_t>(end - begin));
+      weights(face, std::span<const uint32_t>(terms_.data() + begin, end - begin),
+              std::span<float>(scratch));
+      for (int64_t k = begin; k < end; ++k) {
+        const float v = values_[k];
+        const float* w = scratch.data() + 3 * (k - begin);
+        b[0] += v * w[0];
+        b[1] += v * w[1];
+        b[2] += v * w[2];
+      }
+    }
+    return {b[0], b[1], b[2]};
+  }
 
  private:
   int width_ = 0, height_ = 0, light_res_ = 0;

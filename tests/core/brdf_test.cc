@@ -153,6 +153,29 @@ TEST(BrdfSampling, ImportanceSamplingReproducesTheAlbedo) {
   }
 }
 
+// The projection's fast path sums the same thing Eval does.
+TEST(Brdf, SumOverDirectionsIsTheSumOfEvalTimesCosine) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> g(0, 1);
+  std::vector<float> x, y, z;
+  for (int i = 0; i < 500; ++i) {
+    const Vec3 w = Normalize(Vec3{g(rng), g(rng), g(rng)});
+    x.push_back(w.x), y.push_back(w.y), z.push_back(w.z);
+  }
+  for (const char* spec : {"lambert", "phong:32", "phong:7.5", "blinn:16", "ggx:0.4"}) {
+    const auto brdf = Make(spec);
+    const Vec3 wo = ViewAt(0.6);
+    double want = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      const Vec3 w{x[i], y[i], z[i]};
+      want += brdf->Eval(kNormal, wo, w) * std::max(0.0f, Dot(kNormal, w));
+    }
+    EXPECT_NEAR(brdf->SumOverDirections(kNormal, wo, x.data(), y.data(), z.data(), 500), want,
+                1e-5 * want)
+        << spec;
+  }
+}
+
 TEST(Brdf, IsReciprocal) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);

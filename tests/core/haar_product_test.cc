@@ -180,6 +180,35 @@ TEST_P(HaarProductTest, ProductMatchesTriplingCoefficientSums) {
   }
 }
 
+// AtTerms reads off the coefficients Accumulate forms, for any wanted set.
+TEST_P(HaarProductTest, AtTermsAreTheProductsCoefficients) {
+  const auto [f_density, g_density] = GetParam();
+  const Factors x = RandomFactors(53, f_density, g_density);
+  const HaarFactor f = HaarFactor::FromDense(kN, x.f);
+  HaarProduct kernel(kN);
+  RgbCube full(kN);
+  kernel.Accumulate(f, x.g_index, x.g_value, full);
+  std::mt19937 rng(8);
+  for (int face = 0; face < 6; ++face) {
+    std::vector<uint32_t> g_index;
+    std::vector<float> g_value;
+    for (size_t k = 0; k < x.g_index.size(); ++k) {
+      if (x.g_index[k] / kPerFace != static_cast<uint32_t>(face)) continue;
+      g_index.push_back(x.g_index[k]);
+      g_value.push_back(x.g_value[k]);
+    }
+    std::vector<uint32_t> wanted;
+    for (int p = 0; p < kPerFace; ++p)
+      if (rng() % 3 == 0) wanted.push_back(face * kPerFace + p);
+    std::vector<float> got(3 * wanted.size(), -1.0f);
+    kernel.AtTerms(f, face, g_index, g_value, wanted, got);
+    for (size_t t = 0; t < wanted.size(); ++t)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(got[3 * t + c], full.rgb[3 * wanted[t] + c], 1e-5)
+            << "face " << face << " j " << wanted[t];
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Densities, HaarProductTest,
                          ::testing::Values(std::pair{1.0, 1.0}, std::pair{0.2, 0.3},
                                            std::pair{0.05, 0.5}, std::pair{0.5, 0.04}));
