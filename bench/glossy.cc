@@ -9,17 +9,19 @@
 // Relight (thread CPU time; the slices are projected once, outside).
 //
 // The baselines compute the same B(x) = Σ L V ρ per sample from dense rows
-// decoded beforehand (outside the timing), on every 8th sample (the frame
-// time is the per-sample time × the samples; dense rows of all 16384 would
-// take 0.8 GB):
-//   dense_rows   every coefficient of the row basis: the decoded V row (all
-//                M, zeros too), the whole BRDF slice (no cut), the same
-//                256-term L, through the same tree algorithm
-//                (HaarProduct::Accumulate into a dense W, then Σ_m V_m W_m);
-//   dense_pixels the pixel basis: V, ρ and the 256-term L texel by texel,
-//                Σ_m L_m V_m ρ_m (ρ tabulated per texel beforehand).
-// `x_dense_rows` and `x_dense_pixels` are baseline frame time / glossy frame
-// time.
+// decoded beforehand (outside the timing), on every 8th sample (16th for
+// the slowest; the frame time is the per-sample time × the samples; dense
+// rows of all 16384 would take 0.8 GB), the same 256-term L:
+//   tripling     Eq. 17 by brute force: Σ C(i,j,k) L_i V_j ρ_k over every
+//                nonzero tripling coefficient of a face (Theorem 7's three
+//                cases listed once, 40 k triples per face at N = 32), the
+//                decoded V row and the whole BRDF slice dense;
+//   dense_rows   every coefficient of the row basis through the tree
+//                algorithm instead (HaarProduct::Accumulate into a dense W,
+//                then Σ_m V_m W_m);
+//   dense_pixels the pixel basis: V, ρ and L texel by texel, Σ_m L_m V_m ρ_m
+//                (ρ tabulated per texel beforehand): the cheapest dense form.
+// `x_<baseline>` is that frame time over the glossy frame time.
 //   ./build/bench_glossy --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <time.h>
@@ -29,9 +31,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "core/haar_product.h"
+#include "core/haar_tree.h"
 #include "runtime/glossy_store.h"
 #include "runtime/lighting.h"
 #include "runtime/row_basis.h"
@@ -64,9 +68,45 @@ struct Fixture {
   std::unique_ptr<GlossyStore> store;
   WaveletLights lights;
   std::vector<float> image;
-  std::vector<int> cells;                                   // the baselines' samples
-  double dense_rows_seconds = 0, dense_pixels_seconds = 0;  // per frame, extrapolated
+  std::vector<int> cells;  // the baselines' samples
+  double tripling_seconds = 0, dense_rows_seconds = 0, dense_pixels_seconds = 0;  // per frame
 };
+
+// Every nonzero tripling coefficient of one n×n face (Theorem 7; the
+// ordered triples, C as core/tripling.h has it).
+struct Triple {
+  uint16_t i, j, k;
+  float c;
+};
+std::vector<Triple> FaceTriples(int n) {
+  std::vector<Triple> out;
+  auto add3 = [&](int a, int b, float coeff) {  // the 3 orders of (a, a, b)
+    out.push_back({uint16_t(a), uint16_t(a), uint16_t(b), coeff});
+    out.push_back({uint16_t(a), uint16_t(b), uint16_t(a), coeff});
+    out.push_back({uint16_t(b), uint16_t(a), uint16_t(a), coeff});
+  };
+  out.push_back({0, 0, 0, 1.0f / n});
+  for (int p = 1; p < n * n; ++p) {
+    const haar::Position pos = haar::Decode(p % n, p / n);
+    if (pos.type == 0) {  // case 2, once per square: the 6 orders of its 3 types
+      const int t[3] = {p, haar::FaceIndex(n, pos.level, 1, pos.sx, pos.sy),
+                        haar::FaceIndex(n, pos.level, 2, pos.sx, pos.sy)};
+      const float c = static_cast<float>(1 << pos.level) / n;
+      for (auto [a, b, d] :
+           {std::tuple{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}})
+        out.push_back({uint16_t(t[a]), uint16_t(t[b]), uint16_t(t[d]), c});
+    }
+    add3(p, 0, 1.0f / n);  // case 3: the scaling function, then every coarser wavelet
+    for (int l = pos.level - 1, sx = pos.sx, sy = pos.sy; l >= 0; --l) {
+      const int q = haar::QuadrantInParent(sx, sy);
+      sx >>= 1, sy >>= 1;
+      for (int t = 0; t < 3; ++t)
+        add3(p, haar::FaceIndex(n, l, t, sx, sy),
+             haar::QuadrantSign(t, q) * static_cast<float>(1 << l) / n);
+    }
+  }
+  return out;
+}
 
 std::filesystem::path StorePath(Fixture& f) {
   if (const char* s = std::getenv("WB_GLOSSY_STORE")) return s;
@@ -128,6 +168,39 @@ void MeasureBaselines(Fixture& f) {
     v_pix.push_back(std::move(pix));
     rho_pix.push_back(std::move(rho));
   }
+  // Dense slices too, for the enumeration.
+  std::vector<std::vector<float>> rho_rows;
+  for (int cell : f.cells) {
+    std::vector<float> rho(m_count, 0.0f);
+    const auto idx = full.Index(cell);
+    const auto val = full.Value(cell);
+    for (size_t k = 0; k < idx.size(); ++k) rho[idx[k]] = val[k];
+    rho_rows.push_back(std::move(rho));
+  }
+  const std::vector<Triple> triples = FaceTriples(n);
+  const int per_face = n * n;
+  std::vector<float> out_tri(3 * f.cells.size());
+  std::vector<int> every_other;  // the enumeration is slow: half the sampled cells
+  for (size_t i = 0; i < f.cells.size(); i += 2) every_other.push_back(static_cast<int>(i));
+  const double tri = BestPerFrame(f, [&] {
+    for (int i : every_other) {
+      float b[3] = {0, 0, 0};
+      for (int face = 0; face < 6; ++face) {
+        const float* l = lighting.rgb().data() + 3 * face * per_face;
+        const float* v = v_rows[i].data() + face * per_face;
+        const float* r = rho_rows[i].data() + face * per_face;
+        for (const Triple& t : triples) {
+          const float vr = t.c * v[t.j] * r[t.k];
+          for (int c = 0; c < 3; ++c) b[c] += vr * l[3 * t.i + c];
+        }
+      }
+      for (int c = 0; c < 3; ++c) out_tri[3 * i + c] = b[c];
+    }
+    benchmark::DoNotOptimize(out_tri.data());
+  });
+  f.tripling_seconds = tri * f.cells.size() / every_other.size();
+  std::fprintf(stderr, "tripling: %zu nonzero coefficients per face\n", triples.size());
+
   std::vector<float> out(3 * f.cells.size());
   HaarProduct product(n);
   RgbCube w(n);
@@ -160,17 +233,22 @@ void MeasureBaselines(Fixture& f) {
   // The three answers agree: the baselines exactly, the glossy frame up to
   // its 256-term BRDF slices.
   g.relighter().Transport(lighting, g.relighter().slices(), f.image);
-  double d_base = 0, d_fast = 0, norm = 0;
+  double d_base = 0, d_fast = 0, d_tri = 0, norm = 0, norm_tri = 0;
   for (size_t i = 0; i < f.cells.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
+      if (i % 2 == 0) {
+        d_tri += std::pow(out_tri[3 * i + c] - out_pix[3 * i + c], 2);
+        norm_tri += std::pow(out_pix[3 * i + c], 2);
+      }
       d_base += std::pow(out[3 * i + c] - out_pix[3 * i + c], 2);
       d_fast += std::pow(f.image[3 * f.cells[i] + c] - out_pix[3 * i + c], 2);
       norm += std::pow(out_pix[3 * i + c], 2);
     }
   }
   std::fprintf(stderr,
-               "dense_rows vs dense_pixels rel %.2e; glossy (256 BRDF terms) vs dense rel %.4f\n",
-               std::sqrt(d_base / norm), std::sqrt(d_fast / norm));
+               "vs dense_pixels: tripling rel %.2e, dense_rows rel %.2e, glossy (256 BRDF terms) "
+               "rel %.4f\n",
+               std::sqrt(d_tri / norm_tri), std::sqrt(d_base / norm), std::sqrt(d_fast / norm));
 }
 
 Fixture& GetFixture() {
@@ -208,8 +286,10 @@ void BM_GlossyFrame(benchmark::State& state) {
   }
   const double per_frame = total / static_cast<double>(state.iterations());
   state.counters["fps"] = 1 / per_frame;
+  state.counters["x_tripling"] = f.tripling_seconds / per_frame;
   state.counters["x_dense_rows"] = f.dense_rows_seconds / per_frame;
   state.counters["x_dense_pixels"] = f.dense_pixels_seconds / per_frame;
+  state.counters["tripling_ms"] = 1e3 * f.tripling_seconds;
   state.counters["dense_rows_ms"] = 1e3 * f.dense_rows_seconds;
   state.counters["dense_pixels_ms"] = 1e3 * f.dense_pixels_seconds;
 }

@@ -79,13 +79,28 @@ class HaarProduct {
   // Only the coefficients W_j at `wanted` (global indices, increasing, all
   // on `face`) into rgb_out[3·t + c] for wanted[t]: what a sparse row dotted
   // with W needs (runtime/sample_rows.h). g_index/g_value: g's terms on that
-  // face (increasing). Per wanted j the four cases above are read off
-  // directly — f̂ from the factor, ĝ by walking j's ancestors in a dense copy
-  // of g, only when f_j ≠ 0; case 3 with j coarser from subtree sums
-  // S(c) = Σ f_k g_k over the common terms at or below square c, which each
-  // common term adds to its ancestors once: W_{s,t} gets 2^l/N Σ_q
-  // sign_t(q) S(child_q(s)) — so the cost is O(|g| + |f ∩ g| · levels +
-  // |wanted| + |wanted ∩ f| · levels).
+  // face (increasing). Per wanted j = (s, t) the cases above are read off
+  // directly:
+  //
+  //   W_j = ĝ(s) f_j + g_j f̂(s) + 2^l/N (g_{s,t'} f_{s,t''} + g_{s,t''} f_{s,t'})
+  //         + 2^l/N Σ_q sign_t(q) S(child_q(s))
+  //
+  // with S(c) = Σ f_k g_k over the common terms at or below square c, which
+  // each common term adds to its ancestors once. The g-side numbers of the
+  // first line (ĝ(s), g_j and the two others) depend on g and j alone: Gather
+  // computes them, Combine adds the f side, and a caller whose g and wanted
+  // sets stay fixed over many f (a sample's BRDF slice and row, over frames)
+  // gathers once. Cost: Gather O(|g| + |wanted| · levels), Combine
+  // O(|g| + |f ∩ g| · levels + |wanted|).
+  struct Gathered {
+    float g_hat = 0, g = 0, g_other[2] = {0, 0};
+  };
+  void Gather(int face, std::span<const uint32_t> g_index, std::span<const float> g_value,
+              std::span<const uint32_t> wanted, std::span<Gathered> out);
+  void Combine(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
+               std::span<const float> g_value, std::span<const uint32_t> wanted,
+               std::span<const Gathered> gathered, std::span<float> rgb_out);
+  // Gather + Combine.
   void AtTerms(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
                std::span<const float> g_value, std::span<const uint32_t> wanted,
                std::span<float> rgb_out);
@@ -102,6 +117,7 @@ class HaarProduct {
   std::vector<float> subtree_;
   std::vector<uint32_t> stamp_;
   uint32_t epoch_ = 0;
+  std::vector<Gathered> gathered_;  // AtTerms
 };
 
 }  // namespace wavebake

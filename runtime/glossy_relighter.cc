@@ -57,13 +57,51 @@ absl::StatusOr<GlossyRelighter> GlossyRelighter::Create(const SampleRows* rows,
   r.threads_ = std::max(r.threads_, 1);
   for (int t = 0; t < r.threads_; ++t)
     r.scratch_.push_back(std::make_unique<Scratch>(rows->light_res()));
+  r.GatherSlices();
   return r;
 }
 
 absl::Status GlossyRelighter::SetSlices(BrdfSlices slices) {
   if (absl::Status s = CheckSlices(slices, *rows_); !s.ok()) return s;
   slices_ = std::move(slices);
+  GatherSlices();
   return absl::OkStatus();
+}
+
+namespace {
+
+// ρ_x's terms face by face: indices increase, so each face's are one range.
+struct FaceRanges {
+  std::array<uint32_t, 7> start{};
+  std::array<bool, 6> faces{};
+  FaceRanges(std::span<const uint32_t> gi, uint32_t per_face) {
+    for (uint32_t face = 0; face < 6; ++face) {
+      start[face + 1] = static_cast<uint32_t>(
+          std::lower_bound(gi.begin() + start[face], gi.end(), (face + 1) * per_face) - gi.begin());
+      faces[face] = start[face + 1] > start[face];
+    }
+  }
+  size_t size(int face) const { return start[face + 1] - start[face]; }
+};
+
+}  // namespace
+
+void GlossyRelighter::GatherSlices() {
+  gathered_.assign(rows_->entries(), HaarProduct::Gathered{});
+  const uint32_t per_face = static_cast<uint32_t>(light_res()) * light_res();
+  ParallelForWorkers(cells(), threads_, kBlock, [&](int worker, int cell) {
+    if (masked_[cell]) return;
+    const std::span<const uint32_t> gi = slices_.Index(cell);
+    const std::span<const float> gv = slices_.Value(cell);
+    const FaceRanges r(gi, per_face);
+    for (int face = 0; face < 6; ++face) {
+      const std::span<const uint32_t> terms = rows_->terms(cell, face);
+      if (!r.faces[face] || terms.empty()) continue;
+      scratch_[worker]->product.Gather(
+          face, gi.subspan(r.start[face], r.size(face)), gv.subspan(r.start[face], r.size(face)),
+          terms, std::span(gathered_).subspan(rows_->EntryOf(cell, face), terms.size()));
+    }
+  });
 }
 
 void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& slices,
@@ -71,6 +109,7 @@ void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& sl
   CheckOrDie(lighting.n() == light_res(), "lighting made for another light resolution");
   CheckOrDie(slices.first.size() == static_cast<size_t>(cells()) + 1, "slices of another grid");
   CheckOrDie(rgb_out.size() == 3 * static_cast<size_t>(cells()), "output is not W*H*3 floats");
+  const bool own = &slices == &slices_;
   const uint32_t per_face = static_cast<uint32_t>(light_res()) * light_res();
   ParallelForWorkers(cells(), threads_, kBlock, [&](int worker, int cell) {
     float* out = rgb_out.data() + 3 * static_cast<size_t>(cell);
@@ -79,19 +118,18 @@ void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& sl
     Scratch& s = *scratch_[worker];
     const std::span<const uint32_t> gi = slices.Index(cell);
     const std::span<const float> gv = slices.Value(cell);
-    // ρ_x's terms face by face (indices increase, so faces are contiguous).
-    std::array<uint32_t, 7> start{};
-    std::array<bool, 6> faces{};
-    for (uint32_t face = 0; face < 6; ++face) {
-      start[face + 1] = static_cast<uint32_t>(
-          std::lower_bound(gi.begin() + start[face], gi.end(), (face + 1) * per_face) - gi.begin());
-      faces[face] = start[face + 1] > start[face];
-    }
+    const FaceRanges r(gi, per_face);
     const std::array<float, 3> b = rows_->Apply(
-        cell, faces,
-        [&](int face, std::span<const uint32_t> terms, std::span<float> rgb) {
-          const size_t b0 = start[face], n0 = start[face + 1] - b0;
-          s.product.AtTerms(lighting, face, gi.subspan(b0, n0), gv.subspan(b0, n0), terms, rgb);
+        cell, r.faces,
+        [&](int face, std::span<const uint32_t> terms, int64_t entry, std::span<float> rgb) {
+          const auto g_index = gi.subspan(r.start[face], r.size(face));
+          const auto g_value = gv.subspan(r.start[face], r.size(face));
+          if (own) {
+            s.product.Combine(lighting, face, g_index, g_value, terms,
+                              std::span(gathered_).subspan(entry, terms.size()), rgb);
+          } else {
+            s.product.AtTerms(lighting, face, g_index, g_value, terms, rgb);
+          }
         },
         s.weights);
     for (int c = 0; c < 3; ++c) out[c] = b[c];

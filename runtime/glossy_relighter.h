@@ -11,9 +11,11 @@
 // and view (runtime/brdf_slices.h). A frame builds L's factor once (dense
 // coefficients, parent sums: O(M)); then per cell SampleRows::Apply asks,
 // face by face where ρ_x has terms, for W at the terms the row V(x) has, and
-// the tree algorithm (HaarProduct::AtTerms) forms just those:
-// O(|ρ_x| + |L ∩ ρ_x| · levels + |V(x)| · levels). Nothing per frame
-// decodes the 4D columns.
+// the tree algorithm forms just those (HaarProduct::Combine): O(|ρ_x| +
+// |L ∩ ρ_x| · levels + |V(x)|). The ρ-side numbers of every W_j (ĝ, g_j and
+// the square's other two g) do not change with the lighting: they are
+// gathered once per slices (HaarProduct::Gather, 16 bytes per row entry).
+// Nothing per frame decodes the 4D columns.
 #include <memory>
 #include <span>
 #include <vector>
@@ -48,8 +50,8 @@ class GlossyRelighter {
   // [W·H·3] = albedo · ⟨V, P(L·ρ)⟩, masked cells NaN.
   void Relight(const WaveletLights& lights, std::span<float> rgb_out);
   // The same before the albedo, for any factor and any slices of this grid
-  // (linear in both: the incremental material editor feeds it deltas).
-  // Masked cells get 0.
+  // (linear in both: the incremental material editor feeds it deltas; slices
+  // other than slices() are gathered on the fly). Masked cells get 0.
   void Transport(const HaarFactor& lighting, const BrdfSlices& slices, std::span<float> rgb_out);
   // rgb_out = transport_rgb × albedo (NaN in masked cells); may alias.
   void ApplyAlbedo(std::span<const float> transport_rgb, std::span<float> rgb_out) const;
@@ -67,6 +69,8 @@ class GlossyRelighter {
   std::vector<uint8_t> masked_;
   int threads_ = 0;
   std::vector<std::unique_ptr<Scratch>> scratch_;  // per worker
+  std::vector<HaarProduct::Gathered> gathered_;    // per row entry, for slices_
+  void GatherSlices();
 };
 
 }  // namespace wavebake

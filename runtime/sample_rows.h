@@ -47,6 +47,11 @@ class SampleRows {
   int light_res() const { return light_res_; }
   const Stats& stats() const { return stats_; }
 
+  // The index among all entries of the first entry of (cell, face); the
+  // entries of a row face are consecutive. entries() in all.
+  int64_t EntryOf(int cell, int face) const { return first_[cell * 6 + face]; }
+  int64_t entries() const { return first_.empty() ? 0 : first_.back(); }
+
   // Row of `cell` restricted to `face`: row-basis indices (increasing) and values.
   std::span<const uint32_t> terms(int cell, int face) const;
   std::span<const float> values(int cell, int face) const;
@@ -56,10 +61,12 @@ class SampleRows {
   std::array<float, 3> Dot(int cell, const RgbCube& w) const;
 
   // The same with the weights asked for where the row has entries only:
-  // for every face in `faces` holding some, weights(face, terms, rgb) must
-  // fill rgb[3k + c] with W_{terms[k]}(cell) (a weight that is cheap per
+  // for every face in `faces` holding some, weights(face, terms, entry, rgb)
+  // must fill rgb[3k + c] with W_{terms[k]}(cell) (a weight that is cheap per
   // term — the triple product's, a near-field light's — need not be formed
-  // on the whole cube). scratch: reused between calls.
+  // on the whole cube). `entry` numbers terms[0] among all rows' entries
+  // (EntryOf), so a caller can keep static data per entry. scratch: reused
+  // between calls.
   template <typename Weights>
   std::array<float, 3> Apply(int cell, const std::array<bool, 6>& faces, Weights&& weights,
                              std::vector<float>& scratch) const {
@@ -69,7 +76,7 @@ class SampleRows {
       const int64_t begin = first_[cell * 6 + face], end = first_[cell * 6 + face + 1];
       if (begin == end) continue;
       scratch.resize(3 * static_cast<size_t>(end - begin));
-      weights(face, std::span<const uint32_t>(terms_.data() + begin, end - begin),
+      weights(face, std::span<const uint32_t>(terms_.data() + begin, end - begin), begin,
               std::span<float>(scratch));
       for (int64_t k = begin; k < end; ++k) {
         const float v = values_[k];
