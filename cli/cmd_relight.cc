@@ -1,28 +1,28 @@
-// `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] --out
-// IMG.(exr|png)|MESH.ply` (DESIGN.md §5): Eq. 8 relighting of a store under
-// an environment, written as an image (camera layouts) or a vertex-coloured
-// mesh (mesh layouts). With --rotate-sequence, a rotating environment over
-// many frames (runtime/relight_sequence.h): frames and errors.csv into --out.
-#include <algorithm>
+// `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] [--brdf B]
+// --out IMG.(exr|png)|MESH.ply` (DESIGN.md §5): a store relit under an
+// environment (Eq. 8 for diffuse stores, the triple product with a BRDF for
+// visibility stores), written as an image (camera layouts) or a
+// vertex-coloured mesh (mesh layouts). The sequence modes are in
+// cli/cmd_relight_sequences.cc.
 #include <cstdio>
 
 #include "cli/command_error.h"
+#include "cli/relight_flags.h"
 #include "cli/runtime_commands.h"
-#include "runtime/glossy_store.h"
-#include "runtime/relight_sequence.h"
 
 namespace wavebake::cli {
 namespace {
 
-struct RelightFlags {
-  std::string store, env, out;
-  int terms = 256;
-  double rotate = 0;
-  float exposure = 0;
-  std::string rotate_sequence, incremental = "per-band", frame_format = "png";
-  std::string brdf = "lambert", view;
-  int brdf_terms = 256;
-};
+void Run(const RelightFlags& f) {
+  if (!f.brdf_sequence.empty()) return RunBrdfSequence(f);
+  if (!f.rotate_sequence.empty()) return RunRotateSequence(f);
+  absl::Status s =
+      RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out, GlossyOf(f));
+  if (!s.ok()) Fail("relight", s);
+  std::printf("wrote %s\n", f.out.c_str());
+}
+
+}  // namespace
 
 GlossyOptions GlossyOf(const RelightFlags& f) {
   GlossyOptions g{.brdf = f.brdf};
@@ -34,51 +34,6 @@ GlossyOptions GlossyOf(const RelightFlags& f) {
   }
   return g;
 }
-
-// --incremental, already checked to be none, basic or per-band.
-SequenceMode ModeOf(const std::string& name) {
-  if (name == "none") return SequenceMode::kNonIncremental;
-  return name == "basic" ? SequenceMode::kBasic : SequenceMode::kPerBand;
-}
-
-void RunSequence(const RelightFlags& f) {
-  absl::StatusOr<RotateSequence> rotation = ParseRotateSequence(f.rotate_sequence);
-  if (!rotation.ok()) Fail("relight", rotation.status());
-  if (f.incremental != "per-band" && f.incremental != "basic" && f.incremental != "none")
-    Fail("relight", "incremental: '" + f.incremental + "' is not per-band, basic or none",
-         kExitBadInput);
-  if (f.frame_format != "png" && f.frame_format != "exr" && f.frame_format != "ply")
-    Fail("relight", "frame-format: '" + f.frame_format + "' is not png, exr or ply", kExitBadInput);
-  SequenceOptions options{.rotation = *rotation,
-                          .terms = f.terms,
-                          .mode = ModeOf(f.incremental),
-                          .exposure_stops = f.exposure,
-                          .out_dir = f.out,
-                          .frame_extension = "." + f.frame_format};
-  absl::StatusOr<std::vector<SequenceFrame>> frames = RelightSequence(f.store, f.env, options);
-  if (!frames.ok()) Fail("relight", frames.status());
-  double sum = 0, worst = 0, seconds = 0;
-  for (const SequenceFrame& fr : *frames) {
-    sum += fr.rel_rms;
-    worst = std::max(worst, fr.rel_rms);
-    seconds += fr.seconds;
-  }
-  const double n = static_cast<double>(frames->size());
-  std::printf(
-      "wrote %zu frames and errors.csv to %s: rel_rms vs all lights mean %.5f max %.5f, "
-      "%.2f ms/frame\n",
-      frames->size(), f.out.c_str(), sum / n, worst, 1e3 * seconds / n);
-}
-
-void Run(const RelightFlags& f) {
-  if (!f.rotate_sequence.empty()) return RunSequence(f);
-  absl::Status s =
-      RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out, GlossyOf(f));
-  if (!s.ok()) Fail("relight", s);
-  std::printf("wrote %s\n", f.out.c_str());
-}
-
-}  // namespace
 
 void AddRelightCommand(CLI::App& app) {
   auto flags = std::make_shared<RelightFlags>();
@@ -108,15 +63,19 @@ void AddRelightCommand(CLI::App& app) {
   cmd->add_option("--rotate-sequence", flags->rotate_sequence,
                   "START:END:FRAMES: relight a rotating environment; --out is then a directory "
                   "of frames and errors.csv (error vs all wavelet lights, per frame)");
+  cmd->add_option("--brdf-sequence", flags->brdf_sequence,
+                  "KIND:FROM:TO:FRAMES[:HOLD]: material editing on a visibility store, the "
+                  "phong/blinn exponent or ggx roughness from FROM to TO, then HOLD frames at "
+                  "TO; --out is a directory of frames and errors.csv (error vs every BRDF term)");
   cmd->add_option("--incremental", flags->incremental,
-                  "with --rotate-sequence: per-band (Overbeck §6.2.2), basic (Overbeck ch. 4, "
-                  "never resets: ghosts under fast rotation) or none")
-      ->capture_default_str();
-  cmd->add_option("--frame-format", flags->frame_format, "with --rotate-sequence: png | exr | ply")
+                  "rotations: per-band (default, Overbeck §6.2.2), basic (ch. 4, never resets: "
+                  "ghosts under fast rotation) or none; materials: basic (default, --brdf-terms "
+                  "per sample per frame, converges when held) or none");
+  cmd->add_option("--frame-format", flags->frame_format, "sequences: png | exr | ply")
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
-                  "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory with "
-                  "--rotate-sequence")
+                  "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory for "
+                  "the sequences")
       ->required();
   cmd->callback([flags] { Run(*flags); });
 }

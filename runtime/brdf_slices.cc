@@ -78,6 +78,29 @@ std::array<bool, 6> BrdfTexels::Slice(const Brdf& brdf, Vec3 n, Vec3 wo, double 
   return touched;
 }
 
+void KeepLargest(std::span<const uint32_t> index, std::span<const float> value, int n,
+                 std::vector<uint32_t>& out_index, std::vector<float>& out_value) {
+  if (n <= 0 || index.size() <= static_cast<size_t>(n)) {
+    out_index.insert(out_index.end(), index.begin(), index.end());
+    out_value.insert(out_value.end(), value.begin(), value.end());
+    return;
+  }
+  // Linear-time selection by (|value| down, index up), then index order.
+  thread_local std::vector<std::pair<float, uint32_t>> order;
+  order.clear();
+  for (size_t i = 0; i < index.size(); ++i) order.push_back({std::fabs(value[i]), uint32_t(i)});
+  const auto first = [&](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  };
+  std::nth_element(order.begin(), order.begin() + n, order.end(), first);
+  std::sort(order.begin(), order.begin() + n,
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  for (int k = 0; k < n; ++k) {
+    out_index.push_back(index[order[k].second]);
+    out_value.push_back(value[order[k].second]);
+  }
+}
+
 absl::StatusOr<JitterPattern> BrdfQuadrature(int light_res, int store_supersample, uint64_t seed,
                                              const SliceOptions& options) {
   if (options.quadrature < 0 || options.quadrature > 256)
@@ -120,25 +143,7 @@ absl::StatusOr<BrdfSlices> ProjectBrdfSlices(const Brdf& brdf, const SampleSet& 
         where.push_back(static_cast<uint32_t>(m));
       }
     }
-    std::vector<uint32_t> kept;
-    if (options.terms == 0 || static_cast<int>(candidates.size()) <= options.terms) {
-      kept = where;
-    } else {
-      // The `terms` largest |c| (ties: the lower index), in linear time.
-      thread_local std::vector<std::pair<float, uint32_t>> order;
-      order.clear();
-      for (size_t i = 0; i < candidates.size(); ++i)
-        order.push_back({std::fabs(candidates[i]), where[i]});
-      const auto first = [](const auto& a, const auto& b) {
-        return a.first != b.first ? a.first > b.first : a.second < b.second;
-      };
-      std::nth_element(order.begin(), order.begin() + options.terms, order.end(), first);
-      for (int i = 0; i < options.terms; ++i) kept.push_back(order[i].second);
-      std::sort(kept.begin(), kept.end());
-    }
-    value[cell].reserve(kept.size());
-    for (uint32_t m : kept) value[cell].push_back(cube[m]);
-    index[cell] = std::move(kept);
+    KeepLargest(where, candidates, options.terms, index[cell], value[cell]);
   });
 
   BrdfSlices out;

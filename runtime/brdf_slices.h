@@ -65,6 +65,13 @@ absl::StatusOr<BrdfSlices> ProjectBrdfSlices(const Brdf& brdf, const SampleSet& 
                                              const JitterPattern& pattern,
                                              const SliceOptions& options = {});
 
+// The `n` entries of largest |value| (ties: the lower index), appended to
+// out_index/out_value in increasing index order; all of them if n ≤ 0 or
+// there are no more than n. index must be increasing. The cut of every
+// slice (ProjectBrdfSlices, and the incremental material editor).
+void KeepLargest(std::span<const uint32_t> index, std::span<const float> value, int n,
+                 std::vector<uint32_t>& out_index, std::vector<float>& out_value);
+
 // The quadrature pattern of the slices: the store's cubemap and seed, Q =
 // options.quadrature directions per texel (0: the store's K).
 absl::StatusOr<JitterPattern> BrdfQuadrature(int light_res, int store_supersample, uint64_t seed,

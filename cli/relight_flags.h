@@ -1,0 +1,28 @@
+#pragma once
+// The flags of `wavebake relight` (cli/cmd_relight.cc), shared with its
+// sequence modes (cli/cmd_relight_sequences.cc).
+#include <string>
+
+#include "runtime/glossy_store.h"
+
+namespace wavebake::cli {
+
+struct RelightFlags {
+  std::string store, env, out;
+  int terms = 256;
+  double rotate = 0;
+  float exposure = 0;
+  std::string rotate_sequence, brdf_sequence, frame_format = "png";
+  std::string incremental;  // empty: the sequence's default (per-band; basic for materials)
+  std::string brdf = "lambert", view;
+  int brdf_terms = 256;
+};
+
+// --brdf, --brdf-terms and --view as GlossyOptions (a bad --view fails).
+GlossyOptions GlossyOf(const RelightFlags& f);
+
+// --rotate-sequence and --brdf-sequence: frames and errors.csv into --out.
+void RunRotateSequence(const RelightFlags& f);
+void RunBrdfSequence(const RelightFlags& f);
+
+}  // namespace wavebake::cli
