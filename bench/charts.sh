@@ -1,6 +1,6 @@
 #!/bin/bash
 # The charts of docs/RESULTS.md in one command (issue 7): builds
-# bench_charts_data and bench_charts_runtime, runs the sweeps into
+# bench_charts_data, bench_charts_runtime and bench_charts_glossy, runs the sweeps into
 # docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
 #
@@ -21,9 +21,10 @@ for arg in "$@"; do
 done
 out="$here/docs/charts"
 [[ -n "$quick" ]] && out="$build/charts-quick"
-cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime
+cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime bench_charts_glossy
 start=$(date +%s)
 "$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 "$build/bench_charts_runtime" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+"$build/bench_charts_glossy" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 /usr/bin/python3 "$here/bench/charts.py" "$out" "$out"
 echo "charts: $out ($(( $(date +%s) - start )) s)"

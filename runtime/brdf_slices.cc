@@ -101,6 +101,18 @@ void KeepLargest(std::span<const uint32_t> index, std::span<const float> value, 
   }
 }
 
+BrdfSlices CutSlices(const BrdfSlices& full, int n) {
+  BrdfSlices out;
+  out.light_res = full.light_res;
+  const int cells = static_cast<int>(full.first.size()) - 1;
+  out.first.assign(cells + 1, 0);
+  for (int c = 0; c < cells; ++c) {
+    KeepLargest(full.Index(c), full.Value(c), n, out.index, out.value);
+    out.first[c + 1] = static_cast<int64_t>(out.index.size());
+  }
+  return out;
+}
+
 absl::StatusOr<JitterPattern> BrdfQuadrature(int light_res, int store_supersample, uint64_t seed,
                                              const SliceOptions& options) {
   if (options.quadrature < 0 || options.quadrature > 256)

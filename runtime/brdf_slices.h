@@ -72,6 +72,9 @@ absl::StatusOr<BrdfSlices> ProjectBrdfSlices(const Brdf& brdf, const SampleSet& 
 void KeepLargest(std::span<const uint32_t> index, std::span<const float> value, int n,
                  std::vector<uint32_t>& out_index, std::vector<float>& out_value);
 
+// Every cell's slice cut to its `n` largest coefficients (KeepLargest).
+BrdfSlices CutSlices(const BrdfSlices& slices, int n);
+
 // The quadrature pattern of the slices: the store's cubemap and seed, Q =
 // options.quadrature directions per texel (0: the store's K).
 absl::StatusOr<JitterPattern> BrdfQuadrature(int light_res, int store_supersample, uint64_t seed,

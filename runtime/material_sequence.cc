@@ -22,19 +22,6 @@ absl::Status BadSequence(std::string_view spec, std::string_view why) {
                                                  "blinn or ggx)"));
 }
 
-// Each cell's `n` largest coefficients of `full`.
-BrdfSlices Cut(const BrdfSlices& full, int n) {
-  BrdfSlices out;
-  out.light_res = full.light_res;
-  const int cells = static_cast<int>(full.first.size()) - 1;
-  out.first.assign(cells + 1, 0);
-  for (int c = 0; c < cells; ++c) {
-    KeepLargest(full.Index(c), full.Value(c), n, out.index, out.value);
-    out.first[c + 1] = static_cast<int64_t>(out.index.size());
-  }
-  return out;
-}
-
 // Eq. 4.4–4.5 per cell: Δ = the n largest entries of target − approx, and
 // approx += Δ. Both slices sorted by index; the difference is their merge.
 BrdfSlices DeltaAndUpdate(const BrdfSlices& target, BrdfSlices& approx, int n) {
@@ -165,7 +152,7 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
       for (size_t k = 0; k < values; ++k) accumulated[k] += delta_image[k];
       relighter.ApplyAlbedo(accumulated, frame);
     } else {
-      relighter.Transport(factor, Cut(*full, budget), frame);
+      relighter.Transport(factor, CutSlices(*full, budget), frame);
       relighter.ApplyAlbedo(frame, frame);
     }
     f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
