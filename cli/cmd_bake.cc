@@ -1,7 +1,7 @@
 // `wavebake bake SCENE --out OUT.wbk [--workers N] [bake flags]` (DESIGN.md
 // §5): the embedded default, a coordinator and N workers in this process
-// (cli/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
-// at OUT. With --auto (cli/auto_bake.h) the light resolution, column
+// (driver/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
+// at OUT. With --auto (driver/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
 // of the independent reference under --env.
 #include <atomic>
@@ -10,14 +10,15 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "cli/auto_bake.h"
 #include "cli/bake_flags.h"
 #include "cli/cluster_commands.h"
 #include "cli/command_error.h"
-#include "cli/embedded_bake.h"
-#include "cli/job_watch.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
+#include "cli/watch_display.h"
+#include "driver/auto_bake.h"
+#include "driver/embedded_bake.h"
+#include "driver/job_query.h"
 
 namespace wavebake::cli {
 namespace {
@@ -29,7 +30,7 @@ struct BakeCommandFlags {
   bool quiet = false;
   BakeFlags bake;
   bool auto_mode = false;
-  std::string env = kDefaultAutoEnv;
+  std::string env = driver::kDefaultAutoEnv;
   int max_light_res = 128;
 };
 
@@ -60,19 +61,27 @@ absl::Status CheckAutoFlags(const CLI::App& cmd, const BakeCommandFlags& f) {
 
 void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
              const std::atomic<bool>& interrupted) {
-  AutoBakeOptions options;
+  WatchDisplay display(f.quiet);
+  driver::AutoBakeOptions options;
   options.env = f.env;
   options.search.target_error = f.bake.target_error;
   options.search.resolutions.clear();
   for (int n = 8; n <= f.max_light_res; n *= 2) options.search.resolutions.push_back(n);
   options.workers = f.workers;
-  options.quiet = f.quiet;
+  if (!f.quiet) {
+    options.on_message = [&](const std::string& line) {
+      display.Finish();
+      std::fprintf(stderr, "auto: %s\n", line.c_str());
+    };
+    options.on_event = display.Callback();
+  }
   options.interrupted = &interrupted;
-  absl::StatusOr<AutoBakeReport> report = AutoBake(f.scene, params, f.out, options);
+  absl::StatusOr<driver::AutoBakeReport> report = driver::AutoBake(f.scene, params, f.out, options);
+  display.Finish();
   if (!report.ok() && absl::IsCancelled(report.status()))
     Fail("bake", "interrupted; nothing written", kExitInterrupted);
   if (!report.ok()) Fail("bake", report.status());
-  std::printf("%s", AutoBakeTable(*report).c_str());
+  std::printf("%s", driver::AutoBakeTable(*report).c_str());
   if (!report->failure.empty()) Fail("bake", absl::StrCat("--auto: ", report->failure));
   std::printf("%s: written\n", f.out.c_str());
 }
@@ -86,13 +95,15 @@ void Run(const CLI::App& cmd, const BakeCommandFlags& f) {
   if (absl::Status s = CheckAutoFlags(cmd, f); !s.ok()) Fail("bake", s);
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<v1::Job> job =
-      EmbeddedBake(f.scene, *params, f.out,
-                   {.workers = f.workers, .quiet = f.quiet, .interrupted = &interrupted});
+  WatchDisplay display(f.quiet);
+  absl::StatusOr<v1::Job> job = driver::EmbeddedBake(
+      f.scene, *params, f.out,
+      {.workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted});
+  display.Finish();
   if (!job.ok()) Fail("bake", job.status());
   if (job->phase() == v1::PHASE_CANCELLED && interrupted)
     Fail("bake", "interrupted; nothing written", kExitInterrupted);
-  if (job->phase() != v1::PHASE_DONE) Fail("bake", JobOutcome(*job));
+  if (job->phase() != v1::PHASE_DONE) Fail("bake", driver::JobOutcome(*job));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", f.out.c_str(), job->tiles(),

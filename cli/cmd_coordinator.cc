@@ -6,13 +6,13 @@
 #include <mutex>
 
 #include "absl/strings/str_cat.h"
-#include "cli/client.h"
 #include "cli/cluster_commands.h"
 #include "cli/command_error.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
+#include "driver/client.h"
 
 namespace wavebake::cli {
 namespace {
@@ -60,7 +60,7 @@ void Run(const CoordinatorFlags& f) {
                              .worker_failure_limit = f.worker_failure_limit,
                              .wait_ms = f.lease_wait_ms};
   if (!f.token_file.empty()) {
-    absl::StatusOr<std::string> token = ReadTokenFile(f.token_file);
+    absl::StatusOr<std::string> token = driver::ReadTokenFile(f.token_file);
     if (!token.ok()) Fail("coordinator", token.status());
     options.token = *token;
   }
