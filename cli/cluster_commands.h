@@ -14,5 +14,6 @@ void AddWatchCommand(CLI::App& app);
 void AddStatusCommand(CLI::App& app);
 void AddCancelCommand(CLI::App& app);
 void AddFetchCommand(CLI::App& app);
+void AddHealthCommand(CLI::App& app);
 
 }  // namespace wavebake::cli

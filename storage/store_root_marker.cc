@@ -49,7 +49,7 @@ absl::Status CheckWritable(const std::filesystem::path& root) {
   if (fd < 0) {
     return absl::FailedPreconditionError(absl::StrCat(
         Describe(root), ": not writable (", std::strerror(errno),
-        "); workers write the stores there and need the coordinator's store root read-write"));
+        "); expected the coordinator's store root, read-write: workers write the stores there"));
   }
   ::close(fd);
   ::unlink(probe.c_str());
