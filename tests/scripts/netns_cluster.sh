@@ -36,14 +36,16 @@ add_host() {
 add_host "wb${ID}w1" 1
 add_host "wb${ID}w2" 2
 add_host "wb${ID}k" 3
-in_ns() { local ns=$1; shift; ip netns exec "$ns" "$@"; }
+# Not a function for the background processes: `ip netns exec` execs the
+# program, so $! is its pid and cleanup can kill it.
+in_ns() { ip netns exec "$@"; }
 
-in_ns "$C" "$WB" coordinator --listen 0.0.0.0:7433 --data "$TMP/data" --lease-seconds 5 \
+ip netns exec "$C" "$WB" coordinator --listen 0.0.0.0:7433 --data "$TMP/data" --lease-seconds 5 \
   --address-file "$TMP/coordinator.addr" >"$TMP/coordinator.log" 2>&1 &
 PIDS+=($!)
 wait_until 20 "the coordinator" test -s "$TMP/coordinator.addr"
 for k in 1 2; do
-  in_ns "wb${ID}w$k" "$WB" worker --coordinator "10.213.$k.1:7433" --store-root "$TMP/data/store" \
+  ip netns exec "wb${ID}w$k" "$WB" worker --coordinator "10.213.$k.1:7433" --store-root "$TMP/data/store" \
     --threads 1 --name "host$k" >"$TMP/w$k.log" 2>&1 &
   PIDS+=($!)
 done

@@ -7,7 +7,7 @@
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 source "$(dirname "$0")/slurm_lib.bash"
 SRC=${WB_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-BAKE=(builtin:sphere-plane --layout camera:48x32 --light-res 32 --supersample 16 --tile-size 8
+BAKE=(builtin:sphere-plane --layout camera:64x32 --light-res 32 --supersample 36 --tile-size 8
   --column-group 128)
 
 "$WB" bake "${BAKE[@]}" --out "$TMP/ref.wbk" >"$TMP/ref.log" 2>&1 || fail "embedded bake failed"
@@ -27,14 +27,19 @@ bake_job() { "$WB" status --json --coordinator "$ADDR" "${TOKEN[@]}" | /usr/bin/
   'import json,sys; print(json.loads(sys.stdin.readline())["id"])'; }
 wait_until 30 "the bake job" bake_job
 bj=$(bake_job)
-wait_until 60 "tiles done" job_at_least "$bj" tasks_done 3 "${TOKEN[@]}"
+tiles_done() { local v; v=$(job_field "$bj" tasks_done "${TOKEN[@]}") && ((v >= 1)); }
+wait_until 60 "a tile done" tiles_done
 victim=$(worker_steps | head -n 1)
-phase=$(job_field "$bj" phase "${TOKEN[@]}")
-[[ $phase == PHASE_BAKING ]] || fail "the bake was $phase before the scancel: too short to test"
 scancel "$victim" || fail "scancel $victim"
-echo "scancel $victim at $(job_field "$bj" tasks_done "${TOKEN[@]}") of $(job_field "$bj" tasks_total "${TOKEN[@]}") tasks" >&2
-one_step() { (($(worker_steps | wc -l) == 1)); }
-wait_until 20 "step $victim to end" one_step
+done_at=$(job_field "$bj" tasks_done "${TOKEN[@]}")
+total=$(job_field "$bj" tasks_total "${TOKEN[@]}")
+echo "scancel $victim at $done_at of $total tasks" >&2
+((done_at * 2 < total)) || fail "the bake was past half ($done_at of $total) at the scancel: too short"
+victim_gone() { ! worker_steps | grep -qxF "$victim"; }
+wait_until 20 "step $victim to end" victim_gone
+# The rest of the bake runs on the other step alone.
+[[ $(job_field "$bj" phase "${TOKEN[@]}") != PHASE_DONE ]] || fail "the bake ended before the step did"
+(($(worker_steps | wc -l) == 1)) || fail "expected one worker step left: $(worker_steps)"
 wait_slurm_job_end 120 "$job"
 log=$TMP/sbatch-$job.log
 [[ $(slurm_job_state "$job") == COMPLETED ]] ||
@@ -42,6 +47,4 @@ log=$TMP/sbatch-$job.log
 grep -q "store fetched to $TMP/out.wbk" "$log" || fail "no fetch in the job log: $(tail -n 5 "$log")"
 same_store "$TMP/ref.wbk" "$TMP/out.wbk"
 same_store "$TMP/ref.wbk" "$TMP/data/store/slurm.wbk"
-# Both workers ran tasks, and the surviving one finished the bake.
-for w in "$JD"/worker-*.log; do log_has "$w" "done in" 1 || fail "$(basename "$w") ran no task"; done
 echo "PASS: Slurm job $job baked in $((SECONDS - start)) s; step $victim scancelled mid-bake; store byte-identical to the embedded bake"

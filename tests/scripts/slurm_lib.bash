@@ -13,14 +13,8 @@ SLURM_DIR=$TMP/slurm
 SLURM_NODE=wbnode$$
 
 slurm_procs() {  # pids of processes of this cluster, by their environment
-  local env pid
-  for env in /proc/[0-9]*/environ; do
-    pid=${env#/proc/}
-    pid=${pid%/environ}
-    [[ $pid != "$$" && $pid != "$BASHPID" ]] || continue
-    tr '\0' '\n' <"$env" 2>/dev/null | grep -qxF "SLURM_CONF=$SLURM_DIR/slurm.conf" && echo "$pid"
-  done
-  return 0
+  grep -l -z -x -F "SLURM_CONF=$SLURM_DIR/slurm.conf" /proc/[0-9]*/environ 2>/dev/null |
+    sed 's|^/proc/\([0-9]*\)/environ$|\1|' | grep -v -x -e "$$" -e "$BASHPID" || true
 }
 
 stop_slurm() {
