@@ -9,6 +9,7 @@ PKGS=(
   libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
+  slurmctld slurmd slurm-client munge python3-kubernetes iproute2
 )
 missing=()
 for p in "${PKGS[@]}"; do
