@@ -10,8 +10,9 @@ namespace {
 absl::Status WithReason(absl::Status status, v1::WorkerError::Reason reason) {
   v1::WorkerError error;
   error.set_reason(reason);
-  status.SetPayload(absl::StrCat("type.googleapis.com/", v1::WorkerError::descriptor()->full_name()),
-                    absl::Cord(error.SerializeAsString()));
+  status.SetPayload(
+      absl::StrCat("type.googleapis.com/", v1::WorkerError::descriptor()->full_name()),
+      absl::Cord(error.SerializeAsString()));
   return status;
 }
 

@@ -63,10 +63,8 @@ Outcome RunWorker(ForgetfulCoordinator& fake, double seconds) {
   builder.RegisterService(&fake);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   test_support::ScratchDir store;
-  WorkerLoop loop(server->InProcessChannel({}), {.store_root = store.path(),
-                                                 .threads = 1,
-                                                 .name = "test",
-                                                 .max_backoff_ms = 20});
+  WorkerLoop loop(server->InProcessChannel({}),
+                  {.store_root = store.path(), .threads = 1, .name = "test", .max_backoff_ms = 20});
   std::thread run([&] { (void)loop.Run(); });
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   while (fake.leases_by_new_id == 0 && std::chrono::steady_clock::now() < until)
