@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
+#include "cli/commands.h"
 #include "cli/command_error.h"
 #include "cli/stderr_log.h"
 #include "driver/health.h"

@@ -5,8 +5,8 @@
 #include <thread>
 
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
 #include "worker/worker_loop.h"

@@ -3,6 +3,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "coordinator/lease_table.h"
+#include "coordinator/worker_errors.h"
 
 namespace wavebake {
 
@@ -21,9 +22,7 @@ absl::StatusOr<int64_t> LeaseTable::RegisterWorker(std::string name, int threads
 
 absl::Status LeaseTable::RefusedLocked(const WorkerState& w) const {
   if (!w.rec.excluded) return absl::OkStatus();
-  return absl::FailedPreconditionError(
-      absl::StrCat("worker_id: worker ", w.rec.id, " is excluded after ",
-                   w.rec.consecutive_failures, " consecutive failures"));
+  return ExcludedWorkerError(w.rec.id, w.rec.consecutive_failures);
 }
 
 // The lowest ready task of the oldest job that has one, or nullopt.
@@ -79,7 +78,7 @@ absl::StatusOr<ExchangeResult> LeaseTable::Exchange(int64_t worker_id,
     if (!broken_.ok()) return broken_;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     const int64_t now = clock_->NowMs();
     Transition tx;
@@ -111,7 +110,7 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
     if (!broken_.ok()) return broken_;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     const int64_t now = clock_->NowMs();
     Transition tx;
@@ -162,7 +161,7 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
     if (!workers_.contains(worker_id)) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     Transition tx;
     accepted = CompleteLocked(worker_id, key, report, tx, cleanups);
@@ -227,7 +226,7 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
     if (!workers_.contains(worker_id)) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     auto job = jobs_.find(key.job_id);
     if (job == jobs_.end()) {

@@ -167,6 +167,12 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
                                         const std::filesystem::path& out,
                                         const AutoBakeOptions& options) {
   const auto t0 = Clock::now();
+  // The search owns the light resolution and the coding: the uniform step of
+  // --bits auto is what keeps its error budget, and only adaptive depths
+  // make the column target mean the same at every N.
+  if (base.bits != 0) return absl::InvalidArgumentError("bits: --auto needs --bits auto");
+  if (base.column_mode != ColumnMode::kAdaptive)
+    return absl::InvalidArgumentError("column_mode: --auto needs --column-mode adaptive");
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
   absl::StatusOr<std::unique_ptr<ReferenceMeasure>> measurer = MakeMeasure(scene, base, options);
   if (!measurer.ok()) return measurer.status();

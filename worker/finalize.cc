@@ -69,7 +69,7 @@ struct CscArrays {
 
 // zstd level of the nnz-long arrays: 9 packed cubes-wall indices 10 % and
 // values 4 % tighter than 3 at ~0.2 s per 20 MB; 19 gained 5 % more for 10×
-// the time (issue 7).
+// the time.
 constexpr int kNnzZstdLevel = 9;
 
 absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,

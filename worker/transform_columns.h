@@ -4,7 +4,7 @@
 // assembled into W×H column images, transformed to their depth and selected
 // (core/column_coding.h), and written back to staging as the group's
 // GroupResult (worker/group_result.h) for FINALIZE. Free of scheduling: the
-// local driver and remote workers call it alike, in any order, any number of
+// embedded bake's workers and remote ones call it alike, in any order, any number of
 // times (a retry rewrites the same bytes).
 #include <cstdint>
 #include <filesystem>
