@@ -104,6 +104,7 @@ absl::Status CheckWorkerStoreRoot(const std::filesystem::path& root,
         Describe(root), ": no such directory (is the shared filesystem mounted?); expected ",
         expected));
   }
+  if (expected_id.empty()) return CheckWritable(root);  // a coordinator that writes no marker
   absl::StatusOr<std::string> id = ReadStoreRootMarker(root);
   if (absl::IsNotFound(id.status())) {
     return absl::FailedPreconditionError(absl::StrCat(Describe(root), ": no ", kStoreRootMarker,
@@ -114,7 +115,7 @@ absl::Status CheckWorkerStoreRoot(const std::filesystem::path& root,
     return absl::FailedPreconditionError(
         absl::StrCat(Describe(root), ": ", id.status().message(), "; expected ", expected));
   }
-  if (!expected_id.empty() && *id != expected_id) {
+  if (*id != expected_id) {
     return absl::FailedPreconditionError(
         absl::StrCat(Describe(root), ": the store root of another coordinator (", kStoreRootMarker,
                      " holds id ", *id, ")", Hint(root), "; expected ", expected));

@@ -24,8 +24,9 @@ absl::StatusOr<std::string> EnsureStoreRootMarker(const std::filesystem::path& r
 // when the file is not a marker.
 absl::StatusOr<std::string> ReadStoreRootMarker(const std::filesystem::path& root);
 
-// The checks a worker makes before its first lease. `expected_id` empty: only
-// that root is a store root (has a marker) and is writable. Errors are
+// The checks a worker makes before its first lease: root is a directory, is
+// writable and, unless `expected_id` is empty (a coordinator that writes no
+// marker), holds the marker with that id. Errors are
 // FailedPrecondition and name the path as "--store-root PATH", what was found,
 // what was expected and, when the marker is one level down (PATH/store), that
 // directory.

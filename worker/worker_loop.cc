@@ -85,14 +85,18 @@ absl::Status WorkerLoop::Run() {
         absl::StrCat("threads: ", options_.threads, " is not in 1..4096"));
   if (options_.store_root.empty()) return absl::InvalidArgumentError("store_root: required");
   // A wrong --store-root is refused here, not by failed tasks: what can be
-  // seen locally first, then the coordinator's marker id once it answers.
+  // seen locally first (a directory, writable), then the marker against the
+  // coordinator's id once it answers (none from coordinators without one).
   if (absl::Status s = CheckWorkerStoreRoot(options_.store_root, ""); !s.ok()) return s;
   if (absl::Status s = Register(); !s.ok()) return s;
   {
     std::lock_guard lock(mu_);
     if (draining_) return fatal_;
   }
-  if (absl::Status s = CheckWorkerStoreRoot(options_.store_root, store_root_id_); !s.ok()) return s;
+  if (!store_root_id_.empty()) {
+    if (absl::Status s = CheckWorkerStoreRoot(options_.store_root, store_root_id_); !s.ok())
+      return s;
+  }
   {
     std::jthread heartbeat([this](std::stop_token stop) { HeartbeatLoop(stop); });
     std::vector<std::jthread> threads;
