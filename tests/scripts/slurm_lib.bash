@@ -80,7 +80,7 @@ MpiDefault=none
 SwitchType=switch/none
 ReturnToService=2
 SlurmdParameters=config_overrides
-KillWait=1
+KillWait=5
 InactiveLimit=0
 MinJobAge=600
 SchedulerParameters=sched_interval=1
