@@ -104,8 +104,11 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
     if (!scene.ok()) return SceneError("scene.uploaded", scene.status());
     return scene;
   }
-  absl::StatusOr<std::string> named =
-      ref.files().empty() ? NamedBlob(ref, options) : BundledScene(ref, options);
+  // A JSON scene always loads from its bundle, even an empty one: its mesh
+  // paths then never reach this host's own files.
+  const bool bundle =
+      !ref.files().empty() || std::filesystem::path(ref.file_name()).extension() == ".json";
+  absl::StatusOr<std::string> named = bundle ? BundledScene(ref, options) : NamedBlob(ref, options);
   if (!named.ok()) return named.status();
   absl::StatusOr<Scene> scene = LoadScene(*named);
   if (!scene.ok()) {

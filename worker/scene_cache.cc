@@ -52,7 +52,8 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
     return SceneSpec{it->second, it->second};
   absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
   if (!path.ok()) return path.status();
-  if (ref.files().empty()) return SceneSpec{path->string(), CachedSceneName(ref)};
+  const bool json = std::filesystem::path(CachedSceneName(ref)).extension() == ".json";
+  if (ref.files().empty() && !json) return SceneSpec{path->string(), CachedSceneName(ref)};
   // Its files, each fetched by its own hash, in a directory of their own
   // (storage/scene_bundle.h): the scene's references find only them.
   std::vector<BundleFile> files;
@@ -74,6 +75,9 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
   absl::StatusOr<std::filesystem::path> scene =
       MaterializeBundle(dir_ / "bundles", key, CachedSceneName(ref), *path, files);
   if (!scene.ok()) return scene.status();
+  if (json) {  // the coordinator refused such a scene already; a worker checks too
+    if (absl::Status s = CheckJsonSceneInBundle(*scene, files); !s.ok()) return s;
+  }
   return SceneSpec{scene->string(), CachedSceneName(ref)};
 }
 

@@ -44,4 +44,38 @@ for path in ../bunny.obj "$TMP/bunny.obj"; do
   fi
   grep -q "meshes\[0\].file" "$TMP/bad.log" || fail "the refusal of $path does not name meshes[0].file"
 done
-echo "PASS: JSON scene with 2 mesh references baked from its upload alone; outside paths refused"
+# A client that skips those checks (raw gRPC) is refused by the coordinator:
+# a JSON scene loads only files uploaded with it, whatever path it names.
+src=${WB_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+/usr/bin/python3 -m grpc_tools.protoc -I "$src/proto" --python_out="$TMP" \
+  --grpc_python_out="$TMP" "$src/proto/wavebake.proto" || fail "protoc for Python"
+/usr/bin/python3 - "$TMP" "$ADDR" "$TMP/bunny.obj" <<'PY' || fail "the coordinator accepted a scene naming files it was not given"
+import sys
+sys.path.insert(0, sys.argv[1])
+import grpc
+import wavebake_pb2 as pb
+import wavebake_pb2_grpc as rpc
+jobs = rpc.JobServiceStub(grpc.insecure_channel(sys.argv[2]))
+def upload(name, data):
+    return jobs.UploadScene(iter([pb.SceneChunk(file_name=name, data=data)]))
+mesh = upload("other.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+cases = [  # (mesh path in the scene, the bundle's files, what the refusal names)
+    (sys.argv[3], [], "meshes[0].file"),                        # absolute: the host's own file
+    ("../bunny.obj", [], "meshes[0].file"),
+    ("secret.obj", [("other.obj", mesh.sha256)], "meshes[0].file"),
+    ("other.obj", [("../other.obj", mesh.sha256)], "scene.uploaded.files[0].path"),
+]
+for path, files, field in cases:
+    scene = upload("scene.json", ('{"meshes": [{"file": "%s"}]}' % path).encode())
+    for p, sha in files:
+        scene.files.add(path=p, sha256=sha)
+    try:
+        jobs.Submit(pb.BakeRequest(scene=pb.SceneSource(uploaded=scene), light_res=8,
+                                   layout="hilbert:8x8"))
+    except grpc.RpcError as e:
+        assert e.code() == grpc.StatusCode.INVALID_ARGUMENT, (path, e.code())
+        assert field in e.details(), (path, e.details())
+        continue
+    raise SystemExit("accepted a scene naming %s" % path)
+PY
+echo "PASS: JSON scene with 2 mesh references baked from its upload alone; outside paths refused by client and coordinator"
