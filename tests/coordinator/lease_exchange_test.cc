@@ -13,9 +13,8 @@ namespace {
 using ::testing::ElementsAre;
 
 std::unique_ptr<LeaseTable> MakeTable(FakeClock* clock, int failure_limit = 3) {
-  auto table =
-      LeaseTable::Create(nullptr, clock, {.lease_ms = 1000, .worker_failure_limit = failure_limit},
-                         nullptr);
+  auto table = LeaseTable::Create(
+      nullptr, clock, {.lease_ms = 1000, .worker_failure_limit = failure_limit}, nullptr);
   EXPECT_TRUE(table.ok()) << table.status();
   return std::move(*table);
 }
@@ -75,8 +74,8 @@ TEST(LeaseExchangeTest, AStaleOrUnknownResultIsNotAcceptedAndSpoilsNothing) {
   auto leased = table->Exchange(w, {}, 2);
   ASSERT_EQ(leased->grants.size(), 2u);
   std::vector<Completion> done = Results(leased->grants);
-  done.insert(done.begin() + 1, {LeaseKey{job, 1, 7}, {}});      // attempt never granted
-  done.push_back({LeaseKey{job, 0, 1}, {}});                      // tile 0 again: already done
+  done.insert(done.begin() + 1, {LeaseKey{job, 1, 7}, {}});  // attempt never granted
+  done.push_back({LeaseKey{job, 0, 1}, {}});                 // tile 0 again: already done
   auto r = table->Exchange(w, done, 1);
   ASSERT_TRUE(r.ok()) << r.status();
   EXPECT_THAT(r->accepted, ElementsAre(true, false, true, false));
