@@ -61,6 +61,31 @@ void QuantizationInputs(const ColumnCodingParams& p, std::span<const float> w, C
   c->step_unit = unit;
 }
 
+// ChooseDepth on the image with its uncovered cells filled. Depth 0 codes the
+// cells themselves, where a fill would cost what zeros get for free: it is
+// counted on the image as it is. The energy budget is spent over every cell,
+// filled ones too, so the error over the covered cells stays within it.
+DepthChoice ChooseFilledDepth(const ColumnCodingParams& p, std::span<const float> image,
+                              double budget) {
+  if (p.filler == nullptr || p.mode == ColumnMode::k2d) return ChooseDepth(p, image, budget);
+  thread_local std::vector<float> filled;
+  filled.assign(image.begin(), image.end());
+  p.filler->Fill(filled);
+  DepthChoice choice = ChooseDepth(p, filled, budget);
+  if (choice.depth == 0) return {0, image};
+  if (p.filter == WaveletFilter::kHaar) {
+    thread_local std::vector<float> layout;
+    layout.assign(choice.coefficients.begin(), choice.coefficients.end());
+    p.filler->ZeroUncoveredScaling(layout, choice.depth);
+    choice.coefficients = layout;
+  }
+  if (p.mode == ColumnMode::kAdaptive && p.column_terms == 0 &&
+      CountForBudget(image, {}, budget) <=
+          CountForBudget(choice.coefficients, RankingWeights(p, choice.depth), budget))
+    return {0, image};  // ties: the shallower
+  return choice;
+}
+
 }  // namespace
 
 ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, int height,
@@ -103,7 +128,7 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     return;
   }
   const double budget = p.target_error * p.target_error * out->reference_energy;
-  const DepthChoice choice = ChooseDepth(p, image, budget);
+  const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   out->depth = choice.depth;
   const std::span<const float> w = RankingWeights(p, out->depth);
   Select(p, choice.coefficients, w, budget, out);
