@@ -85,13 +85,22 @@ void CellFiller::Fill(std::span<float> values, int channels) const {
   }
 }
 
-void CellFiller::ZeroUncoveredScaling(std::span<float> layout, int depth) const {
+void CellFiller::ZeroUncoveredCoefficients(std::span<float> layout, int depth) const {
   if (depth <= 0 || static_cast<size_t>(depth) >= counts_.size()) return;
-  const auto [bw, bh] = sizes_[depth];
-  const std::vector<uint32_t>& blocks = counts_[depth];
-  for (int y = 0; y < bh; ++y)
-    for (int x = 0; x < bw; ++x)
-      if (blocks[size_t(y) * bw + x] == 0) layout[size_t(y) * width_ + x] = 0;
+  // The coefficient at (x, y) of step s's block [0, W_s) × [0, H_s) (W_s =
+  // BlockExtent(W, s)) reaches the level-(s+1) block (x mod W_{s+1}, y mod
+  // H_{s+1}); the scaling coefficients of the LL block reach their own block.
+  for (int s = depth - 1; s >= 0; --s) {
+    const auto [bw, bh] = sizes_[s];
+    const auto [cw, ch] = sizes_[s + 1];
+    const std::vector<uint32_t>& blocks = counts_[s + 1];
+    for (int y = 0; y < bh; ++y)
+      for (int x = 0; x < bw; ++x) {
+        const bool scaling = x < cw && y < ch;
+        if (scaling && s != depth - 1) continue;  // a detail of a deeper step
+        if (blocks[size_t(y % ch) * cw + x % cw] == 0) layout[size_t(y) * width_ + x] = 0;
+      }
+  }
 }
 
 void CellFiller::PushPull(std::span<float> values, int channels) const {

@@ -38,11 +38,11 @@ class CellFiller {
   //    N, S, W, E, NW, NE, SW, SE); cells beyond max_distance are untouched.
   void Fill(std::span<float> values, int channels = 1) const;
 
-  // Zeroes the scaling coefficients of a depth-`depth` Haar Mallat layout
-  // whose 2^depth block holds no covered cell: a Haar scaling function only
-  // reaches its own block, so dropping them changes no covered cell (4D paper
-  // §4.2 transforms, core/haar2d.h).
-  void ZeroUncoveredScaling(std::span<float> layout, int depth) const;
+  // Zeroes every coefficient of a depth-`depth` Haar Mallat layout whose
+  // support holds no covered cell: a Haar basis function only reaches its
+  // own dyadic block, so dropping those changes no covered cell. (After
+  // kPushPull only scaling coefficients can be such and nonzero.)
+  void ZeroUncoveredCoefficients(std::span<float> layout, int depth) const;
 
   UncoveredFill kind() const { return kind_; }
 

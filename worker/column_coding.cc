@@ -9,6 +9,7 @@
 #include "core/subband.h"
 #include "core/wavelet2d.h"
 #include "worker/depth_search.h"
+#include "worker/filled_depth.h"
 
 namespace wavebake {
 namespace {
@@ -59,31 +60,6 @@ void QuantizationInputs(const ColumnCodingParams& p, std::span<const float> w, C
     unit += kw * kw / 12;
   }
   c->step_unit = unit;
-}
-
-// ChooseDepth on the image with its uncovered cells filled. Depth 0 codes the
-// cells themselves, where a fill would cost what zeros get for free: it is
-// counted on the image as it is. The energy budget is spent over every cell,
-// filled ones too, so the error over the covered cells stays within it.
-DepthChoice ChooseFilledDepth(const ColumnCodingParams& p, std::span<const float> image,
-                              double budget) {
-  if (p.filler == nullptr || p.mode == ColumnMode::k2d) return ChooseDepth(p, image, budget);
-  thread_local std::vector<float> filled;
-  filled.assign(image.begin(), image.end());
-  p.filler->Fill(filled);
-  DepthChoice choice = ChooseDepth(p, filled, budget);
-  if (choice.depth == 0) return {0, image};
-  if (p.filter == WaveletFilter::kHaar) {
-    thread_local std::vector<float> layout;
-    layout.assign(choice.coefficients.begin(), choice.coefficients.end());
-    p.filler->ZeroUncoveredScaling(layout, choice.depth);
-    choice.coefficients = layout;
-  }
-  if (p.mode == ColumnMode::kAdaptive && p.column_terms == 0 &&
-      CountForBudget(image, {}, budget) <=
-          CountForBudget(choice.coefficients, RankingWeights(p, choice.depth), budget))
-    return {0, image};  // ties: the shallower
-  return choice;
 }
 
 }  // namespace
