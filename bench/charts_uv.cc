@@ -116,8 +116,8 @@ void Run(const RunConfig& run) {
   std::filesystem::create_directories(run.out_dir);
   std::filesystem::create_directories(run.work_dir);
   const int n = run.quick ? 8 : 32;
-  const std::vector<double> targets = run.quick ? std::vector<double>{0.01}
-                                                : std::vector<double>{0.005, 0.01, 0.02, 0.05};
+  const std::vector<double> targets =
+      run.quick ? std::vector<double>{0.01} : std::vector<double>{0.005, 0.01, 0.02, 0.05};
   Csv size_csv(run.out_dir / "uv_size.csv",
                "layout,side,mode,fill,target,samples,nnz,transport_bytes,bytes_per_sample,"
                "matrix_rel_rms,seconds");
@@ -169,7 +169,8 @@ void Run(const RunConfig& run) {
 int main(int argc, char** argv) {
   wavebake::charts::program = "bench_charts_uv";
   const char* usage =
-      "usage: bench_charts_uv OUT_DIR [--quick] [--threads T] [--sizes 128,256,512] [--work DIR] [--fills-only]";
+      "usage: bench_charts_uv OUT_DIR [--quick] [--threads T] [--sizes 128,256,512] [--work DIR] "
+      "[--fills-only]";
   wavebake::RunConfig run;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

@@ -26,12 +26,12 @@ struct TexelPick {
 
 // Texel coordinates of every vertex: the domain fills the rectangle, v up
 // in the UVs and row 0 at the top of the lightmap.
-std::vector<P2> TexelCoordinates(std::span<const Vec2> uvs, const UvDomain& d,
-                                 const TexelRect& r) {
+std::vector<P2> TexelCoordinates(std::span<const Vec2> uvs, const UvDomain& d, const TexelRect& r) {
   std::vector<P2> out;
   out.reserve(uvs.size());
   const double su = r.width / (double(d.u1) - d.u0), sv = r.height / (double(d.v1) - d.v0);
-  for (Vec2 t : uvs) out.push_back({r.x + (double(t.u) - d.u0) * su, r.y + (d.v1 - double(t.v)) * sv});
+  for (Vec2 t : uvs)
+    out.push_back({r.x + (double(t.u) - d.u0) * su, r.y + (d.v1 - double(t.v)) * sv});
   return out;
 }
 
@@ -44,8 +44,10 @@ void RasterizeMesh(const Mesh& m, const std::vector<P2>& texel_xy, const TexelRe
     const double hi_x = std::max({tri[0].x, tri[1].x, tri[2].x});
     const double lo_y = std::min({tri[0].y, tri[1].y, tri[2].y});
     const double hi_y = std::max({tri[0].y, tri[1].y, tri[2].y});
-    const int x0 = std::max(r.x, int(std::floor(lo_x))), x1 = std::min(r.x + r.width, int(std::ceil(hi_x)));
-    const int y0 = std::max(r.y, int(std::floor(lo_y))), y1 = std::min(r.y + r.height, int(std::ceil(hi_y)));
+    const int x0 = std::max(r.x, int(std::floor(lo_x))),
+              x1 = std::min(r.x + r.width, int(std::ceil(hi_x)));
+    const int y0 = std::max(r.y, int(std::floor(lo_y))),
+              y1 = std::min(r.y + r.height, int(std::ceil(hi_y)));
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
         if (!CoversTexel(tri, x, y)) continue;
@@ -78,7 +80,8 @@ int64_t EmitSamples(const Mesh& m, const TexelRect& r, const std::vector<TexelPi
       overlapping += p.inside >= 2;
       const auto& t = m.triangles[p.triangle];
       Vec3 n = Interpolate(m.normals, t, p.bary);
-      if (!(Length(n) > 0)) n = Cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+      if (!(Length(n) > 0))
+        n = Cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
       s.grid[cell] = s.size();
       s.position.push_back(Interpolate(m.positions, t, p.bary));
       s.normal.push_back(Normalize(n));
@@ -95,9 +98,10 @@ absl::StatusOr<SampleSet> UvLayout(const Scene& scene, const LayoutSpec& spec) {
   const int channel = spec.uv_channel;
   for (const Mesh& m : scene.meshes) {
     if (static_cast<size_t>(channel) >= m.uv_channels.size())
-      return absl::InvalidArgumentError(absl::StrCat(
-          name, ": mesh '", m.name, "' has no UV channel ", channel, " (it has ",
-          m.uv_channels.size(), "); give it a lightmap atlas or bake it with --layout hilbert:WxH"));
+      return absl::InvalidArgumentError(
+          absl::StrCat(name, ": mesh '", m.name, "' has no UV channel ", channel, " (it has ",
+                       m.uv_channels.size(),
+                       "); give it a lightmap atlas or bake it with --layout hilbert:WxH"));
     if (m.normals.size() != m.positions.size())
       return absl::FailedPreconditionError(absl::StrCat(
           name, ": mesh '", m.name, "' has not been through CheckAndRepairScene (no normals)"));
@@ -129,8 +133,7 @@ absl::StatusOr<SampleSet> UvLayout(const Scene& scene, const LayoutSpec& spec) {
           "inside two or more triangles; a lightmap needs one surface point per texel (use uv1 "
           "if the second channel is the lightmap atlas, or --allow-uv-overlap)",
           name, m.name, channel, 100.0 * double(overlapping) / covered, covered, overlapping));
-    s.uv_charts.push_back(
-        {m.name, r.x, r.y, r.width, r.height, d.u0, d.v0, d.u1, d.v1});
+    s.uv_charts.push_back({m.name, r.x, r.y, r.width, r.height, d.u0, d.v0, d.u1, d.v1});
   }
   return s;
 }

@@ -19,12 +19,12 @@ struct UvChart {
 };
 
 struct SampleSet {
-  int width = 0, height = 0;    // powers of two
-  std::vector<int32_t> grid;    // [height*width], sample id or -1 (masked cell)
-  std::vector<Vec3> position;   // [S]
-  std::vector<Vec3> normal;     // [S], unit
-  std::vector<Vec3> albedo;     // [S], RGB
-  std::vector<int32_t> vertex;  // [S] global mesh vertex id (mesh layouts), else empty
+  int width = 0, height = 0;       // powers of two
+  std::vector<int32_t> grid;       // [height*width], sample id or -1 (masked cell)
+  std::vector<Vec3> position;      // [S]
+  std::vector<Vec3> normal;        // [S], unit
+  std::vector<Vec3> albedo;        // [S], RGB
+  std::vector<int32_t> vertex;     // [S] global mesh vertex id (mesh layouts), else empty
   std::vector<UvChart> uv_charts;  // uv layouts: one per mesh, in mesh order; else empty
 
   int size() const { return static_cast<int>(position.size()); }

@@ -7,7 +7,7 @@ namespace {
 
 // Dilation order: every uncovered cell at Chebyshev distance k copies its
 // first neighbour (in this order) at distance k − 1.
-constexpr int kNeighbours[8][2] = {{0, -1}, {0, 1}, {-1, 0}, {1, 0},
+constexpr int kNeighbours[8][2] = {{0, -1},  {0, 1},  {-1, 0}, {1, 0},
                                    {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
 
 }  // namespace

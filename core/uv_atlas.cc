@@ -81,7 +81,8 @@ absl::StatusOr<std::vector<TexelRect>> PackCharts(std::span<const double> surfac
   }
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return side[a] > side[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return side[a] > side[b]; });
   std::vector<TexelRect> rects(n);
   int64_t cursor = 0;  // in texels along the Z order; a multiple of every later square
   const int64_t block = Square(side_max);

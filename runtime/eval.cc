@@ -70,9 +70,9 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   if (!scene.ok()) return scene.status();
   const std::string hash = StoreSceneHash(info, *scene);
   if (!info.scene_hash.empty() && hash != info.scene_hash) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ", hash,
-                     " vs ", info.scene_hash, ")"));
+    return absl::FailedPreconditionError(absl::StrCat("scene: ", info.scene_spec,
+                                                      " no longer matches the baked scene (hash ",
+                                                      hash, " vs ", info.scene_hash, ")"));
   }
   absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
   if (!caster.ok()) return caster.status();

@@ -79,8 +79,7 @@ aiTexture* EmbeddedPng(std::span<const std::byte> png) {
   return tex.release();
 }
 
-std::unique_ptr<aiScene> BuildScene(const Scene& scene,
-                                    const std::vector<std::vector<Vec2>>& uvs,
+std::unique_ptr<aiScene> BuildScene(const Scene& scene, const std::vector<std::vector<Vec2>>& uvs,
                                     std::span<const std::byte> png) {
   auto ai = std::make_unique<aiScene>();
   const unsigned n = static_cast<unsigned>(scene.meshes.size());
@@ -88,9 +87,9 @@ std::unique_ptr<aiScene> BuildScene(const Scene& scene,
   ai->mMeshes = new aiMesh*[n];
   for (unsigned i = 0; i < n; ++i) ai->mMeshes[i] = ToAiMesh(scene.meshes[i], uvs[i]);
   ai->mNumMaterials = 1;
-  ai->mMaterials = new aiMaterial*[1]{LightmapMaterial()};
+  ai->mMaterials = new aiMaterial* [1] { LightmapMaterial() };
   ai->mNumTextures = 1;
-  ai->mTextures = new aiTexture*[1]{EmbeddedPng(png)};
+  ai->mTextures = new aiTexture* [1] { EmbeddedPng(png) };
   ai->mRootNode = new aiNode(scene.name.empty() ? "wavebake" : scene.name);
   ai->mRootNode->mNumMeshes = n;
   ai->mRootNode->mMeshes = new unsigned[n];

@@ -7,8 +7,7 @@
 
 namespace wavebake {
 
-std::vector<float> DilateGutters(const SampleSet& samples, std::span<const float> rgb,
-                                 int gutter) {
+std::vector<float> DilateGutters(const SampleSet& samples, std::span<const float> rgb, int gutter) {
   std::vector<float> out(rgb.begin(), rgb.end());
   const CellFiller dilate(UncoveredFill::kDilate, samples.grid, samples.width, samples.height,
                           gutter);

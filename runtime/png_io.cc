@@ -43,8 +43,9 @@ absl::Status WritePng(const std::filesystem::path& path, int width, int height,
                       std::span<const float> rgb, float exposure_stops, Vec3 background) {
   absl::StatusOr<std::vector<std::byte>> png =
       EncodePng(width, height, rgb, exposure_stops, background);
-  if (!png.ok()) return absl::Status(png.status().code(),
-                                     absl::StrCat(path.string(), ": ", png.status().message()));
+  if (!png.ok())
+    return absl::Status(png.status().code(),
+                        absl::StrCat(path.string(), ": ", png.status().message()));
   return AtomicWriteFile(path, *png);
 }
 

@@ -109,8 +109,9 @@ absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, fl
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
   if (ext == ".ply") return WriteMeshColours(store, rgb, exposure_stops, out);
-  return absl::InvalidArgumentError(absl::StrCat(
-      "out: ", out.string(), ": unknown extension (.png, .exr or .ply; .gltf/.glb for uv layouts)"));
+  return absl::InvalidArgumentError(
+      absl::StrCat("out: ", out.string(),
+                   ": unknown extension (.png, .exr or .ply; .gltf/.glb for uv layouts)"));
 }
 
 }  // namespace wavebake

@@ -19,9 +19,9 @@ absl::StatusOr<Scene> BakedScene(const StoreInfo& info) {
   if (!scene.ok()) return scene.status();
   const std::string hash = StoreSceneHash(info, *scene);
   if (!info.scene_hash.empty() && hash != info.scene_hash)
-    return absl::FailedPreconditionError(absl::StrCat(
-        "scene: ", info.scene_spec, " no longer matches the baked scene (hash ", hash, " vs ",
-        info.scene_hash, ")"));
+    return absl::FailedPreconditionError(absl::StrCat("scene: ", info.scene_spec,
+                                                      " no longer matches the baked scene (hash ",
+                                                      hash, " vs ", info.scene_hash, ")"));
   return scene;
 }
 
@@ -42,14 +42,14 @@ absl::Status WriteLightmapOutput(const OpenedStore& store, std::span<const float
   }
   if (ext != ".gltf" && ext != ".glb")
     return absl::InvalidArgumentError(
-        absl::StrCat("out: ", out.string(), ": a uv store writes .png or .exr lightmaps, or a "
+        absl::StrCat("out: ", out.string(),
+                     ": a uv store writes .png or .exr lightmaps, or a "
                      ".gltf/.glb mesh with its lightmap"));
   absl::StatusOr<LayoutSpec> layout = ParseLayout(store.info.params.layout);
   if (!layout.ok()) return layout.status();
   absl::StatusOr<Scene> scene = BakedScene(store.info);
   if (!scene.ok()) return scene.status();
-  absl::StatusOr<std::vector<std::vector<Vec2>>> uvs =
-      LightmapUvs(*scene, s, layout->uv_channel);
+  absl::StatusOr<std::vector<std::vector<Vec2>>> uvs = LightmapUvs(*scene, s, layout->uv_channel);
   if (!uvs.ok()) return uvs.status();
   absl::StatusOr<std::vector<std::byte>> png =
       EncodePng(s.width, s.height, lightmap, exposure_stops, Vec3{});

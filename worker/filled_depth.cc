@@ -19,7 +19,8 @@ FilledScratch& ThreadFilledScratch() {
   return scratch;
 }
 
-// Haar, energy budget: every depth counted with its free coefficients zeroed; ties go to the shallower depth (4D paper §4.2).
+// Haar, energy budget: every depth counted with its free coefficients zeroed; ties go to the
+// shallower depth (4D paper §4.2).
 DepthChoice SearchHaar(const ColumnCodingParams& p, std::span<const float> image, double budget,
                        FilledScratch& s) {
   int best_depth = 0;

@@ -22,7 +22,6 @@ constexpr char kDequantize[] =
     "position at the column's depth (0 = coarsest: the LL block and the details of the last "
     "step; details of step s have l = depth-1-s); scale 0 decodes to 0";
 
-
 // The uv layout's atlas (core/uv_atlas.h): where each mesh's texels are,
 // beside samples/uv_rects and samples/uv_domains.
 nlohmann::json UvManifest(const BakeContext& ctx) {
@@ -54,27 +53,27 @@ nlohmann::json UvManifest(const BakeContext& ctx) {
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats) {
   const BakeParams& p = ctx.params;
   nlohmann::json manifest = {{"format", store::kFormat},
-          {"scene", ctx.scene_spec},
-          {"scene_hash", ctx.scene_hash},
-          {"params", ToJson(p)},
-          {"layout", ToString(ctx.layout)},
-          {"N", p.light_res},
-          {"W", ctx.plan.width},
-          {"H", ctx.plan.height},
-          {"S", ctx.samples.size()},
-          {"M", ctx.plan.columns},
-          {"filters",
-           {{"row", std::string(ToString(p.row_filter))},
-            {"column", std::string(ToString(p.column_filter))}}},
-          {"bits", bits.bits},
-          {"level_scaling", std::string(ToString(p.level_scaling))},
-          {"bits_auto", p.bits == 0},
-          {"bits_needed", bits.bits_needed},
-          {"max_column_bits", bits.max_column_bits},
-          {"ray_epsilon", ctx.epsilon},
-          {"dither", kDither},
-          {"dequantize", kDequantize},
-          {"stats", std::move(stats)}};
+                             {"scene", ctx.scene_spec},
+                             {"scene_hash", ctx.scene_hash},
+                             {"params", ToJson(p)},
+                             {"layout", ToString(ctx.layout)},
+                             {"N", p.light_res},
+                             {"W", ctx.plan.width},
+                             {"H", ctx.plan.height},
+                             {"S", ctx.samples.size()},
+                             {"M", ctx.plan.columns},
+                             {"filters",
+                              {{"row", std::string(ToString(p.row_filter))},
+                               {"column", std::string(ToString(p.column_filter))}}},
+                             {"bits", bits.bits},
+                             {"level_scaling", std::string(ToString(p.level_scaling))},
+                             {"bits_auto", p.bits == 0},
+                             {"bits_needed", bits.bits_needed},
+                             {"max_column_bits", bits.max_column_bits},
+                             {"ray_epsilon", ctx.epsilon},
+                             {"dither", kDither},
+                             {"dequantize", kDequantize},
+                             {"stats", std::move(stats)}};
   if (ctx.layout.kind == LayoutKind::kUv) manifest["uv"] = UvManifest(ctx);
   return manifest;
 }
@@ -104,9 +103,8 @@ nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& s
     arrays[name] = n;
     transport += n;
   }
-  for (const char* name :
-       {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo, store::kVertex,
-        store::kUvRects, store::kUvDomains}) {
+  for (const char* name : {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo,
+                           store::kVertex, store::kUvRects, store::kUvDomains}) {
     if (std::filesystem::exists(store::Path(store, name)))
       arrays[name] = DirectoryBytes(store::Path(store, name));
   }
