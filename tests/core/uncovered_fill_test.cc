@@ -91,7 +91,9 @@ TEST(CellFiller, PushPullMakesHaarDetailsOfUncoveredBlocksZero) {
   std::vector<float> zeroed = coeffs;
   filler.ZeroUncoveredCoefficients(zeroed, MaxDepth(kW, kH));
   for (int i = 0; i < kW * kH; ++i) {
-    if (zeroed[i] == 0) EXPECT_EQ(coeffs[i], 0) << "a free detail at " << i << " was not zero";
+    if (zeroed[i] == 0) {
+      EXPECT_EQ(coeffs[i], 0) << "a free detail at " << i << " was not zero";
+    }
   }
 }
 
