@@ -90,10 +90,18 @@ std::unique_ptr<aiScene> BuildScene(const Scene& scene, const std::vector<std::v
   ai->mMaterials = new aiMaterial* [1] { LightmapMaterial() };
   ai->mNumTextures = 1;
   ai->mTextures = new aiTexture* [1] { EmbeddedPng(png) };
+  // One child node per mesh: the exporter would merge a node's meshes into
+  // one glTF mesh and lose their names.
   ai->mRootNode = new aiNode(scene.name.empty() ? "wavebake" : scene.name);
-  ai->mRootNode->mNumMeshes = n;
-  ai->mRootNode->mMeshes = new unsigned[n];
-  for (unsigned i = 0; i < n; ++i) ai->mRootNode->mMeshes[i] = i;
+  ai->mRootNode->mNumChildren = n;
+  ai->mRootNode->mChildren = new aiNode*[n];
+  for (unsigned i = 0; i < n; ++i) {
+    aiNode* child = new aiNode(scene.meshes[i].name);
+    child->mParent = ai->mRootNode;
+    child->mNumMeshes = 1;
+    child->mMeshes = new unsigned[1]{i};
+    ai->mRootNode->mChildren[i] = child;
+  }
   return ai;
 }
 
