@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/bake_params_io.h"
+#include "core/layout.h"
 
 namespace wavebake::cli {
 
@@ -11,8 +12,13 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
   cmd.add_option("--light-res", f.light_res,
                  "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
-  cmd.add_option("--layout", f.layout, "spatial layout: camera[:WxH] | grid | hilbert:WxH")
+  cmd.add_option("--layout", f.layout,
+                 "spatial layout: camera[:WxH] | grid | hilbert:WxH | uv[:WxH] | uv1[:WxH] "
+                 "(lightmap texels of UV channel 0 or 1, default 256x256)")
       ->capture_default_str();
+  cmd.add_flag("--allow-uv-overlap", f.allow_uv_overlap,
+               "uv layouts: bake an atlas whose charts overlap (each texel then takes its "
+               "nearest triangle)");
   cmd.add_option("--supersample", f.supersample, "jittered directions per texel K")
       ->capture_default_str();
   cmd.add_option("--row-filter", f.row_filter, "row transform: haar | daub4")
@@ -53,6 +59,11 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   BakeParams p;
   p.light_res = f.light_res;
   p.layout = f.layout;
+  if (f.allow_uv_overlap) {
+    absl::StatusOr<std::string> layout = WithUvOverlapAllowed(f.layout);
+    if (!layout.ok()) return layout.status();
+    p.layout = *layout;
+  }
   p.supersample = f.supersample;
   auto row = ParseWaveletFilter(f.row_filter);
   if (!row.ok()) return absl::InvalidArgumentError(absl::StrCat("row_", row.status().message()));

@@ -115,7 +115,8 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     const auto [width, height] = *grid;
     const JobPlan plan = MakeJobPlan(*params, width, height);
     // Samples that will trace: every vertex for hilbert (the rest of its grid
-    // is masked); every cell otherwise (camera: an upper bound, misses are masked).
+    // is masked); every cell otherwise (camera, uv: an upper bound, misses and
+    // uncovered texels are masked).
     int64_t samples = int64_t{width} * height;
     if (layout->kind == LayoutKind::kHilbert) {
       samples = 0;

@@ -106,6 +106,16 @@ absl::StatusOr<LayoutSpec> ParseLayout(std::string_view full_spec) {
   return out;
 }
 
+absl::StatusOr<std::string> WithUvOverlapAllowed(std::string_view layout) {
+  absl::StatusOr<LayoutSpec> spec = ParseLayout(layout);
+  if (!spec.ok()) return spec.status();
+  if (spec->kind != LayoutKind::kUv)
+    return absl::InvalidArgumentError(absl::StrCat(
+        "allow-uv-overlap: only for uv layouts, the layout is '", std::string(layout), "'"));
+  spec->allow_uv_overlap = true;
+  return ToString(*spec);
+}
+
 std::string ToString(const LayoutSpec& spec) {
   switch (spec.kind) {
     case LayoutKind::kGrid:

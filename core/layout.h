@@ -44,6 +44,10 @@ absl::StatusOr<LayoutSpec> ParseLayout(std::string_view spec);
 std::string ToString(const LayoutSpec& spec);
 std::string_view ToString(UncoveredFill fill);
 
+// `--allow-uv-overlap`: the canonical spelling of `layout` with
+// allow_uv_overlap set. Error (naming allow-uv-overlap): not a uv layout.
+absl::StatusOr<std::string> WithUvOverlapAllowed(std::string_view layout);
+
 // Vertex (i, j) of the scene's first regular-grid mesh is cell (x=i, y=j) and
 // sample id y*W + x; W×H are the mesh's grid dims (powers of two ≤ 4096). No
 // cell is masked. `vertex` holds global vertex ids: all meshes' vertices
