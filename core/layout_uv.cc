@@ -17,10 +17,11 @@ namespace {
 constexpr double kOverlapMargin = 1e-4;
 
 // The best triangle found so far for each texel of the lightmap.
+// Floats: 24 bytes a texel, so even a 4096² lightmap's picks fit in memory.
 struct TexelPick {
-  double distance2 = std::numeric_limits<double>::infinity();
+  float distance2 = std::numeric_limits<float>::infinity();
   int32_t triangle = -1;
-  std::array<double, 3> bary{};
+  std::array<float, 3> bary{};
   uint8_t inside = 0;  // triangles whose interior holds the centre (saturating)
 };
 
@@ -55,7 +56,11 @@ void RasterizeMesh(const Mesh& m, const std::vector<P2>& texel_xy, const TexelRe
         const P2 centre{x + 0.5, y + 0.5};
         if (InsideBy(tri, centre, kOverlapMargin) && pick.inside < 255) ++pick.inside;
         const NearestPoint q = NearestOnTriangle(tri, centre);
-        if (q.distance2 < pick.distance2) pick = {q.distance2, int32_t(k), q.bary, pick.inside};
+        if (float(q.distance2) < pick.distance2)
+          pick = {float(q.distance2),
+                  int32_t(k),
+                  {float(q.bary[0]), float(q.bary[1]), float(q.bary[2])},
+                  pick.inside};
       }
     }
   }
@@ -63,8 +68,8 @@ void RasterizeMesh(const Mesh& m, const std::vector<P2>& texel_xy, const TexelRe
 
 template <class T>
 T Interpolate(const std::vector<T>& v, const std::array<uint32_t, 3>& t,
-              const std::array<double, 3>& b) {
-  return v[t[0]] * float(b[0]) + v[t[1]] * float(b[1]) + v[t[2]] * float(b[2]);
+              const std::array<float, 3>& b) {
+  return v[t[0]] * b[0] + v[t[1]] * b[1] + v[t[2]] * b[2];
 }
 
 // Appends the samples of the texels in `r` (row-major) and returns how many

@@ -64,7 +64,8 @@ absl::Status WriteUvCharts(const std::filesystem::path& store, const std::vector
 
 // Names from the manifest's "uv" entry (worker/store_manifest.cc).
 absl::StatusOr<std::vector<UvChart>> ReadUvCharts(const std::filesystem::path& store,
-                                                  const nlohmann::json& attrs) {
+                                                  const nlohmann::json& attrs, int width,
+                                                  int height) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kUvRects));
   if (!a.ok()) return a.status();
   const int64_t n = a->spec().shape.at(0);
@@ -77,6 +78,11 @@ absl::StatusOr<std::vector<UvChart>> ReadUvCharts(const std::filesystem::path& s
     const int32_t* r = rects->data() + 4 * i;
     const float* d = domains->data() + 4 * i;
     charts[i] = {"", r[0], r[1], r[2], r[3], d[0], d[1], d[2], d[3]};
+    if (r[0] < 0 || r[1] < 0 || r[2] <= 0 || r[3] <= 0 || r[0] + r[2] > width ||
+        r[1] + r[3] > height || !(d[0] < d[2]) || !(d[1] < d[3]))
+      return absl::DataLossError(absl::StrCat(store::Path(store, store::kUvRects).string(),
+                                              ": chart ", i, " is outside the ", width, "x", height,
+                                              " lightmap or has an empty UV domain"));
     const nlohmann::json* meshes = attrs.contains("uv") ? &attrs["uv"]["meshes"] : nullptr;
     if (meshes != nullptr && meshes->is_array() && i < int64_t(meshes->size()))
       charts[i].mesh = (*meshes)[i].value("name", "");
@@ -134,7 +140,8 @@ absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store) {
     s.vertex = *std::move(v);
   }
   if (std::filesystem::exists(store::Path(store, store::kUvRects))) {
-    absl::StatusOr<std::vector<UvChart>> charts = ReadUvCharts(store, info->attrs);
+    absl::StatusOr<std::vector<UvChart>> charts =
+        ReadUvCharts(store, info->attrs, s.width, s.height);
     if (!charts.ok()) return charts.status();
     s.uv_charts = *std::move(charts);
   }
