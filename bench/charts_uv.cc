@@ -33,7 +33,6 @@
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
 #include "worker/staging.h"
-#include "worker/task_pool.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
@@ -42,6 +41,7 @@ namespace {
 using charts::Check;
 using charts::Csv;
 using charts::Die;
+using charts::RunTasksOrDie;
 using charts::SecondsSince;
 using charts::Value;
 
@@ -70,8 +70,8 @@ std::filesystem::path Stage(const std::string& layout, int light_res, const RunC
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(Spot(), p));
   Check(CreateStaging(ctx->plan, store));
-  Check(RunTasks(ctx->plan.tiles(), run.threads,
-                 [&](int t) { return BakeTile(*ctx, store, t, nullptr); }));
+  RunTasksOrDie(ctx->plan.tiles(), run.threads,
+                [&](int t) { return BakeTile(*ctx, store, t, nullptr); });
   FILE* marker = std::fopen((store / "traced").c_str(), "w");
   if (marker != nullptr) std::fclose(marker);
   std::fprintf(stderr, "traced %s N=%d: %zu samples, %.1f s\n", layout.c_str(), light_res,
@@ -89,8 +89,8 @@ Compressed Compress(const std::filesystem::path& store, const BakeParams& p, con
     std::filesystem::remove_all(store / name);
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(Spot(), p));
-  Check(RunTasks(ctx->plan.groups, run.threads,
-                 [&](int g) { return TransformColumns(*ctx, store, g, nullptr); }));
+  RunTasksOrDie(ctx->plan.groups, run.threads,
+                [&](int g) { return TransformColumns(*ctx, store, g, nullptr); });
   Check(Finalize(*ctx, store, {.keep_staging = true}));
   Compressed c{Value(ReadStoreInfo(store)).attrs, SecondsSince(start)};
   const nlohmann::json& stats = c.attrs["stats"];
