@@ -1,6 +1,6 @@
 #!/bin/bash
-# The charts of docs/RESULTS.md in one command (issue 7): builds
-# bench_charts_data, bench_charts_runtime and bench_charts_glossy, runs the sweeps into
+# The charts of docs/RESULTS.md in one command: builds
+# bench_charts_data, bench_charts_runtime, bench_charts_uv and bench_charts_glossy, runs the sweeps into
 # docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
 #
@@ -21,10 +21,14 @@ for arg in "$@"; do
 done
 out="$here/docs/charts"
 [[ -n "$quick" ]] && out="$build/charts-quick"
-cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime bench_charts_glossy
+cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime bench_charts_uv \
+  bench_charts_glossy
 start=$(date +%s)
 "$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 "$build/bench_charts_runtime" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+# Chart 7 (the lightmap layout; its 512² column stages take most of the time).
+"$build/bench_charts_uv" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+# Chart 8 (glossy relighting; six glossy references take most of its time).
 "$build/bench_charts_glossy" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 /usr/bin/python3 "$here/bench/charts.py" "$out" "$out"
 echo "charts: $out ($(( $(date +%s) - start )) s)"

@@ -1,14 +1,14 @@
 // `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] [--brdf B]
 // --out IMG.(exr|png)|MESH.ply` (DESIGN.md §5): a store relit under an
 // environment (Eq. 8 for diffuse stores, the triple product with a BRDF for
-// visibility stores), written as an image (camera layouts) or a
-// vertex-coloured mesh (mesh layouts). The sequence modes are in
-// cli/cmd_relight_sequences.cc.
+// visibility stores), written as an image (camera layouts), a
+// vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
+// (uv layouts). The sequence modes are in cli/cmd_relight_sequences.cc.
 #include <cstdio>
 
 #include "cli/command_error.h"
 #include "cli/relight_flags.h"
-#include "cli/runtime_commands.h"
+#include "cli/commands.h"
 
 namespace wavebake::cli {
 namespace {
@@ -70,12 +70,15 @@ void AddRelightCommand(CLI::App& app) {
   cmd->add_option("--incremental", flags->incremental,
                   "rotations: per-band (default, Overbeck §6.2.2), basic (ch. 4, never resets: "
                   "ghosts under fast rotation) or none; materials: basic (default, --brdf-terms "
-                  "per sample per frame, converges when held) or none");
+                  "per sample per frame, converges when held) or none")
+      ->check(CLI::IsMember({"per-band", "basic", "none"}));
   cmd->add_option("--frame-format", flags->frame_format, "sequences: png | exr | ply")
+      ->check(CLI::IsMember({"png", "exr", "ply"}))
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
-                  "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory for "
-                  "the sequences")
+                  "output: .png or .exr (camera layouts), .ply (mesh layouts), .png/.exr "
+                  "lightmap or .gltf/.glb mesh with it (uv layouts); a directory for the "
+                  "sequences")
       ->required();
   cmd->callback([flags] { Run(*flags); });
 }

@@ -13,11 +13,6 @@
 namespace wavebake::cli {
 namespace {
 
-void CheckFrameFormat(const std::string& format) {
-  if (format != "png" && format != "exr" && format != "ply")
-    Fail("relight", "frame-format: '" + format + "' is not png, exr or ply", kExitBadInput);
-}
-
 template <typename Frames>
 void PrintSummary(const Frames& frames, const std::string& out, const char* versus) {
   double sum = 0, worst = 0, seconds = 0;
@@ -39,9 +34,6 @@ void RunRotateSequence(const RelightFlags& f) {
   absl::StatusOr<RotateSequence> rotation = ParseRotateSequence(f.rotate_sequence);
   if (!rotation.ok()) Fail("relight", rotation.status());
   const std::string inc = f.incremental.empty() ? "per-band" : f.incremental;
-  if (inc != "per-band" && inc != "basic" && inc != "none")
-    Fail("relight", "incremental: '" + inc + "' is not per-band, basic or none", kExitBadInput);
-  CheckFrameFormat(f.frame_format);
   const SequenceMode mode = inc == "none"    ? SequenceMode::kNonIncremental
                             : inc == "basic" ? SequenceMode::kBasic
                                              : SequenceMode::kPerBand;
@@ -69,7 +61,6 @@ void RunBrdfSequence(const RelightFlags& f) {
              "' with --brdf-sequence must be basic (Overbeck ch. 4) or none; per-band bands "
              "the lighting, not a BRDF",
          kExitBadInput);
-  CheckFrameFormat(f.frame_format);
   MaterialSequenceOptions options{
       .sequence = *sequence,
       .terms = f.terms,

@@ -4,9 +4,9 @@
 // signal stops the running tasks too (reported as failed).
 #include <thread>
 
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
 #include "worker/worker_loop.h"
@@ -15,7 +15,7 @@ namespace wavebake::cli {
 namespace {
 
 struct WorkerFlags {
-  ClientFlags client;
+  driver::ClientConfig client;
   std::string store_root;
   std::string scene_cache;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -41,7 +41,7 @@ void Run(const WorkerFlags& f) {
     }
   });
   // No waiting here: the loop registers as soon as the coordinator is up.
-  absl::StatusOr<Client> client = Client::Connect(f.client, /*connect_seconds=*/0);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client, /*connect_seconds=*/0);
   if (!client.ok()) Fail("worker", client.status());
   WorkerLoop loop(client->channel(), {.store_root = f.store_root,
                                       .scene_cache_dir = f.scene_cache,
@@ -69,7 +69,8 @@ void AddWorkerCommand(CLI::App& app) {
       "worker", "run a worker: lease tasks from a coordinator and run them (until SIGTERM)");
   AddClientFlags(*cmd, f->client);
   cmd->add_option("--store-root", f->store_root,
-                  "the coordinator's store root, on a filesystem both can reach")
+                  "the coordinator's store root, on a filesystem both can reach (checked at start: "
+                  "its .wavebake-store-root marker must be the coordinator's, and it writable)")
       ->required();
   cmd->add_option("--threads", f->threads, "tasks run at once")->capture_default_str();
   cmd->add_option("--scene-cache", f->scene_cache,

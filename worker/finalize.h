@@ -2,13 +2,14 @@
 // FINALIZE (DESIGN.md §2): the groups' coded columns (worker/group_result.h)
 // become the store's CSC arrays, samples/* and the manifest (DESIGN.md §3),
 // then staging is dropped. Quantization happens here because the steps are a
-// matrix-wide choice (worker/quantization_steps.h): each group recorded, per
+// matrix-wide choice (core/quantization_steps.h): each group recorded, per
 // column, max_i |v_i/k_i| and the expected dither energy per unit step;
 // FINALIZE picks every column's step Δ_c (stored as `scale`) and quantizes.
 //
 // Memory: one group's coded columns plus O(M) column arrays, never S×M.
 // Idempotent: a retry rewrites the same bytes, and a retry after staging was
 // dropped finds the finished manifest and succeeds without work.
+#include <atomic>
 #include <filesystem>
 
 #include "absl/status/status.h"
@@ -18,6 +19,9 @@ namespace wavebake {
 
 struct FinalizeOptions {
   bool keep_staging = false;
+  // true: return Cancelled soon (checked between column groups), before the
+  // manifest that marks the store complete is written.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
