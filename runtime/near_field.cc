@@ -3,7 +3,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "absl/strings/str_cat.h"
 #include "core/target_selection.h"
@@ -158,11 +157,10 @@ std::vector<float> FaceCoefficients(const PlaneFace& face, const LightCanvas& ca
 }
 
 Vec3 SampleCentre(const SampleSet& samples) {
-  Vec3 lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-          std::numeric_limits<float>::max()};
-  Vec3 hi = -lo;
-  for (const Vec3& p : samples.position) lo = Min(lo, p), hi = Max(hi, p);
-  return (lo + hi) * 0.5f;
+  double sum[3] = {0, 0, 0};
+  for (const Vec3& p : samples.position) sum[0] += p.x, sum[1] += p.y, sum[2] += p.z;
+  const double n = std::max<size_t>(1, samples.position.size());
+  return {float(sum[0] / n), float(sum[1] / n), float(sum[2] / n)};
 }
 
 void RelightDistant(const NearFieldStore& store, std::span<const AreaLight> lights, Vec3 centre,

@@ -84,7 +84,10 @@ absl::StatusOr<NearFieldStats> RelightNearField(const NearFieldStore& store,
 void RelightDistant(const NearFieldStore& store, std::span<const AreaLight> lights, Vec3 centre,
                     std::span<float> rgb_out);
 
-// The centre of the samples' bounding box: where RelightDistant looks from.
+// The mean position of the samples, the receivers' centre: where the
+// distant treatment looks from (the paper's footnote 4, "the centre of the
+// scene"; the bounding box's centre would sit high above a floor whenever a
+// wall stands at its edge).
 Vec3 SampleCentre(const SampleSet& samples);
 
 // The face coefficients (row basis, rgb[3k + c] for Mallat index k) of

@@ -39,14 +39,38 @@ struct Scratch {
 };
 
 // The face image into s.face; false when the point does not see the light.
-bool Resample(const PlaneFace& face, const LightCanvas& c, Vec3 p, Scratch& s) {
+// kPerTexel: each texel its own footprint mean over the canvas texels it
+// covers (Σ_qy Σ_qx w_y w_x F); kSeparable: the same weights applied along
+// x to the canvas rows, then along y (the footprints of an axis-aligned face
+// are a product, the structure the wavelet path's two steps use too).
+bool Resample(const PlaneFace& face, const LightCanvas& c, Vec3 p, BruteResample mode,
+              Scratch& s) {
   const FaceView v = ViewFrom(face, c, p);
   if (!v.lit) return false;
   const int n = face.n(), r = c.res;
   AxisTaps(n, r, v.map.s_x, v.map.o_x, s.first_x, s.taps_x);
   AxisTaps(n, r, v.map.s_y, v.map.o_y, s.first_y, s.taps_y);
   if (s.taps_y.empty()) return false;
-  // Only the canvas rows some face row takes (taps come in increasing q).
+  s.face.assign(size_t(n) * n * 3, 0.0f);
+  if (mode == BruteResample::kPerTexel) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        float acc[3] = {0, 0, 0};
+        for (int ty = s.first_y[y]; ty < s.first_y[y + 1]; ++ty) {
+          const Tap& a = s.taps_y[ty];
+          const float* row = &c.rgb[size_t(a.q) * r * 3];
+          for (int tx = s.first_x[x]; tx < s.first_x[x + 1]; ++tx) {
+            const Tap& b = s.taps_x[tx];
+            const float w = a.w * b.w;
+            for (int ch = 0; ch < 3; ++ch) acc[ch] += w * row[3 * b.q + ch];
+          }
+        }
+        for (int ch = 0; ch < 3; ++ch) s.face[(size_t(y) * n + x) * 3 + ch] = acc[ch];
+      }
+    }
+    return true;
+  }
+  // Only the canvas rows some face row takes.
   int q_lo = r, q_hi = -1;
   for (const Tap& t : s.taps_y) q_lo = std::min(q_lo, t.q), q_hi = std::max(q_hi, t.q);
   s.rows.resize(size_t(r) * n * 3);
@@ -62,7 +86,6 @@ bool Resample(const PlaneFace& face, const LightCanvas& c, Vec3 p, Scratch& s) {
       for (int ch = 0; ch < 3; ++ch) dst[3 * x + ch] = acc[ch];
     }
   }
-  s.face.assign(size_t(n) * n * 3, 0.0f);
   for (int y = 0; y < n; ++y) {
     float* dst = &s.face[size_t(y) * n * 3];
     for (int t = s.first_y[y]; t < s.first_y[y + 1]; ++t) {
@@ -90,12 +113,13 @@ BruteForceNearField::BruteForceNearField(const NearFieldStore& store) : store_(s
 
 std::vector<float> BruteForceNearField::FaceImage(const LightCanvas& canvas, Vec3 p) const {
   Scratch s;
-  if (!Resample(store_.face, canvas, p, s)) s.face.assign(3 * store_.face.texels(), 0.0f);
+  if (!Resample(store_.face, canvas, p, BruteResample::kSeparable, s))
+    s.face.assign(3 * store_.face.texels(), 0.0f);
   return s.face;
 }
 
 void BruteForceNearField::Relight(std::span<const LightCanvas> lights, int threads,
-                                  std::span<float> rgb_out) const {
+                                  std::span<float> rgb_out, BruteResample mode) const {
   const SampleSet& samples = store_.samples;
   const int m = store_.face.texels();
   ParallelChunks(
@@ -105,7 +129,7 @@ void BruteForceNearField::Relight(std::span<const LightCanvas> lights, int threa
           double sum[3] = {0, 0, 0};
           const int32_t id = samples.grid[cell];
           for (size_t li = 0; id >= 0 && li < lights.size(); ++li) {
-            if (!Resample(store_.face, lights[li], samples.position[id], s)) continue;
+            if (!Resample(store_.face, lights[li], samples.position[id], mode, s)) continue;
             const float* t = &pixel_rows_[size_t(cell) * m];
             float acc[3] = {0, 0, 0};
             for (int k = 0; k < m; ++k)
