@@ -36,6 +36,7 @@
 
 #include "bench/chart_util.h"
 #include "driver/embedded_bake.h"
+#include "runtime/area_eval.h"
 #include "runtime/area_reference.h"
 #include "runtime/eval.h"
 #include "runtime/near_field.h"
@@ -92,7 +93,7 @@ EnvMap Softbox() {  // docs/lights/softbox.png, linear
 
 AreaLight Light(double height, double size, const EnvMap& texture) {
   AreaLight l;
-  l.centre = {0.3, 0.1};
+  l.centre = {0.3, 0.8};  // docs/lights/softbox.json
   l.height = height;
   l.size = {size * 1.4, size};
   l.radiance = {3, 3, 3};
@@ -123,7 +124,8 @@ std::vector<float> Near(const NearFieldStore& st, const AreaLight& light, double
 
 void HeightChart(const Setup& s, const RayCaster& caster, const NearFieldStore& st) {
   Csv csv(s.out / "near_height.csv",
-          "sweep,height,size,near_rel_rms,distant_rel_rms,reference_rel_se,grazing_loss_s4");
+          "sweep,height,size,near_rel_rms,distant_rel_rms,near_facing_rel_rms,"
+          "distant_facing_rel_rms,reference_rel_se,grazing_loss_s4");
   const EnvMap tex = Softbox();
   const std::vector<double> heights =
       s.quick ? std::vector<double>{0.6, 1.2, 3}
@@ -133,11 +135,14 @@ void HeightChart(const Setup& s, const RayCaster& caster, const NearFieldStore& 
   const auto row = [&](const char* sweep, double h, double size) {
     const AreaLight light = Light(h, size, tex);
     const AreaReferenceResult ref = Reference(s, caster, st, light);
-    const double near = CompareToReference(Near(st, light, 0.01, 0.3, s.threads), ref.rgb).rel_rms;
+    const std::vector<float> facing = FacingOnly(st.samples, st.face.frame(), ref.rgb);
+    const std::vector<float> rgb = Near(st, light, 0.01, 0.3, s.threads);
+    const double near = CompareToReference(rgb, ref.rgb).rel_rms;
     std::vector<float> distant(3 * st.samples.cells());
     RelightDistant(st, {&light, 1}, SampleCentre(st.samples), distant);
     const double far = CompareToReference(distant, ref.rgb).rel_rms;
-    csv.Row(sweep, h, size, near, far, ref.rel_se, ref.grazing_loss[2]);
+    csv.Row(sweep, h, size, near, far, CompareToReference(rgb, facing).rel_rms,
+            CompareToReference(distant, facing).rel_rms, ref.rel_se, ref.grazing_loss[2]);
     std::fprintf(stderr, "chart 9: %s h %.2f size %.2f: near %.4f distant %.4f loss %.4f\n", sweep,
                  h, size, near, far, ref.grazing_loss[2]);
   };

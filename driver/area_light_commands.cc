@@ -86,6 +86,10 @@ absl::StatusOr<std::string> EvaluateWithAreaLights(const AreaLightCommand& c, in
   if (r->has_distant)
     absl::StrAppendFormat(&text, "distant     rel_rms %.5f  max_abs %.5g  psnr %6.2f dB\n",
                           r->distant.rel_rms, r->distant.max_abs, r->distant.psnr);
+  absl::StrAppendFormat(&text,
+                        "facing the light plane only (n·axis ≥ 0.9): near field rel_rms %.5f, "
+                        "distant %.5f\n",
+                        r->near_facing.rel_rms, r->distant_facing.rel_rms);
   absl::StrAppendFormat(&text, "grazing loss of the plane:%g face: %.2f%% of the energy",
                         r->face_size, 100 * r->store_grazing_loss);
   return text;

@@ -1,8 +1,20 @@
 #include "runtime/area_eval.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace wavebake {
+
+std::vector<float> FacingOnly(const SampleSet& samples, const FaceFrame& frame,
+                              std::span<const float> reference) {
+  std::vector<float> out(reference.begin(), reference.end());
+  for (int cell = 0; cell < samples.cells(); ++cell) {
+    const int32_t id = samples.grid[cell];
+    if (id >= 0 && Dot(samples.normal[id], frame.major) >= 0.9f) continue;
+    for (int c = 0; c < 3; ++c) out[3 * size_t(cell) + c] = std::nanf("");
+  }
+  return out;
+}
 
 absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
                                                   std::span<const AreaLight> lights,
@@ -36,12 +48,15 @@ absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
   absl::StatusOr<NearFieldStats> stats = RelightNearField(store, lights, options.near, rgb);
   if (!stats.ok()) return stats.status();
   report.near_stats = *stats;
+  const std::vector<float> facing = FacingOnly(store.samples, store.face.frame(), ref->rgb);
   report.near_field = CompareToReference(rgb, ref->rgb);
   report.near_field.seconds = stats->seconds;
+  report.near_facing = CompareToReference(rgb, facing);
   if (options.distant) {
     const auto t0 = std::chrono::steady_clock::now();
     RelightDistant(store, lights, SampleCentre(store.samples), rgb);
     report.distant = CompareToReference(rgb, ref->rgb);
+    report.distant_facing = CompareToReference(rgb, facing);
     report.distant.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report.has_distant = true;
@@ -65,6 +80,8 @@ nlohmann::json AreaEvalJson(const AreaEvalReport& r, const AreaEvalOptions& o) {
   const double pairs = std::max<int64_t>(1, r.near_stats.lit_samples);
   return {{"near_field", Stats(r.near_field)},
           {"distant", r.has_distant ? Stats(r.distant) : nlohmann::json(nullptr)},
+          {"near_field_facing", Stats(r.near_facing)},
+          {"distant_facing", r.has_distant ? Stats(r.distant_facing) : nlohmann::json(nullptr)},
           {"source_fraction", o.near.source_fraction},
           {"target_fraction", o.near.target_fraction},
           {"sources", r.near_stats.sources},

@@ -24,8 +24,15 @@ struct AreaEvalOptions {
   bool distant = true;
 };
 
+// The reference restricted to receivers facing the light plane (n·axis ≥
+// 0.9, within 26° of it): where the expanded face sees all of a light above
+// them (§5.2.1). Other cells are NaN, so CompareToReference skips them.
+std::vector<float> FacingOnly(const SampleSet& samples, const FaceFrame& frame,
+                              std::span<const float> reference);
+
 struct AreaEvalReport {
   ErrorStats near_field, distant;  // seconds: one frame (near field), the frame (distant)
+  ErrorStats near_facing, distant_facing;  // over the receivers facing the plane only
   bool has_distant = false;
   NearFieldStats near_stats;
   double face_size = 0;  // S of the store
@@ -40,6 +47,7 @@ absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
                                                   const AreaEvalOptions& options);
 
 // {"near_field": {rel_rms, max_abs, psnr, seconds}, "distant": {...} | null,
+//  "near_field_facing", "distant_facing": the same over FacingOnly,
 //  "source_fraction", "target_fraction", "targets_per_sample", "face_size",
 //  "reference": {"rel_se", "rays", "seconds"},
 //  "grazing_loss": [{"face_size", "loss"}...], "store_grazing_loss"}
