@@ -69,14 +69,16 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("store", flags->store, "the store (OUT.wbk)")->required();
   cmd->add_option("--env", flags->env, "environment (as for relight)");
   cmd->add_option("--area-light", flags->area.lights,
-                  "LIGHT.json (repeatable): near-field lights, Monte-Carlo over their area")
-      ->capture_default_str();
+                  "LIGHT.json (repeatable): near-field lights, Monte-Carlo over their area");
   cmd->add_option("--source-fraction", flags->area.source_fraction,
                   "area lights: source coefficients kept per light")
       ->capture_default_str();
   cmd->add_option("--target-fraction", flags->area.target_fraction,
                   "area lights: face coefficients propagated per sample")
       ->capture_default_str();
+  cmd->add_option("--reference-out", flags->area.reference_out,
+                  "area lights: also write the reference image (.png, .exr, .ply)");
+  cmd->add_option("--exposure", flags->area.exposure, "--reference-out PNG/PLY exposure, stops");
   cmd->add_flag("--coupling-table", flags->area.table,
                 "area lights: look the coupling coefficients up (memory-based) instead");
   cmd->add_option("--reference-batches", flags->reference_batches,

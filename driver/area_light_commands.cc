@@ -8,6 +8,7 @@
 #include "core/coupling_table.h"
 #include "runtime/area_eval.h"
 #include "runtime/area_relight.h"
+#include "runtime/store_relight.h"
 
 namespace wavebake::driver {
 namespace {
@@ -73,8 +74,15 @@ absl::StatusOr<std::string> EvaluateWithAreaLights(const AreaLightCommand& c, in
             .threads = c.threads};
   o.reference.batches = reference_batches;
   o.reference.threads = c.threads;
+  if (!c.reference_out.empty())
+    if (absl::Status s = CheckRelitPath(c.reference_out); !s.ok()) return s;
   absl::StatusOr<AreaEvalReport> r = EvaluateAreaLights(*store, *lights, o);
   if (!r.ok()) return r.status();
+  if (!c.reference_out.empty())
+    if (absl::Status s = WriteRelit(store->info, store->samples, r->reference_rgb, c.exposure,
+                                    c.reference_out);
+        !s.ok())
+      return s;
   if (json) return AreaEvalJson(*r, o).dump();
   std::string text = absl::StrFormat(
       "reference   rel_se %.5f  %d rays  %.1f s\n"

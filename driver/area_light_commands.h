@@ -19,6 +19,7 @@ struct AreaLightCommand {
   bool distant = false;
   float exposure = 0;
   std::string out, frame_extension = ".png";
+  std::string reference_out;  // eval: also write the reference image (.png, .exr or .ply)
   int threads = 0;
 };
 

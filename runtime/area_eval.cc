@@ -35,6 +35,7 @@ absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
   report.reference_seconds = ref->seconds;
   report.face_sizes = ref_options.face_sizes;
   report.grazing_loss = ref->grazing_loss;
+  report.reference_rgb = ref->rgb;
   // The loss at the store's own S, linear between the measured sizes.
   for (size_t j = 0; j + 1 < report.face_sizes.size(); ++j) {
     const double a = report.face_sizes[j], b = report.face_sizes[j + 1];

@@ -40,6 +40,7 @@ struct AreaEvalReport {
   int64_t reference_rays = 0;
   std::vector<double> face_sizes, grazing_loss;  // the reference's §5.4.3 split
   double store_grazing_loss = 0;                 // interpolated at S
+  std::vector<float> reference_rgb;              // the reference image, [W*H*3]
 };
 
 absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
