@@ -1,4 +1,4 @@
-// The near-field charts of docs/RESULTS.md (bench/charts_near.sh runs it):
+// The near-field charts of docs/RESULTS.md (bench/charts.sh runs it):
 //
 //   build/bench_charts_near OUT_DIR [--quick] [--threads T]
 //

@@ -6,8 +6,8 @@
 // measured in the same run. `x_brute` is the brute-force frame time over
 // this benchmark's frame time (thread CPU time, so other load on the
 // machine counts less); `x_separable` the same against a stronger baseline
-// that resamples separably along the face's axes (BruteResample). Couplings: computed from the canonical
-// coefficients (Eq. 16) or looked up in the memory-based table (§5.3.2).
+// that resamples separably along the face's axes (BruteResample). Couplings: computed from the
+// canonical coefficients (Eq. 16) or looked up in the memory-based table (§5.3.2).
 //
 // The store: builtin:cubes-wall, camera:128x128, plane:4, N = 32, target
 // 1 %, baked once into build/bench_tmp/near_cubes.wbk (seconds to minutes)
@@ -46,12 +46,13 @@ double ThreadSeconds() {
 // An 8×8 checker of the softbox's four colours: finer detail, more source
 // terms (the paper's Fig. 10 lights range from flat to busy).
 EnvMap Checker8() {
-  const float c[4][3] = {{1, 0.84f, 0.58f}, {1, 0.4f, 0.05f}, {0.1f, 0.58f, 0.64f},
-                         {0.58f, 0.3f, 1}};
+  const float c[4][3] = {
+      {1, 0.84f, 0.58f}, {1, 0.4f, 0.05f}, {0.1f, 0.58f, 0.64f}, {0.58f, 0.3f, 1}};
   EnvMap t{32, 32, std::vector<float>(32 * 32 * 3)};
   for (int y = 0; y < 32; ++y)
     for (int x = 0; x < 32; ++x)
-      for (int ch = 0; ch < 3; ++ch) t.rgb[(y * 32 + x) * 3 + ch] = c[(x / 4 + 2 * (y / 4)) % 4][ch];
+      for (int ch = 0; ch < 3; ++ch)
+        t.rgb[(y * 32 + x) * 3 + ch] = c[(x / 4 + 2 * (y / 4)) % 4][ch];
   return t;
 }
 
@@ -70,8 +71,8 @@ struct Baseline {
 
 std::filesystem::path StorePath() {
   if (const char* env = std::getenv("WB_NEAR_STORE")) return env;
-  const std::filesystem::path p = std::filesystem::path(WB_SOURCE_DIR) / "build/bench_tmp" /
-                                  "near_cubes.wbk";
+  const std::filesystem::path p =
+      std::filesystem::path(WB_SOURCE_DIR) / "build/bench_tmp" / "near_cubes.wbk";
   if (std::filesystem::exists(p / ".zattrs")) return p;
   std::filesystem::create_directories(p.parent_path());
   BakeParams params;
@@ -128,8 +129,9 @@ AreaLight LightOf(const Fixture& f, int r, bool checker) {
 
 const Baseline& BaselineOf(const AreaLight& light) {
   static std::map<std::pair<int, bool>, Baseline> cache;
-  const auto key = std::pair{light.resolution, light.texture.rgb.size() > 0 &&
-                                                   light.texture.rgb != Shared().softbox.texture.rgb};
+  const auto key =
+      std::pair{light.resolution,
+                light.texture.rgb.size() > 0 && light.texture.rgb != Shared().softbox.texture.rgb};
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   Fixture& f = Shared();
   Baseline b;
@@ -204,10 +206,7 @@ BENCHMARK(BM_NearFieldComputed)
     ->Args({5, 40, 32, 0})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_NearFieldTable)
-    ->Args({1, 30, 32, 0})
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NearFieldTable)->Args({1, 30, 32, 0})->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace wavebake

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/area_light_commands.h"
 #include "runtime/eval.h"
 
 namespace wavebake::cli {
@@ -68,14 +68,7 @@ void AddEvalCommand(CLI::App& app) {
       "eval", "error of a store's relighting against an independently traced reference");
   cmd->add_option("store", flags->store, "the store (OUT.wbk)")->required();
   cmd->add_option("--env", flags->env, "environment (as for relight)");
-  cmd->add_option("--area-light", flags->area.lights,
-                  "LIGHT.json (repeatable): near-field lights, Monte-Carlo over their area");
-  cmd->add_option("--source-fraction", flags->area.source_fraction,
-                  "area lights: source coefficients kept per light")
-      ->capture_default_str();
-  cmd->add_option("--target-fraction", flags->area.target_fraction,
-                  "area lights: face coefficients propagated per sample")
-      ->capture_default_str();
+  AddAreaLightFlags(*cmd, flags->area);  // the reference: Monte-Carlo over their area
   cmd->add_option("--reference-out", flags->area.reference_out,
                   "area lights: also write the reference image (.png, .exr, .ply)");
   cmd->add_option("--exposure", flags->area.exposure, "--reference-out PNG/PLY exposure, stops");

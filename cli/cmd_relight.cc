@@ -6,9 +6,9 @@
 // With --area-light, near-field planar lights instead (driver/area_light_commands.h).
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/area_light_commands.h"
 #include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 
@@ -73,18 +73,10 @@ void AddRelightCommand(CLI::App& app) {
   cmd->add_option("--env", flags->env,
                   "environment: EXR or Radiance .hdr (lat-long or vertical cross), "
                   "builtin:constant or builtin:sky");
-  cmd->add_option("--area-light", flags->area.lights,
-                  "LIGHT.json: planar area light(s) near the scene, for a store baked with "
-                  "--light-domain plane:S (repeatable; the lights add)");
+  AddAreaLightFlags(*cmd, flags->area);
   cmd->add_option("--area-light-sequence", flags->area.sequence,
                   "SEQ.json {frames, from, to}: a light moving and resizing over frames; --out is "
                   "then a directory of frames and timing.csv");
-  cmd->add_option("--source-fraction", flags->area.source_fraction,
-                  "area lights: source coefficients kept per light")
-      ->capture_default_str();
-  cmd->add_option("--target-fraction", flags->area.target_fraction,
-                  "area lights: face coefficients propagated per sample")
-      ->capture_default_str();
   cmd->add_flag("--distant", flags->area.distant,
                 "area lights: treat them as distant (their image at the scene centre)");
   cmd->add_option("--terms", flags->terms, "wavelet lights kept (non-linear approximation)")

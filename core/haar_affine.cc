@@ -54,8 +54,8 @@ struct LevelPair {
 };
 inline LevelPair Pair(Haar1d source, int target_level, double inv_s, double o) {
   const int dl = target_level - source.level;
-  return {Pow2(dl - 1) * inv_s,
-          (Pow2(dl) * (source.offset + 0.5) - Pow2(target_level) * o) * inv_s, SqrtPow2(-dl)};
+  return {Pow2(dl - 1) * inv_s, (Pow2(dl) * (source.offset + 0.5) - Pow2(target_level) * o) * inv_s,
+          SqrtPow2(-dl)};
 }
 
 }  // namespace

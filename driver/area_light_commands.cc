@@ -79,8 +79,8 @@ absl::StatusOr<std::string> EvaluateWithAreaLights(const AreaLightCommand& c, in
   absl::StatusOr<AreaEvalReport> r = EvaluateAreaLights(*store, *lights, o);
   if (!r.ok()) return r.status();
   if (!c.reference_out.empty())
-    if (absl::Status s = WriteRelit(store->info, store->samples, r->reference_rgb, c.exposure,
-                                    c.reference_out);
+    if (absl::Status s =
+            WriteRelit(store->info, store->samples, r->reference_rgb, c.exposure, c.reference_out);
         !s.ok())
       return s;
   if (json) return AreaEvalJson(*r, o).dump();

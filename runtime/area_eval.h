@@ -31,7 +31,7 @@ std::vector<float> FacingOnly(const SampleSet& samples, const FaceFrame& frame,
                               std::span<const float> reference);
 
 struct AreaEvalReport {
-  ErrorStats near_field, distant;  // seconds: one frame (near field), the frame (distant)
+  ErrorStats near_field, distant;          // seconds: one frame (near field), the frame (distant)
   ErrorStats near_facing, distant_facing;  // over the receivers facing the plane only
   bool has_distant = false;
   NearFieldStats near_stats;

@@ -10,27 +10,16 @@
 #include "absl/strings/str_cat.h"
 #include "core/light_domain.h"
 #include "runtime/parallel_for.h"
+#include "runtime/stream_rng.h"
 
 namespace wavebake {
 namespace {
 
 constexpr uint64_t kDomain = 0x617265612d726566ull;  // "area-ref"
 
-uint64_t Mix64(uint64_t z) {  // SplitMix64 output step (Steele, Lea, Flood 2014)
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-class Rng {
+class Rng : public StreamRng {
  public:
-  Rng(uint64_t seed, uint64_t stream) : state_(Mix64(Mix64(seed ^ kDomain) + stream)) {}
-  double Next01() {
-    return static_cast<double>(Mix64(state_ += 0x9e3779b97f4a7c15ull) >> 11) * 0x1p-53;
-  }
-
- private:
-  uint64_t state_;
+  Rng(uint64_t seed, uint64_t stream) : StreamRng(seed, kDomain, stream) {}
 };
 
 // A light as the sampler sees it: world corner, edge vectors, normal.

@@ -43,8 +43,7 @@ struct Scratch {
 // covers (Σ_qy Σ_qx w_y w_x F); kSeparable: the same weights applied along
 // x to the canvas rows, then along y (the footprints of an axis-aligned face
 // are a product, the structure the wavelet path's two steps use too).
-bool Resample(const PlaneFace& face, const LightCanvas& c, Vec3 p, BruteResample mode,
-              Scratch& s) {
+bool Resample(const PlaneFace& face, const LightCanvas& c, Vec3 p, BruteResample mode, Scratch& s) {
   const FaceView v = ViewFrom(face, c, p);
   if (!v.lit) return false;
   const int n = face.n(), r = c.res;
