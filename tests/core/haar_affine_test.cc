@@ -15,7 +15,7 @@ namespace {
 // ∫ f(v) dv over [a, b] by the midpoint rule; the integrands are piecewise
 // constant with a handful of jumps, so the error is ≤ jumps · max|f| · h.
 template <typename F>
-double Integrate(const F& f, double a, double b, int steps = 400000) {
+double Integrate(const F& f, double a, double b, int steps = 100000) {
   const double h = (b - a) / steps;
   double sum = 0;
   for (int i = 0; i < steps; ++i) sum += f(a + (i + 0.5) * h);
