@@ -15,6 +15,7 @@ struct BakeFlags {
   std::string row_filter = "haar", column_mode = "adaptive", column_filter = "haar",
               error_scope = "matrix", bits = "auto", level_scaling = "uniform",
               light_domain = "cube";
+  bool allow_uv_overlap = false;  // uv layouts: the layout's ",allow-overlap"
 };
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f);

@@ -57,10 +57,11 @@ absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
   // every comparison meaningless.
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
-  if (!info.scene_hash.empty() && SceneHash(*scene) != info.scene_hash) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ",
-                     SceneHash(*scene), " vs ", info.scene_hash, ")"));
+  const std::string hash = StoreSceneHash(info, *scene);
+  if (!info.scene_hash.empty() && hash != info.scene_hash) {
+    return absl::FailedPreconditionError(absl::StrCat("scene: ", info.scene_spec,
+                                                      " no longer matches the baked scene (hash ",
+                                                      hash, " vs ", info.scene_hash, ")"));
   }
   return RayCaster::Build(*scene);
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -34,6 +35,9 @@ absl::StatusOr<EnvMap> ReadPngImage(const std::filesystem::path& path);
 // colour in [0, 1] encoded the same way but not exposed.
 absl::Status WritePng(const std::filesystem::path& path, int width, int height,
                       std::span<const float> rgb, float exposure_stops, Vec3 background);
+// The same PNG as bytes (for embedding, e.g. in a glTF).
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
+                                                 float exposure_stops, Vec3 background);
 
 // Binary little-endian PLY: vertices with float x, y, z and uchar red, green,
 // blue (tone-mapped as in WritePng, NaN → black), faces as `list uchar int

@@ -106,9 +106,10 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
 
 absl::Status CheckRelitPath(const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
-  if (ext == ".png" || ext == ".exr" || ext == ".ply") return absl::OkStatus();
+  if (ext == ".png" || ext == ".exr" || ext == ".ply" || ext == ".gltf" || ext == ".glb")
+    return absl::OkStatus();
   return absl::InvalidArgumentError(
-      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
+      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr, .ply, .gltf, .glb)"));
 }
 
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
@@ -120,11 +121,13 @@ absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::sp
                         float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   const int w = samples.width, h = samples.height;
+  if (!samples.uv_charts.empty()) return WriteLightmapOutput(info, samples, rgb, exposure_stops, out);
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
   if (ext == ".ply") return WriteMeshColours(info, samples, rgb, exposure_stops, out);
   return absl::InvalidArgumentError(
-      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
+      absl::StrCat("out: ", out.string(),
+                   ": unknown extension (.png, .exr or .ply; .gltf/.glb for uv layouts)"));
 }
 
 }  // namespace wavebake
