@@ -84,7 +84,7 @@ void Run(const RunConfig& run) {
   const std::filesystem::path store = Bake(run);
   std::unique_ptr<GlossyStore> g =
       Value(GlossyStore::Open(store, {.brdf = "phong:8", .threads = 1}));
-  const RayCaster caster = Value(BakedSceneCaster(g->info()));
+  const RayCaster caster = Value(BuildBakedScene(g->info()));
   const int n = g->info().light_res, all_lights = 6 * n * n;
   std::vector<int> light_terms;
   for (int t : {16, 64, 256, 1024})

@@ -1,13 +1,15 @@
 // `wavebake eval OUT.wbk --env ENV --reference [--terms n] [--json]`
 // (DESIGN.md §5): the store's relighting error, and the uncompressed T's,
-// against an independently traced Monte-Carlo reference (runtime/eval.h).
+// against an independently traced Monte-Carlo reference (runtime/eval.h);
+// with --area-light, near-field lights over their area (runtime/area_eval.h).
 #include <cmath>
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
+#include "cli/glossy_flags.h"
 #include "runtime/eval.h"
-#include "runtime/glossy_store.h"
 
 namespace wavebake::cli {
 namespace {
@@ -18,8 +20,9 @@ struct EvalFlags {
   double rotate = 0;
   bool reference = false, json = false, no_dense = false;
   double reference_se = 0.002;
-  std::string brdf = "lambert", view;
-  int brdf_terms = 256;
+  int reference_batches = 8;
+  driver::AreaLightCommand area;
+  GlossyFlags glossy;
 };
 
 void PrintRow(const char* name, const ErrorStats& e) {
@@ -33,17 +36,20 @@ void Run(const EvalFlags& f) {
          "--reference is required: the only ground truth eval knows is the "
          "independently traced one",
          kExitBadInput);
+  if (!f.area.lights.empty()) {
+    driver::AreaLightCommand area = f.area;
+    area.store = f.store;
+    absl::StatusOr<std::string> text =
+        driver::EvaluateWithAreaLights(area, f.reference_batches, f.json);
+    if (!text.ok()) Fail("eval", text.status());
+    return (void)std::printf("%s\n", text->c_str());
+  }
+  if (f.env.empty()) Fail("eval", "--env or --area-light is required", kExitBadInput);
   EvalOptions options;
   options.rotate_degrees = f.rotate;
   options.dense = !f.no_dense;
   options.reference.target_rel_se = f.reference_se;
-  options.glossy.brdf = f.brdf;
-  options.glossy.slices.terms = f.brdf_terms;
-  if (!f.view.empty()) {
-    absl::StatusOr<Vec3> eye = ParseView(f.view);
-    if (!eye.ok()) Fail("eval", eye.status());
-    options.glossy.eye = *eye;
-  }
+  options.glossy = GlossyOf(f.glossy, "eval");
   absl::StatusOr<EvalReport> report = Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   if (f.json) {
@@ -64,7 +70,16 @@ void AddEvalCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "eval", "error of a store's relighting against an independently traced reference");
   cmd->add_option("store", flags->store, "the store (OUT.wbk)")->required();
-  cmd->add_option("--env", flags->env, "environment (as for relight)")->required();
+  cmd->add_option("--env", flags->env, "environment (as for relight)");
+  AddAreaLightFlags(*cmd, flags->area);  // the reference: Monte-Carlo over their area
+  cmd->add_option("--reference-out", flags->area.reference_out,
+                  "area lights: also write the reference image (.png, .exr, .ply)");
+  cmd->add_option("--exposure", flags->area.exposure, "--reference-out PNG/PLY exposure, stops");
+  cmd->add_flag("--coupling-table", flags->area.table,
+                "area lights: look the coupling coefficients up (memory-based) instead");
+  cmd->add_option("--reference-batches", flags->reference_batches,
+                  "area lights: batches of 16x16 points per light and sample")
+      ->capture_default_str();
   cmd->add_flag("--reference", flags->reference,
                 "trace the Monte-Carlo reference (importance-sampled environment, Embree)");
   cmd->add_option("--terms", flags->terms, "wavelet lights for the compressed relighting")
@@ -74,14 +89,7 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--reference-se", flags->reference_se,
                   "target relative standard error of the reference")
       ->capture_default_str();
-  cmd->add_option("--brdf", flags->brdf,
-                  "material, for the store and the reference (visibility stores): lambert | "
-                  "phong:EXP | blinn:EXP | ggx:ROUGHNESS")
-      ->capture_default_str();
-  cmd->add_option("--brdf-terms", flags->brdf_terms,
-                  "Haar coefficients kept per sample's BRDF slice (0: all)")
-      ->capture_default_str();
-  cmd->add_option("--view", flags->view, "X,Y,Z eye position (mesh layouts, glossy BRDFs)");
+  AddGlossyFlags(*cmd, flags->glossy);
   cmd->add_flag("--no-dense", flags->no_dense,
                 "skip retracing the uncompressed rows (T, or V for a visibility store)");
   cmd->add_flag("--json", flags->json,

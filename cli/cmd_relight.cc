@@ -3,37 +3,37 @@
 // environment (Eq. 8 for diffuse stores, the triple product with a BRDF for
 // visibility stores), written as an image (camera layouts), a
 // vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
-// (uv layouts). The sequence modes are in cli/cmd_relight_sequences.cc.
+// (uv layouts). With --area-light, near-field planar lights instead
+// (driver/area_light_commands.h). The sequence modes are in
+// cli/cmd_relight_sequences.cc.
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
-#include "cli/relight_flags.h"
 #include "cli/commands.h"
+#include "cli/relight_flags.h"
 
 namespace wavebake::cli {
 namespace {
 
-void Run(const RelightFlags& f) {
+void Run(RelightFlags f) {
+  if (!f.area.lights.empty() || !f.area.sequence.empty()) {
+    f.area.store = f.store, f.area.out = f.out, f.area.exposure = f.exposure;
+    f.area.frame_extension = "." + f.frame_format;
+    absl::StatusOr<std::string> done = driver::RelightWithAreaLights(f.area);
+    if (!done.ok()) Fail("relight", done.status());
+    return (void)std::printf("%s\n", done->c_str());
+  }
+  if (f.env.empty()) Fail("relight", "--env or --area-light is required", kExitBadInput);
   if (!f.brdf_sequence.empty()) return RunBrdfSequence(f);
   if (!f.rotate_sequence.empty()) return RunRotateSequence(f);
-  absl::Status s =
-      RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out, GlossyOf(f));
+  absl::Status s = RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out,
+                                      GlossyOf(f.glossy, "relight"));
   if (!s.ok()) Fail("relight", s);
   std::printf("wrote %s\n", f.out.c_str());
 }
 
 }  // namespace
-
-GlossyOptions GlossyOf(const RelightFlags& f) {
-  GlossyOptions g{.brdf = f.brdf};
-  g.slices.terms = f.brdf_terms;
-  if (!f.view.empty()) {
-    absl::StatusOr<Vec3> eye = ParseView(f.view);
-    if (!eye.ok()) Fail("relight", eye.status());
-    g.eye = *eye;
-  }
-  return g;
-}
 
 void AddRelightCommand(CLI::App& app) {
   auto flags = std::make_shared<RelightFlags>();
@@ -42,24 +42,20 @@ void AddRelightCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--env", flags->env,
                   "environment: EXR or Radiance .hdr (lat-long or vertical cross), "
-                  "builtin:constant or builtin:sky")
-      ->required();
+                  "builtin:constant or builtin:sky");
+  AddAreaLightFlags(*cmd, flags->area);
+  cmd->add_option("--area-light-sequence", flags->area.sequence,
+                  "SEQ.json {frames, from, to}: a light moving and resizing over frames; --out is "
+                  "then a directory of frames and timing.csv");
+  cmd->add_flag("--distant", flags->area.distant,
+                "area lights: treat them as distant (their image at the scene centre)");
   cmd->add_option("--terms", flags->terms, "wavelet lights kept (non-linear approximation)")
       ->capture_default_str();
   cmd->add_option("--rotate", flags->rotate, "rotate the environment about +Y, degrees")
       ->capture_default_str();
   cmd->add_option("--exposure", flags->exposure, "PNG/PLY exposure in stops")
       ->capture_default_str();
-  cmd->add_option("--brdf", flags->brdf,
-                  "material (visibility stores; a diffuse store is lambert): lambert | phong:EXP "
-                  "| blinn:EXP | ggx:ROUGHNESS")
-      ->capture_default_str();
-  cmd->add_option("--brdf-terms", flags->brdf_terms,
-                  "Haar coefficients kept per sample's BRDF slice (0: all)")
-      ->capture_default_str();
-  cmd->add_option("--view", flags->view,
-                  "X,Y,Z eye position for glossy BRDFs on mesh layouts (camera layouts use the "
-                  "baked camera)");
+  AddGlossyFlags(*cmd, flags->glossy);
   cmd->add_option("--rotate-sequence", flags->rotate_sequence,
                   "START:END:FRAMES: relight a rotating environment; --out is then a directory "
                   "of frames and errors.csv (error vs all wavelet lights, per frame)");

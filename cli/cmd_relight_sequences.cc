@@ -65,7 +65,7 @@ void RunBrdfSequence(const RelightFlags& f) {
       .sequence = *sequence,
       .terms = f.terms,
       .mode = inc == "basic" ? MaterialMode::kBasic : MaterialMode::kNonIncremental,
-      .glossy = GlossyOf(f),
+      .glossy = GlossyOf(f.glossy, "relight"),
       .exposure_stops = f.exposure,
       .out_dir = f.out,
       .frame_extension = "." + f.frame_format};

@@ -3,7 +3,8 @@
 // sequence modes (cli/cmd_relight_sequences.cc).
 #include <string>
 
-#include "runtime/glossy_store.h"
+#include "cli/glossy_flags.h"
+#include "driver/area_light_commands.h"
 
 namespace wavebake::cli {
 
@@ -14,12 +15,9 @@ struct RelightFlags {
   float exposure = 0;
   std::string rotate_sequence, brdf_sequence, frame_format = "png";
   std::string incremental;  // empty: the sequence's default (per-band; basic for materials)
-  std::string brdf = "lambert", view;
-  int brdf_terms = 256;
+  GlossyFlags glossy;
+  driver::AreaLightCommand area;
 };
-
-// --brdf, --brdf-terms and --view as GlossyOptions (a bad --view fails).
-GlossyOptions GlossyOf(const RelightFlags& f);
 
 // --rotate-sequence and --brdf-sequence: frames and errors.csv into --out.
 void RunRotateSequence(const RelightFlags& f);

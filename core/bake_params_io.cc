@@ -85,6 +85,7 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   };
   if (!IsPowerOfTwo(p.light_res) || p.light_res < 8 || p.light_res > 256)
     return bad("light_res", p.light_res, " is not a power of two in 8..256");
+  if (absl::Status s = ValidateLightDomain(p.light_domain); !s.ok()) return s;
   if (p.supersample < 1 || p.supersample > 256)
     return bad("supersample", p.supersample, " is outside 1..256");
   if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
@@ -93,6 +94,11 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   // The triple product's tripling coefficients are those of the Haar basis.
   if (p.transport == Transport::kVisibility && p.row_filter != WaveletFilter::kHaar)
     return bad("row_filter", "a visibility transport needs haar rows (the Haar triple product)");
+  // The tripling coefficients are those of the six-face cube's Haar basis.
+  if (p.transport == Transport::kVisibility && p.light_domain.is_plane())
+    return bad("light_domain",
+               "a visibility transport needs the cube (the triple product is "
+               "over the whole sphere of directions)");
   if (p.column_filter == WaveletFilter::kDaub4)
     return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
   if (!(p.target_error >= 0) || p.target_error > 1)

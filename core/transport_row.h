@@ -30,6 +30,10 @@ struct TransportStats {
 void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats);
+// The same over whatever light domain the pattern was made for (the cube or
+// a plane face, core/light_domain.h): row has pattern.texels() entries.
+void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
+                  float epsilon, std::span<float> row, TransportStats* stats);
 
 // The visibility row of DESIGN.md §1 "What a row holds" (`visibility`):
 //

@@ -53,7 +53,9 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
   return s;
 }
 
-absl::StatusOr<RayCaster> BakedSceneCaster(const StoreInfo& info) {
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+  // Checked by content hash: a scene file edited since the bake would make
+  // every comparison meaningless.
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
   const std::string hash = StoreSceneHash(info, *scene);
@@ -63,6 +65,10 @@ absl::StatusOr<RayCaster> BakedSceneCaster(const StoreInfo& info) {
                                                       hash, " vs ", info.scene_hash, ")"));
   }
   return RayCaster::Build(*scene);
+}
+
+float BakedEpsilon(const StoreInfo& info, const RayCaster& caster) {
+  return info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster.DefaultEpsilon();
 }
 
 absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
@@ -80,15 +86,15 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   if ((*brdf)->Name() != "lambert") return CheckVisibilityStore(*store_info);
   absl::StatusOr<OpenedStore> opened = OpenStore(store);
   if (!opened.ok()) return opened.status();
+  if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
   if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
 
   const StoreInfo& info = opened->info;
-  absl::StatusOr<RayCaster> caster = BakedSceneCaster(info);
+  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
   if (!caster.ok()) return caster.status();
-  const float eps =
-      info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster->DefaultEpsilon();
+  const float eps = BakedEpsilon(info, *caster);
 
   EvalReport report;
   report.terms = terms;

@@ -37,6 +37,12 @@ struct ErrorStats {
 };
 ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference);
 
+// The scene a store was baked from, rebuilt for ray casting; FailedPrecondition
+// if its file no longer hashes to the baked scene.
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info);
+// The ray offset the bake used (its own, or the scene's default).
+float BakedEpsilon(const StoreInfo& info, const RayCaster& caster);
+
 struct EvalReport {
   int terms = 0;
   // compressed.seconds: lighting (resample, row transform, selection) +
@@ -51,10 +57,6 @@ struct EvalReport {
   bool reference_converged = true;
   int64_t dense_rays = 0;
 };
-
-// The Embree scene of the store's bake, checked by content hash: a scene
-// file edited since the bake would make every comparison meaningless.
-absl::StatusOr<RayCaster> BakedSceneCaster(const StoreInfo& info);
 
 // Errors: terms ≤ 0; the store (missing, another format version, damaged);
 // the env spec; the scene spec recorded in the store no longer loading or no

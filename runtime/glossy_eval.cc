@@ -25,10 +25,9 @@ absl::StatusOr<EvalReport> EvaluateGlossy(const std::filesystem::path& store,
   if (!env.ok()) return env.status();
   if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
   const StoreInfo& info = g.info();
-  absl::StatusOr<RayCaster> caster = BakedSceneCaster(info);
+  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
   if (!caster.ok()) return caster.status();
-  const float eps =
-      info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster->DefaultEpsilon();
+  const float eps = BakedEpsilon(info, *caster);
 
   // The reference sees the same BRDF and views, per sample id.
   const SampleSet& samples = g.samples();

@@ -9,15 +9,18 @@
 #include "runtime/relighter.h"
 
 namespace wavebake {
-namespace {
-
-// Column m's image over the grid: its kept coefficients through the inverse
-// column transform at its depth; the nonzero cells as (cell, value).
-void DecodeColumnImage(const CompressedColumns& t, int m, float drop_below,
-                       std::vector<float>& image, std::vector<std::pair<uint32_t, float>>& out) {
+void DecodeColumnImage(const CompressedColumns& t, int m, std::span<float> image) {
   std::fill(image.begin(), image.end(), 0.0f);
   for (int64_t k = t.indptr[m]; k < t.indptr[m + 1]; ++k) image[t.indices[k]] = t.values[k];
   Inverse2d(t.column_filter, image, t.width, t.height, t.depth[m]);
+}
+
+namespace {
+
+// Column m's image, its cells with |value| > drop_below as (cell, value).
+void DecodeColumnEntries(const CompressedColumns& t, int m, float drop_below,
+                         std::vector<float>& image, std::vector<std::pair<uint32_t, float>>& out) {
+  DecodeColumnImage(t, m, image);
   out.clear();
   for (size_t cell = 0; cell < image.size(); ++cell) {
     if (std::fabs(image[cell]) > drop_below)
@@ -36,7 +39,7 @@ absl::StatusOr<SampleRows> SampleRows::Decode(const CompressedColumns& t, float 
   ParallelFor(t.columns, [&](int m) {
     thread_local std::vector<float> image;
     image.resize(cells);
-    DecodeColumnImage(t, m, drop_below, image, images[m]);
+    DecodeColumnEntries(t, m, drop_below, image, images[m]);
   });
 
   SampleRows r;

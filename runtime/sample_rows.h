@@ -25,6 +25,12 @@
 
 namespace wavebake {
 
+// Column m's image over the grid (width·height floats, overwritten): its
+// kept coefficients through the inverse column transform at its own depth
+// (4D paper §4.2). The one column decoder of both per-sample row forms,
+// SampleRows (sparse, cube stores) and CellRows (dense, runtime/cell_rows.h).
+void DecodeColumnImage(const CompressedColumns& t, int m, std::span<float> image);
+
 class SampleRows {
  public:
   SampleRows() = default;  // no cells

@@ -64,7 +64,15 @@ absl::StatusOr<OpenedStore> OpenStore(const std::filesystem::path& store) {
   return OpenedStore{*std::move(info), *std::move(samples), *std::move(relighter)};
 }
 
+absl::Status RequireCubeDomain(const StoreInfo& info) {
+  if (!info.params.light_domain.is_plane()) return absl::OkStatus();
+  return absl::FailedPreconditionError(absl::StrCat(
+      "store: light domain ", ToString(info.params.light_domain),
+      " covers one face of directions, not an environment; relight it with --area-light"));
+}
+
 absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap& env, int terms) {
+  if (absl::Status s = RequireCubeDomain(store.info); !s.ok()) return s;
   Relighter& r = store.relighter;
   absl::StatusOr<LightingCoefficients> lighting =
       LightingFromEnv(env, r.light_res(), r.row_filter());
@@ -85,11 +93,7 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
   if (!std::isfinite(rotate_degrees)) {
     return absl::InvalidArgumentError(absl::StrCat("rotate: ", rotate_degrees, " is not finite"));
   }
-  const std::string ext = LowerExtension(out);
-  if (ext != ".png" && ext != ".exr" && ext != ".ply" && ext != ".gltf" && ext != ".glb") {
-    return absl::InvalidArgumentError(
-        absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr, .ply, .gltf, .glb)"));
-  }
+  if (absl::Status s = CheckRelitPath(out); !s.ok()) return s;
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
   if (rotate_degrees != 0) *env = Rotated(*env, rotate_degrees);
@@ -98,6 +102,14 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
   absl::StatusOr<std::vector<float>> rgb = RelightImage(*opened, *env, terms);
   if (!rgb.ok()) return rgb.status();
   return WriteRelit(*opened, *rgb, exposure_stops, out);
+}
+
+absl::Status CheckRelitPath(const std::filesystem::path& out) {
+  const std::string ext = LowerExtension(out);
+  if (ext == ".png" || ext == ".exr" || ext == ".ply" || ext == ".gltf" || ext == ".glb")
+    return absl::OkStatus();
+  return absl::InvalidArgumentError(
+      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr, .ply, .gltf, .glb)"));
 }
 
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,

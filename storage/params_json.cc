@@ -67,9 +67,11 @@ nlohmann::json ToJson(const BakeParams& p) {
                       {"tile_size", p.tile_size},
                       {"column_group", p.column_group},
                       {"ray_epsilon", p.ray_epsilon}};
-  // Only a visibility transport is spelled out: a diffuse store's .zattrs
-  // stays byte-identical to the stores written before the field existed.
+  // Only a visibility transport and a plane light domain are spelled out: a
+  // default store's .zattrs stays byte-identical to the stores written before
+  // the fields existed.
   if (p.transport != Transport::kDiffuse) j["transport"] = std::string(ToString(p.transport));
+  if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
   return j;
 }
 
@@ -100,6 +102,10 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   p.seed = j["seed"].get<uint64_t>();
   if (j.contains("transport")) {  // absent: diffuse (stores before the field)
     if (absl::Status s = GetEnum(j, "transport", ParseTransport, &p.transport); !s.ok()) return s;
+  }
+  if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
+    if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
+      return s;
   }
   p.target_error = target;
   p.ray_epsilon = static_cast<float>(epsilon);
