@@ -256,6 +256,15 @@ Fixture& GetFixture() {
     Fixture fx;
     const std::filesystem::path path = StorePath(fx);
     fx.store = Must(GlossyStore::Open(path, {.brdf = "phong:32", .threads = 1}));
+    // What the relighter holds besides the store: V decoded once, and the
+    // per-sample BRDF slices (the table Ng 2004 would tabulate over normals).
+    const SampleRows::Stats& rows = fx.store->rows().stats();
+    const BrdfSlices& slices = fx.store->relighter().slices();
+    std::fprintf(stderr,
+                 "visibility rows: %lld entries, %.1f MiB, decoded in %.2f s; phong:32 slices: "
+                 "%zu coefficients, %.1f MiB, projected in %.2f s (one core)\n",
+                 static_cast<long long>(rows.nonzeros), rows.bytes / 1048576.0, rows.seconds,
+                 slices.value.size(), slices.bytes() / 1048576.0, slices.seconds);
     const EnvMap env = Must(LoadEnvMap(WB_SHARED_DATA "/probes/grace.hdr"));
     const LightingCoefficients l =
         Must(LightingFromEnv(env, fx.store->info().light_res, WaveletFilter::kHaar));
