@@ -33,7 +33,7 @@
 #include "runtime/glossy_store.h"
 #include "runtime/lighting.h"
 #include "runtime/reference.h"
-#include "worker/local_bake.h"
+#include "driver/embedded_bake.h"
 
 namespace wavebake {
 namespace {
@@ -59,7 +59,10 @@ std::filesystem::path Bake(const RunConfig& run) {
   p.light_res = run.quick ? 8 : 32;
   p.transport = Transport::kVisibility;
   const std::filesystem::path out = run.work_dir / "sphere-plane.wbk";
-  Value(RunLocalBake("builtin:sphere-plane", p, out, {.threads = run.threads}));
+  const v1::Job job =
+      Value(driver::EmbeddedBake("builtin:sphere-plane", p, out, {.workers = run.threads}));
+  if (job.phase() != v1::PHASE_DONE)
+    throw std::runtime_error("bake of " + out.string() + " failed: " + job.error());
   return out;
 }
 

@@ -40,7 +40,7 @@
 #include "runtime/lighting.h"
 #include "runtime/row_basis.h"
 #include "storage/scoped_dir.h"
-#include "worker/local_bake.h"
+#include "driver/embedded_bake.h"
 
 namespace wavebake {
 namespace {
@@ -119,7 +119,11 @@ std::filesystem::path StorePath(Fixture& f) {
   p.light_res = 32;
   p.transport = Transport::kVisibility;
   std::fprintf(stderr, "baking builtin:sphere-plane camera:128x128 N=32 visibility ...\n");
-  Must(RunLocalBake("builtin:sphere-plane", p, out, {}));
+  const v1::Job job = Must(driver::EmbeddedBake("builtin:sphere-plane", p, out, {}));
+  if (job.phase() != v1::PHASE_DONE) {
+    std::fprintf(stderr, "bench_glossy: bake failed: %s\n", job.error().c_str());
+    std::exit(1);
+  }
   return out;
 }
 

@@ -184,11 +184,14 @@ inline MiniBake RunMiniBake(const MiniBakeOptions& o) {
   for (int cell = 0; cell < cells; ++cell) {
     const int32_t id = b.samples.grid[cell];
     if (id < 0) continue;
-    const auto kernel = o.transport == Transport::kVisibility ? VisibilityRow : TransportRow;
-    kernel(*caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
-           caster->DefaultEpsilon(),
-           std::span<float>(b.pixel_rows.data() + static_cast<size_t>(cell) * b.columns, b.columns),
-           nullptr);
+    const std::span<float> row(b.pixel_rows.data() + static_cast<size_t>(cell) * b.columns,
+                               b.columns);
+    if (o.transport == Transport::kVisibility)
+      VisibilityRow(*caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
+                    caster->DefaultEpsilon(), row, nullptr);
+    else
+      TransportRow(*caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
+                   caster->DefaultEpsilon(), row, nullptr);
   }
   b.wavelet_rows = b.pixel_rows;
   for (int cell = 0; cell < cells; ++cell) {
