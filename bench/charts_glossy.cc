@@ -27,13 +27,13 @@
 
 #include "bench/chart_util.h"
 #include "core/cubemap.h"
+#include "driver/embedded_bake.h"
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
 #include "runtime/eval.h"
 #include "runtime/glossy_store.h"
 #include "runtime/lighting.h"
 #include "runtime/reference.h"
-#include "driver/embedded_bake.h"
 
 namespace wavebake {
 namespace {

@@ -36,11 +36,11 @@
 
 #include "core/haar_product.h"
 #include "core/haar_tree.h"
+#include "driver/embedded_bake.h"
 #include "runtime/glossy_store.h"
 #include "runtime/lighting.h"
 #include "runtime/row_basis.h"
 #include "storage/scoped_dir.h"
-#include "driver/embedded_bake.h"
 
 namespace wavebake {
 namespace {
