@@ -86,7 +86,7 @@ void Run(const RunConfig& run) {
   std::filesystem::create_directories(run.work_dir);
   const std::filesystem::path store = Bake(run);
   std::unique_ptr<GlossyStore> g =
-      Value(GlossyStore::Open(store, {.brdf = "phong:8", .threads = 1}));
+      Value(GlossyStore::Open(store, {.brdf = "phong:8", .eye = {}, .slices = {}, .threads = 1}));
   const RayCaster caster = Value(BuildBakedScene(g->info()));
   const int n = g->info().light_res, all_lights = 6 * n * n;
   std::vector<int> light_terms;

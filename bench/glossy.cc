@@ -259,7 +259,8 @@ Fixture& GetFixture() {
   static Fixture f = [] {
     Fixture fx;
     const std::filesystem::path path = StorePath(fx);
-    fx.store = Must(GlossyStore::Open(path, {.brdf = "phong:32", .threads = 1}));
+    fx.store =
+        Must(GlossyStore::Open(path, {.brdf = "phong:32", .eye = {}, .slices = {}, .threads = 1}));
     // What the relighter holds besides the store: V decoded once, and the
     // per-sample BRDF slices (the table Ng 2004 would tabulate over normals).
     const SampleRows::Stats& rows = fx.store->rows().stats();
