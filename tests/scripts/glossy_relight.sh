@@ -44,6 +44,10 @@ must_fail() {
   fail "a diffuse store relights as lambert"
 must_fail "glossy on diffuse" "--transport visibility" \
   "$WB" relight "$TMP/dif.wbk" --env builtin:sky --brdf ggx:0.3 --out "$TMP/x.png"
+must_fail "visibility on a plane domain" "light_domain: a visibility transport needs the cube" \
+  "$WB" bake builtin:cubes-wall --layout camera:8x8 --light-res 8 --light-domain plane:4 \
+  --transport visibility --quiet --out "$TMP/plane.wbk"
+[[ ! -e "$TMP/plane.wbk" ]] || fail "a refused bake left $TMP/plane.wbk"
 must_fail "view on camera" "view" \
   "$WB" relight "$TMP/vis.wbk" --env builtin:sky --brdf phong:32 --view 0,1,3 --out "$TMP/x.png"
 must_fail "bad brdf" "brdf" \
