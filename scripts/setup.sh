@@ -9,6 +9,8 @@ PKGS=(
   libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
+  libcpp-httplib-dev pybind11-dev python3-dev python3-pytest
+  chromium chromium-driver python3-selenium python3-prometheus-client
 )
 missing=()
 for p in "${PKGS[@]}"; do

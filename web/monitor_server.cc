@@ -73,6 +73,7 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   // httplib owns and deletes the queue it is given.
   server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
   server.set_keep_alive_max_count(1000);  // the relight view asks frame after frame
+  server.set_tcp_nodelay(true);           // a frame is headers then body: no Nagle wait
   server.set_read_timeout(10);
   server.set_write_timeout(10);
   server.set_payload_max_length(1 << 16);  // only small forms and queries come in

@@ -22,6 +22,7 @@ from pathlib import Path
 
 from prometheus_client.parser import text_string_to_metric_families
 from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select
@@ -93,9 +94,9 @@ def main():
         options.binary_location = "/usr/bin/chromium"
         for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                      "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                     "--disable-dev-shm-usage", "--window-size=1280,900", f"--user-data-dir={tmp / 'chromium'}"):
+                     "--disable-dev-shm-usage", "--window-size=1280,760", f"--user-data-dir={tmp / 'chromium'}"):
             options.add_argument(flag)
-        driver = webdriver.Chrome(service=webdriver.ChromeService("/usr/bin/chromedriver"), options=options)
+        driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
         driver.set_page_load_timeout(30)
 
         # The login form a browser gets with its 401.
@@ -128,6 +129,8 @@ def main():
         # The relight view: a frame, then the slider turns the environment.
         driver.get(f"{base}/jobs/{slow}")
         wait_for("a relit frame", lambda: driver.execute_script("return window.wavebakeFrames || 0;") >= 1, 30)
+        driver.save_screenshot(str(SHOTS / "job.png"))
+        driver.execute_script("document.getElementById('relight-section').scrollIntoView();")
         Select(driver.find_element(By.ID, "probe")).select_by_value("grace.hdr")
         wait_for("the grace frame", lambda: "grace.hdr" in (driver.execute_script(
             "return document.getElementById('relight').dataset.query || '';")), 30)
@@ -140,8 +143,11 @@ def main():
         for _ in range(45):
             slider.send_keys(Keys.ARROW_RIGHT)
         wanted = driver.find_element(By.ID, "rotate").get_attribute("value")
-        wait_for("the frame of the new rotation", lambda: f"rotate={wanted}&" in driver.execute_script(
-            "return document.getElementById('relight').dataset.query || '';"), 30)
+        def relit():
+            return driver.execute_script(
+                "const d = document.getElementById('relight').dataset; return [d.query || '', d.compared || '0'];")
+        wait_for("the frame of the new rotation, compared with all lights",
+                 lambda: f"rotate={wanted}&" in relit()[0] and relit()[1] == "1", 30)
         after = driver.execute_script(pixels)
         moved = driver.execute_script("return window.wavebakeFrames;") - frames
         differing = sum(1 for a, b in zip(before, after) if abs(a - b) > 8)

@@ -63,7 +63,7 @@ function renderTimeline(events, job) {
   const lanes = [...workers].sort((a, b) => Number(a) - Number(b));
   document.getElementById("timeline-note").textContent =
     `${perKind.BAKE_TILE} tiles, ${perKind.TRANSFORM_COLUMNS} column groups, ${perKind.FINALIZE} finalize done; ` +
-    `${retries} retries (failed or expired leases); ${lanes.length} workers`;
+    `${retries} retries (failed or expired leases); workers: ${lanes.length}`;
   const width = 900, lane = 18, left = 70, top = 18;
   const height = top + lanes.length * lane + 24;
   box.replaceChildren();
@@ -107,13 +107,21 @@ function startRelight(store, probes) {
   document.getElementById("picture-kind").textContent = store.picture;
   const select = document.getElementById("probe");
   for (const name of probes) select.appendChild(new Option(name, name));
-  const maxTerms = store.columns;
-  const termsOf = (s) => Math.max(1, Math.round(Math.exp(Math.log(maxTerms) * s / 100)));
+  // Terms in powers of two, then all of them.
+  const maxTerms = store.columns, choices = [];
+  for (let n = 1; n < maxTerms; n *= 2) choices.push(n);
+  choices.push(maxTerms);
+  const termsOf = (i) => choices[Math.min(choices.length - 1, i)];
   const terms = document.getElementById("terms");
-  terms.value = Math.round(100 * Math.log(Math.min(256, maxTerms)) / Math.log(maxTerms));
+  terms.max = choices.length - 1;
+  terms.value = Math.max(0, choices.indexOf(Math.min(256, maxTerms)));
   const canvas = document.getElementById("relight");
   const stats = document.getElementById("relight-stats");
-  let inFlight = false, wanted = null, drawn = null, frames = 0, since = performance.now();
+  // While the controls move each frame skips the comparison with every
+  // wavelet light (it costs a full relight); once they rest, the same frame
+  // is asked again with it.
+  let inFlight = false, wanted = null, drawn = null, compared = null, error = null, frames = 0;
+  const recent = [];  // times of the last frames: the rate while the controls move
   window.wavebakeFrames = 0;
 
   const query = () => {
@@ -125,11 +133,11 @@ function startRelight(store, probes) {
     return q.toString();
   };
   const request = async () => {
-    if (inFlight || wanted === drawn) return;
+    if (inFlight || (wanted === drawn && wanted === compared)) return;
     inFlight = true;
-    const q = wanted;
+    const q = wanted, compare = q === drawn;  // a second look at a resting frame
     try {
-      const res = await fetch(`/api/jobs/${jobId}/relight?${q}`, { cache: "no-store" });
+      const res = await fetch(`/api/jobs/${jobId}/relight?${q}&compare=${compare ? 1 : 0}`, { cache: "no-store" });
       if (!res.ok) throw new Error((await res.json().catch(() => ({}))).error || res.statusText);
       const w = Number(res.headers.get("X-Width")), h = Number(res.headers.get("X-Height"));
       const pixels = new Uint8ClampedArray(await res.arrayBuffer());
@@ -138,20 +146,26 @@ function startRelight(store, probes) {
       drawn = q;
       canvas.dataset.query = q;
       window.wavebakeFrames = ++frames;
-      const now = performance.now(), fps = 1000 * frames / Math.max(1, now - since);
-      const err = res.headers.get("X-Rel-Rms-All");
-      stats.textContent = `${res.headers.get("X-Terms")} lights · server frame ${res.headers.get("X-Frame-Ms")} ms · ` +
-        `error ${err === null ? "–" : (100 * Number(err)).toFixed(2) + " %"} vs all ${res.headers.get("X-Columns")} · ${fps.toFixed(0)} frames/s`;
+      if (compare) { compared = q; error = res.headers.get("X-Rel-Rms-All"); }
+      recent.push(performance.now());
+      if (recent.length > 20) recent.shift();
+      const fps = recent.length > 1 ? 1000 * (recent.length - 1) / (recent[recent.length - 1] - recent[0]) : 0;
+      const errorText = compared === drawn ? `${(100 * Number(error)).toFixed(2)} %` : "…";
+      stats.textContent = `${res.headers.get("X-Terms")} lights · server frame ${Number(res.headers.get("X-Frame-Ms")).toFixed(2)} ms · ` +
+        `error ${errorText} vs all ${res.headers.get("X-Columns")} · ${fps.toFixed(0)} frames/s`;
+      canvas.dataset.compared = compared === drawn ? "1" : "0";
     } catch (e) {
       stats.textContent = `relight: ${e.message}`;
-      drawn = q;  // do not retry a failing query in a loop
+      drawn = compared = q;  // do not retry a failing query in a loop
     } finally {
       inFlight = false;
       request();
     }
   };
   const changed = () => { wanted = query(); request(); };
-  for (const id of ["probe", "rotate", "terms", "exposure"]) document.getElementById(id).addEventListener("input", changed);
+  for (const id of ["probe", "rotate", "terms", "exposure"]) {
+    for (const type of ["input", "change"]) document.getElementById(id).addEventListener(type, changed);
+  }
   changed();
 }
 
