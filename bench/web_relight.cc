@@ -40,7 +40,8 @@ struct Fixture {
     store = dir / "store.wbk";
     BakeParams p;
     p.layout = std::getenv("WB_BENCH_LAYOUT") ? std::getenv("WB_BENCH_LAYOUT") : "camera:64x64";
-    p.light_res = std::getenv("WB_BENCH_LIGHT_RES") ? std::atoi(std::getenv("WB_BENCH_LIGHT_RES")) : 32;
+    p.light_res =
+        std::getenv("WB_BENCH_LIGHT_RES") ? std::atoi(std::getenv("WB_BENCH_LIGHT_RES")) : 32;
     absl::StatusOr<v1::Job> job = driver::EmbeddedBake("builtin:cubes-wall", p, store, {});
     if (!job.ok() || job->phase() != v1::PHASE_DONE) std::abort();
     absl::StatusOr<OpenedStore> opened = OpenStore(store);
@@ -54,11 +55,13 @@ struct Fixture {
     for (int rep = 0; rep < 5; ++rep) {
       const auto t0 = std::chrono::steady_clock::now();
       for (int i = 0; i < frames; ++i) r.Relight(lights, rgb);
-      medians.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / frames);
+      medians.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / frames);
     }
     std::sort(medians.begin(), medians.end());
     relight_seconds = medians[2];
-    std::fprintf(stderr, "bare relight: %.1f us per frame (median of 5 x %d)\n", relight_seconds * 1e6, frames);
+    std::fprintf(stderr, "bare relight: %.1f us per frame (median of 5 x %d)\n",
+                 relight_seconds * 1e6, frames);
   }
   ~Fixture() { std::filesystem::remove_all(dir); }
 };
@@ -69,8 +72,8 @@ Fixture& Shared() {
 }
 
 void Report(benchmark::State& state, double seconds) {
-  state.counters["frames_per_s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["frames_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["x_relight"] = seconds / state.iterations() / Shared().relight_seconds;
 }
 
@@ -101,13 +104,17 @@ BENCHMARK(BM_Service)->Arg(0)->Arg(1)->UseRealTime();
 class OneStore final : public web::JobSource {
  public:
   explicit OneStore(std::filesystem::path store) : store_(std::move(store)) {}
-  absl::StatusOr<std::vector<v1::Job>> ListJobs(int) const override { return std::vector<v1::Job>{}; }
+  absl::StatusOr<std::vector<v1::Job>> ListJobs(int) const override {
+    return std::vector<v1::Job>{};
+  }
   absl::StatusOr<v1::Job> GetJob(const std::string&) const override { return v1::Job{}; }
   absl::StatusOr<v1::Job> CancelJob(const std::string&) override { return v1::Job{}; }
   absl::StatusOr<std::vector<v1::JobEvent>> JobEvents(const std::string&, int) const override {
     return std::vector<v1::JobEvent>{};
   }
-  absl::StatusOr<std::filesystem::path> StoreDir(const std::string&) const override { return store_; }
+  absl::StatusOr<std::filesystem::path> StoreDir(const std::string&) const override {
+    return store_;
+  }
   absl::StatusOr<Scene> JobScene(const std::string&) const override {
     return absl::UnimplementedError("camera layout");
   }
@@ -131,8 +138,9 @@ void BM_Http(benchmark::State& state) {
   int degrees = 0;
   double seconds = 0;
   for (auto _ : state) {
-    const std::string path = "/api/jobs/1/relight?probe=grace.hdr&compare=" +
-                             std::to_string(state.range(0)) + "&rotate=" + std::to_string(++degrees);
+    const std::string path =
+        "/api/jobs/1/relight?probe=grace.hdr&compare=" + std::to_string(state.range(0)) +
+        "&rotate=" + std::to_string(++degrees);
     const auto t0 = std::chrono::steady_clock::now();
     httplib::Result r = client.Get(path.c_str(), auth);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

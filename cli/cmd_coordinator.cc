@@ -44,13 +44,13 @@ void Run(CoordinatorFlags f) {
   }
   const PlannerOptions planner{
       .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
-  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
-      options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
+  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =
+      Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
   if (!coordinator.ok()) Fail("coordinator", coordinator.status());
   // The same token and certificate as gRPC (DESIGN.md §4).
   std::unique_ptr<web::MonitorServer> monitor =
-      StartMonitor("coordinator", f.web, options.token, options.tls_cert_path,
-                   options.tls_key_path, web::CoordinatorSource(**coordinator, planner));
+      StartMonitor("coordinator", f.web, options.token, options.tls_cert_path, options.tls_key_path,
+                   web::CoordinatorSource(**coordinator, planner));
   // "host:port" for scripts that listen on port 0; appears whole (rename).
   const std::string address = (*coordinator)->address() + "\n";
   if (!f.address_file.empty())

@@ -28,10 +28,7 @@ std::string PhaseLabel(v1::Phase p) {
 }  // namespace
 
 ProgressBar::ProgressBar(bool quiet)
-    : quiet_(quiet),
-      tty_(isatty(STDERR_FILENO) != 0),
-      start_(Clock::now()),
-      last_print_(start_) {}
+    : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_print_(start_) {}
 
 void ProgressBar::Show(const v1::JobEvent& e) {
   if (quiet_) return;

@@ -27,11 +27,11 @@ inline constexpr double kColumnStageRatio = 0.25;
 inline constexpr double kFinalizeRatio = 0.3;
 
 struct StageProgress {
-  int tasks = 0;                  // in the stage
-  int done = 0;                   // done so far (measured or not)
-  int measured = 0;               // done tasks whose lease-to-complete time is known
-  double measured_seconds = 0;    // their sum
-  std::vector<double> running;    // ages (s) of the stage's leased tasks
+  int tasks = 0;                // in the stage
+  int done = 0;                 // done so far (measured or not)
+  int measured = 0;             // done tasks whose lease-to-complete time is known
+  double measured_seconds = 0;  // their sum
+  std::vector<double> running;  // ages (s) of the stage's leased tasks
 };
 
 struct EtaInputs {

@@ -31,5 +31,4 @@ absl::StatusOr<PinholeFrame> MakePinholeFrame(const Camera& cam, int width, int 
   return f;
 }
 
-
 }  // namespace wavebake

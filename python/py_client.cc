@@ -97,11 +97,11 @@ class PyClient {
  public:
   PyClient(std::string coordinator, std::string token_file, std::string tls_ca,
            double connect_seconds)
-      : client_(std::make_shared<const driver::Client>(Unwrap(driver::Client::Connect(
-            {.coordinator = std::move(coordinator),
-             .token_file = std::move(token_file),
-             .tls_ca = std::move(tls_ca)},
-            connect_seconds)))) {}
+      : client_(std::make_shared<const driver::Client>(
+            Unwrap(driver::Client::Connect({.coordinator = std::move(coordinator),
+                                            .token_file = std::move(token_file),
+                                            .tls_ca = std::move(tls_ca)},
+                                           connect_seconds)))) {}
 
   py::dict Submit(const std::string& scene, const py::kwargs& params) {
     v1::BakeRequest request;

@@ -167,7 +167,8 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
   if (reference) {
-    if (!py::isinstance<py::str>(env)) throw py::type_error("env: eval(reference=True) takes a spec string");
+    if (!py::isinstance<py::str>(env))
+      throw py::type_error("env: eval(reference=True) takes a spec string");
     EvalOptions options;
     options.rotate_degrees = rotate;
     options.dense = dense;
@@ -212,9 +213,9 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
   const Result r = Unwrap(std::move(result));
   py::dict out;
   out["terms"] = r.terms;
-  out["vs_all_lights"] = py::dict(py::arg("rel_rms") = r.error.rel_rms,
-                                  py::arg("max_abs") = r.error.max_abs,
-                                  py::arg("psnr") = r.error.psnr, py::arg("seconds") = r.seconds);
+  out["vs_all_lights"] =
+      py::dict(py::arg("rel_rms") = r.error.rel_rms, py::arg("max_abs") = r.error.max_abs,
+               py::arg("psnr") = r.error.psnr, py::arg("seconds") = r.seconds);
   return out;
 }
 
@@ -259,11 +260,14 @@ void AddStoreBindings(py::module_& m) {
   py::class_<PyStore>(m, "Store", "A finished wavebake store (a Zarr v2 directory).")
       .def(py::init<std::string>(), py::arg("path"))
       .def_property_readonly("path", &PyStore::path)
-      .def_property_readonly("attrs", [](const PyStore& s) { return JsonToPython(s.info().attrs); },
-                             "the root .zattrs: format, params, scene, statistics")
-      .def_property_readonly("params", [](const PyStore& s) {
-        return JsonToPython(s.info().attrs.value("params", nlohmann::json::object()));
-      })
+      .def_property_readonly(
+          "attrs", [](const PyStore& s) { return JsonToPython(s.info().attrs); },
+          "the root .zattrs: format, params, scene, statistics")
+      .def_property_readonly(
+          "params",
+          [](const PyStore& s) {
+            return JsonToPython(s.info().attrs.value("params", nlohmann::json::object()));
+          })
       .def_property_readonly("width", [](const PyStore& s) { return s.info().width; })
       .def_property_readonly("height", [](const PyStore& s) { return s.info().height; })
       .def_property_readonly("light_res", [](const PyStore& s) { return s.info().light_res; })

@@ -58,9 +58,11 @@ absl::StatusOr<VertexRaster> VertexRaster::Create(const Scene& scene, const Came
       const double area = Edge(a, b, c.x, c.y);
       if (!(std::abs(area) > 1e-12)) continue;
       const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({a.x, b.x, c.x}) - 0.5)));
-      const int x1 = std::min(width - 1, static_cast<int>(std::floor(std::max({a.x, b.x, c.x}) - 0.5)));
+      const int x1 =
+          std::min(width - 1, static_cast<int>(std::floor(std::max({a.x, b.x, c.x}) - 0.5)));
       const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({a.y, b.y, c.y}) - 0.5)));
-      const int y1 = std::min(height - 1, static_cast<int>(std::floor(std::max({a.y, b.y, c.y}) - 0.5)));
+      const int y1 =
+          std::min(height - 1, static_cast<int>(std::floor(std::max({a.y, b.y, c.y}) - 0.5)));
       for (int py = y0; py <= y1; ++py) {
         for (int px = x0; px <= x1; ++px) {
           const double qx = px + 0.5, qy = py + 0.5;

@@ -81,9 +81,7 @@ class LiveSource final : public JobSource {
     if (!job.ok()) return job.status();
     return LoadRequestScene(job->request(), planner_);
   }
-  SchedulerSnapshot Metrics(int job_limit) const override {
-    return c_.table().Metrics(job_limit);
-  }
+  SchedulerSnapshot Metrics(int job_limit) const override { return c_.table().Metrics(job_limit); }
   uint64_t WaitForChange(uint64_t seen, int64_t timeout_ms) const override {
     return c_.table().WaitForChange(seen, timeout_ms);
   }
@@ -114,8 +112,8 @@ class FrozenSource final : public JobSource {
   absl::StatusOr<v1::Job> CancelJob(const std::string& id) override {
     absl::StatusOr<v1::Job> job = GetJob(id);
     if (!job.ok()) return job.status();
-    return absl::FailedPreconditionError(absl::StrCat(
-        "job ", id, " already ended ", v1::Phase_Name(job_.phase()).substr(6)));
+    return absl::FailedPreconditionError(
+        absl::StrCat("job ", id, " already ended ", v1::Phase_Name(job_.phase()).substr(6)));
   }
   absl::StatusOr<std::vector<v1::JobEvent>> JobEvents(const std::string& id,
                                                       int limit) const override {

@@ -29,7 +29,8 @@ absl::StatusOr<std::pair<std::string, int>> SplitHostPort(const std::string& lis
         absl::StrCat("listen: \"", listen, "\" is not host:port (port 0: any free)"));
   }
   std::string host = listen.substr(0, colon);
-  if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+  if (host.size() > 2 && host.front() == '[' && host.back() == ']')
+    host = host.substr(1, host.size() - 2);
   return std::make_pair(host, port);
 }
 
@@ -54,8 +55,8 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   if (tls) {
     if (absl::Status s = CheckReadable(options.tls_cert, "tls_cert"); !s.ok()) return s;
     if (absl::Status s = CheckReadable(options.tls_key, "tls_key"); !s.ok()) return s;
-    auto ssl = std::make_unique<httplib::SSLServer>(options.tls_cert.c_str(),
-                                                    options.tls_key.c_str());
+    auto ssl =
+        std::make_unique<httplib::SSLServer>(options.tls_cert.c_str(), options.tls_key.c_str());
     if (!ssl->is_valid())
       return absl::InvalidArgumentError(
           absl::StrCat("tls_cert/tls_key: ", options.tls_cert.string(), " and ",
@@ -79,14 +80,14 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   server.set_payload_max_length(1 << 16);  // only small forms and queries come in
   RouteContext& ctx = *m->context_;
   server.set_pre_routing_handler([&ctx](const httplib::Request& req, httplib::Response& res) {
-    if (IsOpenPath(req.path) || ctx.auth.Allows(req.get_header_value("Authorization"),
-                                                req.get_header_value("Cookie"))) {
+    if (IsOpenPath(req.path) ||
+        ctx.auth.Allows(req.get_header_value("Authorization"), req.get_header_value("Cookie"))) {
       return httplib::Server::HandlerResponse::Unhandled;
     }
     res.status = 401;
     res.set_header("WWW-Authenticate", "Bearer realm=\"wavebake\"");
-    const bool page = req.method == "GET" && !absl::StartsWith(req.path, "/api/") &&
-                      req.path != "/metrics";
+    const bool page =
+        req.method == "GET" && !absl::StartsWith(req.path, "/api/") && req.path != "/metrics";
     if (page) {  // a browser: offer the login form
       res.set_content(ctx.pages.Get("login.html").value_or("401 unauthorized\n"),
                       "text/html; charset=utf-8");
@@ -100,7 +101,8 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   AddStoreRoutes(server, ctx);
 
   const auto& [host, port] = *host_port;
-  m->port_ = port == 0 ? server.bind_to_any_port(host) : (server.bind_to_port(host, port) ? port : -1);
+  m->port_ =
+      port == 0 ? server.bind_to_any_port(host) : (server.bind_to_port(host, port) ? port : -1);
   if (m->port_ <= 0) {
     return absl::UnavailableError(
         absl::StrCat("listen: cannot listen on \"", options.listen, "\""));

@@ -24,8 +24,8 @@ namespace wavebake::web {
 struct RouteContext;  // web/routes.h
 
 struct MonitorOptions {
-  std::string listen = "127.0.0.1:0";  // host:port; port 0 picks a free one
-  std::string token{};                 // empty: no authentication
+  std::string listen = "127.0.0.1:0";           // host:port; port 0 picks a free one
+  std::string token{};                          // empty: no authentication
   std::filesystem::path tls_cert{}, tls_key{};  // both (HTTPS) or neither (PEM)
   ProbeCatalogue probes{};
   // Serve the pages from this directory instead of the copies built into

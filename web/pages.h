@@ -11,7 +11,7 @@
 namespace wavebake::web {
 
 struct EmbeddedFile {
-  std::string_view name;   // e.g. "monitor.js"
+  std::string_view name;  // e.g. "monitor.js"
   std::string_view bytes;
 };
 // Generated at build time (web_pages.cc in the build tree).

@@ -28,7 +28,8 @@ absl::StatusOr<ProbeCatalogue> ProbeCatalogue::Scan(const std::filesystem::path&
   ProbeCatalogue c;
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) {
-    return absl::InvalidArgumentError(absl::StrCat("--probes: ", dir.string(), " is not a directory"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("--probes: ", dir.string(), " is not a directory"));
   }
   std::vector<std::string> files;
   for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
@@ -38,7 +39,8 @@ absl::StatusOr<ProbeCatalogue> ProbeCatalogue::Scan(const std::filesystem::path&
     files.push_back(name);
     c.specs_[name] = std::filesystem::absolute(it->path()).string();
   }
-  if (ec) return absl::InvalidArgumentError(absl::StrCat("--probes: ", dir.string(), ": ", ec.message()));
+  if (ec)
+    return absl::InvalidArgumentError(absl::StrCat("--probes: ", dir.string(), ": ", ec.message()));
   std::sort(files.begin(), files.end());
   c.order_.insert(c.order_.end(), files.begin(), files.end());
   return c;
@@ -49,7 +51,8 @@ std::vector<std::string> ProbeCatalogue::names() const { return order_; }
 absl::StatusOr<std::string> ProbeCatalogue::Spec(const std::string& name) const {
   auto it = specs_.find(name);
   if (it == specs_.end()) {
-    return absl::NotFoundError(absl::StrCat("probe: \"", name, "\" is not one of the server's probes"));
+    return absl::NotFoundError(
+        absl::StrCat("probe: \"", name, "\" is not one of the server's probes"));
   }
   return it->second;
 }

@@ -36,8 +36,10 @@ void SendJson(httplib::Response& res, const nlohmann::json& body, int status) {
 }
 
 void SendError(httplib::Response& res, const absl::Status& status) {
-  SendJson(res, {{"error", std::string(status.message())}, {"code", absl::StatusCodeToString(status.code())}},
-           HttpStatus(status));
+  SendJson(
+      res,
+      {{"error", std::string(status.message())}, {"code", absl::StatusCodeToString(status.code())}},
+      HttpStatus(status));
 }
 
 SourceSlot::Use SourceOr503(const RouteContext& ctx, httplib::Response& res) {

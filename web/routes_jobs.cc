@@ -77,9 +77,8 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx) {
     res.set_header("Cache-Control", "no-store");
     auto stream = std::make_shared<JobStream>();
     res.set_chunked_content_provider(
-        "text/event-stream", [&ctx, stream](size_t, httplib::DataSink& sink) {
-          return stream->Next(ctx, sink);
-        });
+        "text/event-stream",
+        [&ctx, stream](size_t, httplib::DataSink& sink) { return stream->Next(ctx, sink); });
   });
   server.Get(R"(/api/jobs/(\d+))", [&ctx](const httplib::Request& req, httplib::Response& res) {
     SourceSlot::Use source = SourceOr503(ctx, res);
@@ -88,20 +87,19 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx) {
     if (!job.ok()) return SendError(res, job.status());
     SendJson(res, JobJson(*job));
   });
-  server.Post(R"(/api/jobs/(\d+)/cancel)",
-              [&ctx](const httplib::Request& req, httplib::Response& res) {
-                // Only the pages' own script sends this header (a cross-site
-                // form cannot), on top of the SameSite session cookie.
-                if (req.get_header_value("X-Wavebake") != "1") {
-                  return SendError(res, absl::InvalidArgumentError(
-                                            "X-Wavebake: header required (send 1)"));
-                }
-                SourceSlot::Use source = SourceOr503(ctx, res);
-                if (!source) return;
-                absl::StatusOr<v1::Job> job = source->CancelJob(req.matches[1].str());
-                if (!job.ok()) return SendError(res, job.status());
-                SendJson(res, JobJson(*job));
-              });
+  server.Post(
+      R"(/api/jobs/(\d+)/cancel)", [&ctx](const httplib::Request& req, httplib::Response& res) {
+        // Only the pages' own script sends this header (a cross-site
+        // form cannot), on top of the SameSite session cookie.
+        if (req.get_header_value("X-Wavebake") != "1") {
+          return SendError(res, absl::InvalidArgumentError("X-Wavebake: header required (send 1)"));
+        }
+        SourceSlot::Use source = SourceOr503(ctx, res);
+        if (!source) return;
+        absl::StatusOr<v1::Job> job = source->CancelJob(req.matches[1].str());
+        if (!job.ok()) return SendError(res, job.status());
+        SendJson(res, JobJson(*job));
+      });
   server.Get(R"(/api/jobs/(\d+)/events)",
              [&ctx](const httplib::Request& req, httplib::Response& res) {
                SourceSlot::Use source = SourceOr503(ctx, res);

@@ -75,10 +75,8 @@ absl::StatusOr<std::unique_ptr<StoreView>> MakeStoreView(
   const SampleSet& s = store.samples;
   const PictureKind kind = PictureKindOf(store.info.params.layout);
   if (kind != PictureKind::kVertexColours || s.vertex.size() != s.position.size()) {
-    return std::make_unique<GridImageView>(kind == PictureKind::kVertexColours
-                                               ? PictureKind::kGridImage
-                                               : kind,
-                                           s.width, s.height);
+    return std::make_unique<GridImageView>(
+        kind == PictureKind::kVertexColours ? PictureKind::kGridImage : kind, s.width, s.height);
   }
   absl::StatusOr<Scene> scene = load_scene();
   if (!scene.ok()) return scene.status();

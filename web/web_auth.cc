@@ -60,15 +60,14 @@ std::optional<std::string> WebAuth::Login(std::string_view token) {
   if (enabled() && !ConstantTimeEquals(token, token_)) return std::nullopt;
   unsigned char bytes[32];
   if (RAND_bytes(bytes, sizeof bytes) != 1) return std::nullopt;
-  std::string id = absl::BytesToHexString(
-      absl::string_view(reinterpret_cast<const char*>(bytes), sizeof bytes));
+  std::string id =
+      absl::BytesToHexString(absl::string_view(reinterpret_cast<const char*>(bytes), sizeof bytes));
   std::lock_guard lock(mu_);
   const Clock::time_point now = Clock::now();
   std::erase_if(sessions_, [&](const auto& s) { return s.second <= now; });
   if (sessions_.size() >= kMaxSessions) {  // the one closest to expiry goes
-    sessions_.erase(std::min_element(sessions_.begin(), sessions_.end(), [](auto& a, auto& b) {
-      return a.second < b.second;
-    }));
+    sessions_.erase(std::min_element(sessions_.begin(), sessions_.end(),
+                                     [](auto& a, auto& b) { return a.second < b.second; }));
   }
   sessions_[id] = now + kSessionLife;
   return id;

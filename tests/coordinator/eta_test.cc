@@ -62,9 +62,9 @@ TEST(LeaseTableEtaTest, FollowsTheStagesAndEndsAtZero) {
   FakeClock clock;
   auto table = *LeaseTable::Create(nullptr, &clock, {.lease_ms = 60'000}, nullptr);
   const int64_t job = table->ReserveJobId();
-  ASSERT_TRUE(table->AddJob(job, testing::Serialized(testing::BuiltinRequest()), 3,
-                            testing::Plan(4, 4))
-                  .ok());
+  ASSERT_TRUE(
+      table->AddJob(job, testing::Serialized(testing::BuiltinRequest()), 3, testing::Plan(4, 4))
+          .ok());
   const int64_t w1 = *table->RegisterWorker("a", 1), w2 = *table->RegisterWorker("b", 1);
   auto lease = [&](int64_t w) { return (**table->Lease(w)).key; };
   auto done = [&](const LeaseKey& k, int64_t w) {
@@ -74,7 +74,7 @@ TEST(LeaseTableEtaTest, FollowsTheStagesAndEndsAtZero) {
 
   LeaseKey a = lease(w1), b = lease(w2);  // tiles 0, 1 at t = 0
   clock.Advance(1000);
-  done(a, w1), done(b, w2);  // 1 s each
+  done(a, w1), done(b, w2);      // 1 s each
   a = lease(w1), b = lease(w2);  // tiles 2, 3
   clock.Advance(500);
   // Tiles: 0.5 s left on both; B = 1.5 + 0.5 = 2 s; then the priors.
@@ -112,8 +112,8 @@ TEST(LeaseTableEtaTest, TheDonePhaseEventSaysZero) {
   ToProto(EventRecord{.job_id = 1, .seq = 9, .kind = EventKind::kPhase, .phase = Phase::kDone}, job,
           &out);
   EXPECT_EQ(out.eta_seconds(), 0);
-  ToProto(EventRecord{.job_id = 1, .seq = 3, .kind = EventKind::kPhase, .phase = Phase::kBaking}, job,
-          &out);
+  ToProto(EventRecord{.job_id = 1, .seq = 3, .kind = EventKind::kPhase, .phase = Phase::kBaking},
+          job, &out);
   EXPECT_EQ(out.eta_seconds(), -1);
 }
 

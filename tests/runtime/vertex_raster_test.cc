@@ -33,7 +33,8 @@ Vec3 HitOfPixel(const Camera& cam, int px, int py, int w, int h, float z0) {
   const Vec3 r = Normalize(Cross(cam.target - cam.eye, cam.up));
   const Vec3 u = Cross(r, f);
   const double half_h = std::tan(cam.fov_y_degrees * std::numbers::pi / 360.0);
-  const double sx = (2 * (px + 0.5) / w - 1) * half_h * w / h, sy = (1 - 2 * (py + 0.5) / h) * half_h;
+  const double sx = (2 * (px + 0.5) / w - 1) * half_h * w / h,
+               sy = (1 - 2 * (py + 0.5) / h) * half_h;
   const Vec3 d = f + r * static_cast<float>(sx) + u * static_cast<float>(sy);
   const float t = (z0 - cam.eye.z) / d.z;
   return cam.eye + d * t;
@@ -58,7 +59,8 @@ TEST(VertexRasterTest, AffineColoursAreReproducedAtEveryCoveredPixel) {
       const float* c = &image[3 * (py * w + px)];
       const Vec3 hit = HitOfPixel(TestCamera(), px, py, w, h, 0);
       const bool inside = std::abs(hit.x) < 1.5f && std::abs(hit.y) < 1.5f;
-      const bool edge = std::abs(std::abs(hit.x) - 1.5f) < 0.05f || std::abs(std::abs(hit.y) - 1.5f) < 0.05f;
+      const bool edge =
+          std::abs(std::abs(hit.x) - 1.5f) < 0.05f || std::abs(std::abs(hit.y) - 1.5f) < 0.05f;
       if (edge) continue;  // a pixel centre within a hair of the border may go either way
       if (!inside) {
         EXPECT_TRUE(std::isnan(c[0])) << px << "," << py;
@@ -79,8 +81,8 @@ TEST(VertexRasterTest, AffineColoursAreReproducedAtEveryCoveredPixel) {
 
 TEST(VertexRasterTest, TheNearestSurfaceWins) {
   Scene scene;
-  scene.meshes.push_back(Square(1.5f, 0));   // far, colour 0
-  scene.meshes.push_back(Square(0.5f, 1));   // near, colour 1, in front of the middle
+  scene.meshes.push_back(Square(1.5f, 0));  // far, colour 0
+  scene.meshes.push_back(Square(0.5f, 1));  // near, colour 1, in front of the middle
   const int w = 32, h = 32;
   absl::StatusOr<VertexRaster> raster = VertexRaster::Create(scene, TestCamera(), w, h);
   ASSERT_TRUE(raster.ok()) << raster.status();

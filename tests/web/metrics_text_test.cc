@@ -74,7 +74,8 @@ TEST(MetricsTextTest, FamiliesValuesAndHistogram) {
   s.workers_alive = 3;
   s.workers_registered = 4;
   s.workers_excluded = 1;
-  s.jobs = {{.id = 7, .phase = Phase::kBaking, .tasks_done = 2, .tasks_total = 9, .leased_tasks = 2}};
+  s.jobs = {
+      {.id = 7, .phase = Phase::kBaking, .tasks_done = 2, .tasks_total = 9, .leased_tasks = 2}};
   LatencyHistogram h;
   for (double seconds : {0.00005, 0.0001, 0.0003, 0.02, 5.0}) h.Observe(seconds);
   s.lease_latency = h.Read();

@@ -21,8 +21,8 @@
 namespace wavebake::web {
 namespace {
 
-using ::testing::HasSubstr;
 using test_support::ScratchDir;
+using ::testing::HasSubstr;
 
 constexpr char kToken[] = "s3cret-token";
 
@@ -51,16 +51,15 @@ class MonitorServerTest : public ::testing::Test {
       server_->SetSource(*FrozenJob(*live, id, dir_.path() / "out.wbk"));
       live.reset();
     };
-    absl::StatusOr<v1::Job> job =
-        driver::EmbeddedBake(scene, p, dir_.path() / "out.wbk", options);
+    absl::StatusOr<v1::Job> job = driver::EmbeddedBake(scene, p, dir_.path() / "out.wbk", options);
     ASSERT_TRUE(job.ok()) << job.status();
     ASSERT_EQ(job->phase(), v1::PHASE_DONE);
     job_ = *job;
   }
 
   httplib::Client Client() const {
-    httplib::Client c("127.0.0.1", std::stoi(server_->address().substr(
-                                       server_->address().rfind(':') + 1)));
+    httplib::Client c("127.0.0.1",
+                      std::stoi(server_->address().substr(server_->address().rfind(':') + 1)));
     c.set_read_timeout(30);
     return c;
   }
@@ -158,14 +157,18 @@ TEST_F(MonitorServerTest, JobsAndMetricsAgreeWithTheJob) {
   EXPECT_EQ(jobs[0]["eta_seconds"], 0);
   // The live coordinator's counters: every task leased and completed once.
   const std::string total = std::to_string(job_.tasks_total());
-  EXPECT_THAT(live_metrics_, HasSubstr("wavebake_job_tasks_done{job=\"" + job_.id() + "\"} " + total));
+  EXPECT_THAT(live_metrics_,
+              HasSubstr("wavebake_job_tasks_done{job=\"" + job_.id() + "\"} " + total));
   EXPECT_THAT(live_metrics_, HasSubstr("wavebake_tasks_completed_total{kind=\"bake_tile\"} " +
                                        std::to_string(job_.tiles())));
-  EXPECT_THAT(live_metrics_, HasSubstr("wavebake_tasks_completed_total{kind=\"transform_columns\"} " +
-                                       std::to_string(job_.groups())));
+  EXPECT_THAT(live_metrics_,
+              HasSubstr("wavebake_tasks_completed_total{kind=\"transform_columns\"} " +
+                        std::to_string(job_.groups())));
   EXPECT_THAT(live_metrics_, HasSubstr("wavebake_jobs{phase=\"done\"} 1"));
-  EXPECT_THAT(live_metrics_, HasSubstr("wavebake_rays_traced_total " + std::to_string(job_.rays_traced())));
-  const nlohmann::json events = nlohmann::json::parse(Get("/api/jobs/" + job_.id() + "/events", true));
+  EXPECT_THAT(live_metrics_,
+              HasSubstr("wavebake_rays_traced_total " + std::to_string(job_.rays_traced())));
+  const nlohmann::json events =
+      nlohmann::json::parse(Get("/api/jobs/" + job_.id() + "/events", true));
   int leased = 0, done = 0;
   for (const nlohmann::json& e : events["events"]) {
     leased += e["kind"] == "TASK_LEASED";
@@ -173,7 +176,8 @@ TEST_F(MonitorServerTest, JobsAndMetricsAgreeWithTheJob) {
   }
   EXPECT_EQ(done, job_.tasks_total());
   EXPECT_GE(leased, done);
-  const nlohmann::json store = nlohmann::json::parse(Get("/api/jobs/" + job_.id() + "/store", true));
+  const nlohmann::json store =
+      nlohmann::json::parse(Get("/api/jobs/" + job_.id() + "/store", true));
   EXPECT_EQ(store["picture"], "camera image");
   EXPECT_EQ(store["columns"], 6 * 8 * 8);
   EXPECT_GT(store["stats"]["nnz"].get<int64_t>(), 0);

@@ -26,10 +26,13 @@ TEST(ProbeCatalogueTest, BuiltinsThenFilesByRelativeName) {
   EXPECT_THAT(c->names(), ElementsAre("builtin:sky", "builtin:constant", "b.hdr", "indoor/a.EXR"));
   EXPECT_EQ(*c->Spec("b.hdr"), (std::filesystem::absolute(dir.path()) / "b.hdr").string());
   EXPECT_EQ(*c->Spec("builtin:sky"), "builtin:sky");
-  const std::vector<std::string> bad_names = {"notes.txt",       "../b.hdr",
-                                             "indoor/../b.hdr", "/etc/passwd",
-                                             (dir.path() / "b.hdr").string(), "builtin:nothing",
-                                             ""};
+  const std::vector<std::string> bad_names = {"notes.txt",
+                                              "../b.hdr",
+                                              "indoor/../b.hdr",
+                                              "/etc/passwd",
+                                              (dir.path() / "b.hdr").string(),
+                                              "builtin:nothing",
+                                              ""};
   for (const std::string& bad : bad_names) {
     EXPECT_EQ(c->Spec(bad).status().code(), absl::StatusCode::kNotFound) << bad;
   }
