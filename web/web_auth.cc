@@ -10,15 +10,6 @@
 namespace wavebake::web {
 namespace {
 
-// Compares in time independent of where the strings differ.
-bool ConstantTimeEquals(std::string_view a, std::string_view b) {
-  unsigned char diff = a.size() == b.size() ? 0 : 1;
-  for (size_t i = 0; i < a.size(); ++i) {
-    diff |= static_cast<unsigned char>(a[i] ^ (i < b.size() ? b[i] : 0));
-  }
-  return diff == 0;
-}
-
 std::string_view Trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
@@ -43,9 +34,8 @@ std::string_view CookieValue(std::string_view header, std::string_view name) {
 bool WebAuth::Allows(std::string_view authorization, std::string_view cookie) const {
   if (!enabled()) return true;
   constexpr std::string_view kBearer = "Bearer ";
-  if (authorization.starts_with(kBearer)) {
-    return ConstantTimeEquals(authorization.substr(kBearer.size()), token_);
-  }
+  if (authorization.starts_with(kBearer))
+    return token_.Matches(authorization.substr(kBearer.size()));
   const std::string_view session = CookieValue(cookie, kSessionCookie);
   if (session.empty()) return false;
   std::lock_guard lock(mu_);
@@ -57,7 +47,7 @@ bool WebAuth::Allows(std::string_view authorization, std::string_view cookie) co
 }
 
 std::optional<std::string> WebAuth::Login(std::string_view token) {
-  if (enabled() && !ConstantTimeEquals(token, token_)) return std::nullopt;
+  if (enabled() && !token_.Matches(token)) return std::nullopt;
   unsigned char bytes[32];
   if (RAND_bytes(bytes, sizeof bytes) != 1) return std::nullopt;
   std::string id =

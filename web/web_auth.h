@@ -12,6 +12,8 @@
 #include <string>
 #include <string_view>
 
+#include "coordinator/auth.h"
+
 namespace wavebake::web {
 
 inline constexpr char kSessionCookie[] = "wavebake_session";
@@ -19,7 +21,7 @@ inline constexpr char kSessionCookie[] = "wavebake_session";
 class WebAuth {
  public:
   explicit WebAuth(std::string token) : token_(std::move(token)) {}
-  bool enabled() const { return !token_.empty(); }
+  bool enabled() const { return token_.enabled(); }
 
   // authorization: the header's value ("" when absent); cookie: the Cookie header.
   bool Allows(std::string_view authorization, std::string_view cookie) const;
@@ -33,7 +35,7 @@ class WebAuth {
   static constexpr std::chrono::hours kSessionLife{12};
   static constexpr size_t kMaxSessions = 1024;
 
-  const std::string token_;
+  const TokenAuth token_;  // the gRPC services' check (coordinator/auth.h)
   mutable std::mutex mu_;
   mutable std::map<std::string, Clock::time_point> sessions_;  // id -> expiry
 };
