@@ -269,7 +269,7 @@ void LeaseTable::EndJob(JobState& js, Phase phase, std::string error, Transition
 
 void LeaseTable::AddEvent(JobState& js, Transition& tx, EventKind kind, const TaskRecord* task,
                           std::string message, int64_t worker_id) {
-  const JobInfo info = InfoLocked(js);
+  const JobInfo info = CountsLocked(js);  // events carry no rates (proto/wavebake.proto)
   EventRecord e{.job_id = js.rec.id,
                 .seq = ++js.last_event_seq,
                 .unix_ms = clock_->NowMs(),
@@ -289,17 +289,18 @@ void LeaseTable::AddEvent(JobState& js, Transition& tx, EventKind kind, const Ta
   tx.events.push_back(std::move(e));
 }
 
+JobInfo LeaseTable::CountsLocked(const JobState& js) const {
+  const JobRecord& r = js.rec;
+  return {.record = r,
+          .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
+          .leased_tasks = static_cast<int>(js.leases.size()),
+          .rays_traced = r.rays_traced + js.live_rays,
+          .bytes_written = r.bytes_written + js.live_bytes};
+}
+
 JobInfo LeaseTable::InfoLocked(const JobState& js) const {
   const JobRecord& r = js.rec;
-  JobInfo info{.record = r,
-               .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
-               .leased_tasks = static_cast<int>(js.leases.size()),
-               .rays_traced = r.rays_traced,
-               .bytes_written = r.bytes_written};
-  for (const auto& [task, lease] : js.leases) {
-    info.rays_traced += lease.rays_traced;
-    info.bytes_written += lease.bytes_written;
-  }
+  JobInfo info = CountsLocked(js);
   if (r.started_ms <= 0) return info;
   const int64_t now = clock_->NowMs();
   const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : now;
@@ -350,7 +351,7 @@ SchedulerSnapshot LeaseTable::Metrics(int job_limit) const {
     ++snap.jobs_by_phase[static_cast<int>(js.rec.phase) - 1];
     snap.rays_traced += js.rec.rays_traced;
     if (static_cast<int>(snap.jobs.size()) >= job_limit) continue;
-    const JobInfo info = InfoLocked(js);
+    const JobInfo info = CountsLocked(js);
     snap.jobs.push_back({.id = js.rec.id,
                          .phase = js.rec.phase,
                          .tasks_done = info.tasks_done,
