@@ -11,6 +11,7 @@
 #include <httplib.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "driver/embedded_bake.h"
@@ -253,6 +254,29 @@ TEST_F(MonitorServerTest, ClientsNameProbesNeverFiles) {
   Get("/static/..%2fCMakeCache.txt", true, 404);
   Get("/static/nothing.js", true, 404);
   EXPECT_THAT(Get("/api/probes", true), HasSubstr("builtin:sky"));
+}
+
+// --http-pages: the built-in file names, read from the directory; no other
+// file of it is served.
+TEST(MonitorPagesTest, APagesDirectoryServesOnlyTheBuiltInNames) {
+  ScratchDir dir("pages");
+  std::ofstream(dir.path() / "index.html") << "<p>edited</p>";
+  std::ofstream(dir.path() / "secret.txt") << "no";
+  absl::StatusOr<std::unique_ptr<MonitorServer>> server =
+      MonitorServer::Start({.listen = "127.0.0.1:0", .pages_dir = dir.path()}, nullptr);
+  ASSERT_TRUE(server.ok()) << server.status();
+  const std::string a = (*server)->address();
+  httplib::Client c("127.0.0.1", std::stoi(a.substr(a.rfind(':') + 1)));
+  httplib::Result index = c.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->body, "<p>edited</p>");
+  httplib::Result secret = c.Get("/static/secret.txt");
+  ASSERT_TRUE(secret);
+  EXPECT_EQ(secret->status, 404);
+  httplib::Result jobs = c.Get("/api/jobs");  // no token configured, no source yet
+  ASSERT_TRUE(jobs);
+  EXPECT_EQ(jobs->body, "[]");
+  EXPECT_FALSE(MonitorServer::Start({.listen = "127.0.0.1"}, nullptr).ok());  // no port
 }
 
 }  // namespace
