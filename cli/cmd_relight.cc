@@ -1,7 +1,8 @@
 // `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] --out
-// IMG.(exr|png)|MESH.ply` (DESIGN.md §5): Eq. 8 relighting of a store under
-// an environment, written as an image (camera layouts) or a vertex-coloured
-// mesh (mesh layouts). With --rotate-sequence, a rotating environment over
+// IMG.(exr|png)|MESH.(ply|gltf|glb)` (DESIGN.md §5): Eq. 8 relighting of a
+// store under an environment, written as an image (camera layouts), a
+// vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
+// (uv layouts). With --rotate-sequence, a rotating environment over
 // many frames (runtime/relight_sequence.h): frames and errors.csv into --out.
 #include <cstdio>
 
@@ -81,7 +82,8 @@ void AddRelightCommand(CLI::App& app) {
       ->check(CLI::IsMember({"png", "exr", "ply"}))
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
-                  "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory with "
+                  "output: .png or .exr (camera layouts), .ply (mesh layouts), .png/.exr "
+                  "lightmap or .gltf/.glb mesh with it (uv layouts); a directory with "
                   "--rotate-sequence")
       ->required();
   cmd->callback([flags] { Run(*flags); });

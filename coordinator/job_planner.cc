@@ -143,11 +143,17 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     const auto [width, height] = *grid;
     const JobPlan plan = MakeJobPlan(*params, width, height);
     // Samples that will trace: every vertex for hilbert (the rest of its grid
-    // is masked); every cell otherwise (camera: an upper bound, misses are masked).
+    // is masked); the covered texels for uv, whose rasterization also refuses
+    // an atlas that is no lightmap before any worker starts; every cell
+    // otherwise (camera: an upper bound, misses are masked).
     int64_t samples = int64_t{width} * height;
     if (layout->kind == LayoutKind::kHilbert) {
       samples = 0;
       for (const Mesh& m : scene->meshes) samples += static_cast<int64_t>(m.positions.size());
+    } else if (layout->kind == LayoutKind::kUv) {
+      absl::StatusOr<SampleSet> texels = UvLayout(*scene, *layout);
+      if (!texels.ok()) return texels.status();
+      samples = texels->size();
     }
     if (absl::Status s = ReservePartialStore(options.store_root, request.output_name()); !s.ok())
       return s;

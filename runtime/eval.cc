@@ -68,10 +68,11 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   const StoreInfo& info = opened->info;
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
-  if (!info.scene_hash.empty() && SceneHash(*scene) != info.scene_hash) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ",
-                     SceneHash(*scene), " vs ", info.scene_hash, ")"));
+  const std::string hash = StoreSceneHash(info, *scene);
+  if (!info.scene_hash.empty() && hash != info.scene_hash) {
+    return absl::FailedPreconditionError(absl::StrCat("scene: ", info.scene_spec,
+                                                      " no longer matches the baked scene (hash ",
+                                                      hash, " vs ", info.scene_hash, ")"));
   }
   absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
   if (!caster.ok()) return caster.status();

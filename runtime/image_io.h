@@ -31,6 +31,9 @@ absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
 // colour in [0, 1] encoded the same way but not exposed.
 absl::Status WritePng(const std::filesystem::path& path, int width, int height,
                       std::span<const float> rgb, float exposure_stops, Vec3 background);
+// The same PNG as bytes (for embedding, e.g. in a glTF).
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
+                                                 float exposure_stops, Vec3 background);
 // 8-bit pixels (channels 1..4, rows top first) as the bytes of a PNG file.
 absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, int channels,
                                                  std::span<const uint8_t> pixels);

@@ -87,9 +87,9 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
     return absl::InvalidArgumentError(absl::StrCat("rotate: ", rotate_degrees, " is not finite"));
   }
   const std::string ext = LowerExtension(out);
-  if (ext != ".png" && ext != ".exr" && ext != ".ply") {
+  if (ext != ".png" && ext != ".exr" && ext != ".ply" && ext != ".gltf" && ext != ".glb") {
     return absl::InvalidArgumentError(
-        absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
+        absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr, .ply, .gltf, .glb)"));
   }
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
@@ -105,11 +105,13 @@ absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, fl
                         const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   const int w = store.samples.width, h = store.samples.height;
+  if (!store.samples.uv_charts.empty()) return WriteLightmapOutput(store, rgb, exposure_stops, out);
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
   if (ext == ".ply") return WriteMeshColours(store, rgb, exposure_stops, out);
   return absl::InvalidArgumentError(
-      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
+      absl::StrCat("out: ", out.string(),
+                   ": unknown extension (.png, .exr or .ply; .gltf/.glb for uv layouts)"));
 }
 
 }  // namespace wavebake

@@ -35,7 +35,9 @@ absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap
 // OUT by extension: .png (8-bit sRGB, × 2^exposure_stops, masked cells
 // black) or .exr (linear float, masked NaN) of the W×H sample grid — the
 // image itself for camera layouts; .ply (vertex colours on the scene
-// reloaded from the store's scene spec) for the mesh layouts grid|hilbert.
+// reloaded from the store's scene spec) for the mesh layouts grid|hilbert;
+// for uv layouts the lightmap (.png, .exr) or a glTF (.gltf, .glb), see
+// WriteLightmapOutput.
 // Errors name the bad argument (terms, rotate, out, env, store).
 absl::Status RelightToFile(const std::filesystem::path& store, std::string_view env_spec, int terms,
                            double rotate_degrees, float exposure_stops,
@@ -44,5 +46,13 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
 // One relit image [W*H*3] written by out's extension, as RelightToFile does.
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out);
+
+// WriteRelit of a uv store (runtime/lightmap.h): .png (tone-mapped like any
+// PNG) and .exr (linear; 0 beyond the gutters, where engines would choke on
+// NaN) lightmaps with gutters of kLightmapGutter texels; .gltf/.glb, the
+// scene reloaded from the store's scene spec (its hash checked) with the
+// gutter-dilated PNG lightmap as its texture. Error: .ply or another extension.
+absl::Status WriteLightmapOutput(const OpenedStore& store, std::span<const float> rgb,
+                                 float exposure_stops, const std::filesystem::path& out);
 
 }  // namespace wavebake

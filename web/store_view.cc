@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "absl/strings/str_cat.h"
+#include "runtime/lightmap.h"
 #include "runtime/vertex_raster.h"
 
 namespace wavebake::web {
@@ -22,6 +23,23 @@ class GridImageView final : public StoreView {
  private:
   PictureKind kind_;
   int w_, h_;
+};
+
+// A uv store's grid is the lightmap; it is shown as `relight --out x.png`
+// writes it, its charts dilated into their gutters (runtime/lightmap.h).
+class LightmapView final : public StoreView {
+ public:
+  explicit LightmapView(const SampleSet* samples) : samples_(samples) {}
+  PictureKind kind() const override { return PictureKind::kLightmap; }
+  int width() const override { return samples_->width; }
+  int height() const override { return samples_->height; }
+  void Render(std::span<const float> cells, std::span<float> out) const override {
+    const std::vector<float> dilated = DilateGutters(*samples_, cells);
+    std::copy(dilated.begin(), dilated.end(), out.begin());
+  }
+
+ private:
+  const SampleSet* samples_;  // the opened store's, which outlives the view
 };
 
 class VertexColourView final : public StoreView {
@@ -74,6 +92,7 @@ absl::StatusOr<std::unique_ptr<StoreView>> MakeStoreView(
     int picture_size) {
   const SampleSet& s = store.samples;
   const PictureKind kind = PictureKindOf(store.info.params.layout);
+  if (kind == PictureKind::kLightmap) return std::make_unique<LightmapView>(&store.samples);
   if (kind != PictureKind::kVertexColours || s.vertex.size() != s.position.size()) {
     return std::make_unique<GridImageView>(
         kind == PictureKind::kVertexColours ? PictureKind::kGridImage : kind, s.width, s.height);

@@ -3,7 +3,8 @@
 // (DESIGN.md §1 "Spatial layout"):
 //   camera   the grid is the camera's image;
 //   uv       the grid is the lightmap (a texture over the mesh's UV atlas),
-//            shown as it is;
+//            shown with its charts dilated into their gutters, as `relight`
+//            writes it (runtime/lightmap.h);
 //   grid, hilbert  the grid holds vertex colours, drawn on the scene's mesh
 //            (runtime/vertex_raster.h) from the scene's camera or a framing one.
 // A layout added later picks its picture in PictureKindOf, the one hook.
@@ -38,6 +39,7 @@ class StoreView {
 };
 
 // `scene` loads the store's scene; only vertex-colour pictures call it.
+// The view may keep pointers into `store`, which must outlive it.
 // Vertex pictures are `picture_size` pixels on their long side.
 absl::StatusOr<std::unique_ptr<StoreView>> MakeStoreView(
     const OpenedStore& store, const std::function<absl::StatusOr<Scene>()>& scene,

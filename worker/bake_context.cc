@@ -25,7 +25,8 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
   ctx->params = params;
   ctx->layout = *layout;
   ctx->cubemap = Cubemap(params.light_res);
-  ctx->scene_hash = SceneHash(ctx->scene);
+  ctx->scene_hash =
+      SceneHash(ctx->scene, layout->kind == LayoutKind::kUv ? layout->uv_channel : -1);
   absl::StatusOr<SampleSet> samples = MakeSampleSet(ctx->scene, ctx->caster, ctx->layout);
   if (!samples.ok()) return samples.status();
   ctx->samples = *std::move(samples);

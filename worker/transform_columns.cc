@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -122,8 +123,13 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local, signals); !s.ok())
     return s;
 
-  const ColumnCodingParams params =
+  ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  std::optional<CellFiller> filler;  // only the uv layout fills (core/layout.h)
+  if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
+    filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
+    params.filler = &*filler;
+  }
   const size_t cells = size_t(plan.width) * plan.height;
   GroupResult result;
   result.group = group;

@@ -16,6 +16,7 @@
 
 #include "driver/embedded_bake.h"
 #include "runtime/tonemap.h"
+#include "storage/store_reader.h"
 #include "tests/testing/scratch_dir.h"
 #include "web/coordinator_source.h"
 
@@ -239,6 +240,37 @@ TEST_F(MonitorServerTest, MeshStoresShowVertexColoursOnTheMesh) {
   EXPECT_EQ(r->get_header_value("X-Picture"), "vertex colours");
   EXPECT_EQ(r->get_header_value("X-Width"), "256");  // the picture, not the grid
   ExpectFurnace(r->body, 2000);
+}
+
+TEST_F(MonitorServerTest, UvStoresShowTheirLightmapWithGutters) {
+  Bake("uv:64x64", std::string(WB_SHARED_DATA) + "/models/spot.obj");
+  httplib::Result r = Frame("probe=builtin:constant&terms=100000");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("X-Picture"), "lightmap");
+  EXPECT_EQ(r->get_header_value("X-Width"), "64");
+  // Every texel with a sample is shown, and gutter texels around the charts too.
+  absl::StatusOr<SampleSet> samples = ReadSamples(dir_.path() / "out.wbk");
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  const std::array<uint8_t, 3> background =
+      ToneMapPixel({NAN, NAN, NAN}, 1, {0.02f, 0.02f, 0.025f});
+  int shown = 0, hidden_samples = 0, sampled = 0;
+  for (size_t cell = 0; cell < samples->grid.size(); ++cell) {
+    const char* px = &r->body[4 * cell];
+    const bool is_background = static_cast<uint8_t>(px[0]) == background[0] &&
+                               static_cast<uint8_t>(px[1]) == background[1] &&
+                               static_cast<uint8_t>(px[2]) == background[2];
+    shown += !is_background;
+    if (samples->grid[cell] >= 0) {
+      ++sampled;
+      hidden_samples += is_background;
+    }
+  }
+  EXPECT_GT(sampled, 500);
+  EXPECT_EQ(hidden_samples, 0);
+  EXPECT_GT(shown, sampled);  // the gutters
+  EXPECT_THAT(Get("/api/jobs/" + job_.id() + "/store", true),
+              HasSubstr("\"picture\":\"lightmap\""));
 }
 
 TEST_F(MonitorServerTest, ClientsNameProbesNeverFiles) {
