@@ -134,6 +134,7 @@ absl::StatusOr<RelightFrame> RelightService::Frame(const std::filesystem::path& 
   session->view->Render(session->cells, session->picture);
   RelightFrame frame{.width = session->view->width(),
                      .height = session->view->height(),
+                     .rgba = {},
                      .kind = session->view->kind(),
                      .terms = static_cast<int>(lights->lights.size()),
                      .columns = relighter.columns()};
