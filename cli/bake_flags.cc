@@ -26,6 +26,10 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
   cmd.add_option("--light-res", p.light_res,
                  "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
+  cmd.add_option("--light-domain", f.light_domain,
+                 "cube | plane:S[:AXIS]: one face of size S (3..10) aligned with a light plane "
+                 "normal to AXIS (default +Y), for --area-light")
+      ->capture_default_str();
   cmd.add_option("--layout", p.layout,
                  "spatial layout: camera[:WxH] | grid | hilbert:WxH | uv[:WxH] | uv1[:WxH] "
                  "(lightmap texels of UV channel 0 or 1, default 256x256)")
@@ -79,7 +83,8 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
                          Set(ParseColumnMode(f.column_mode), p.column_mode),
                          Set(ParseWaveletFilter(f.column_filter), p.column_filter, "column_"),
                          Set(ParseErrorScope(f.error_scope), p.error_scope),
-                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling)})
+                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling),
+                         Set(ParseLightDomain(f.light_domain), p.light_domain)})
     if (!s.ok()) return s;
   if (f.bits != "auto") {
     const char* end = f.bits.data() + f.bits.size();

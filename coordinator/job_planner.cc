@@ -123,10 +123,10 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
   return scene;
 }
 
-int64_t EstimateRays(int64_t samples, int light_res, int supersample) {
+int64_t EstimateRays(int64_t samples, int columns, int supersample) {
   // K is rounded up to a square (core/jitter_pattern.h).
   const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
-  return samples * 6 * light_res * light_res * strata * strata / 2;
+  return samples * columns * strata * strata / 2;
 }
 
 PlanFn MakeJobPlanner(PlannerOptions options) {
@@ -160,7 +160,7 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     return PlannedJob{
         .tiles = plan.tiles(),
         .groups = plan.groups,
-        .total_rays_estimate = EstimateRays(samples, params->light_res, params->supersample),
+        .total_rays_estimate = EstimateRays(samples, plan.columns, params->supersample),
         .store_path = {}};  // the request's output_name
   };
 }

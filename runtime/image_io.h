@@ -25,6 +25,10 @@ absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
 // or tiled OpenEXR file as float, whatever the stored pixel type. The image
 // may have any size; LoadEnvMap checks layouts.
 absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
+// Radiance RGBE (.hdr) through stb_image, linear float.
+absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path);
+// An 8-bit PNG through stb_image, sRGB decoded to linear [0, 1].
+absl::StatusOr<EnvMap> ReadPngImage(const std::filesystem::path& path);
 
 // 8-bit sRGB PNG: linear × 2^exposure_stops, clamped to [0, 1], sRGB OETF.
 // A pixel with any NaN channel (a masked cell) gets `background`, a linear

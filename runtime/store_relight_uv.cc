@@ -27,12 +27,12 @@ absl::StatusOr<Scene> BakedScene(const StoreInfo& info) {
 
 }  // namespace
 
-absl::Status WriteLightmapOutput(const OpenedStore& store, std::span<const float> rgb,
-                                 float exposure_stops, const std::filesystem::path& out) {
+absl::Status WriteLightmapOutput(const StoreInfo& info, const SampleSet& s,
+                                 std::span<const float> rgb, float exposure_stops,
+                                 const std::filesystem::path& out) {
   std::string ext = out.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const SampleSet& s = store.samples;
   std::vector<float> lightmap = DilateGutters(s, rgb);
   if (ext == ".png") return WritePng(out, s.width, s.height, lightmap, exposure_stops, Vec3{});
   if (ext == ".exr") {
@@ -45,9 +45,9 @@ absl::Status WriteLightmapOutput(const OpenedStore& store, std::span<const float
         absl::StrCat("out: ", out.string(),
                      ": a uv store writes .png or .exr lightmaps, or a "
                      ".gltf/.glb mesh with its lightmap"));
-  absl::StatusOr<LayoutSpec> layout = ParseLayout(store.info.params.layout);
+  absl::StatusOr<LayoutSpec> layout = ParseLayout(info.params.layout);
   if (!layout.ok()) return layout.status();
-  absl::StatusOr<Scene> scene = BakedScene(store.info);
+  absl::StatusOr<Scene> scene = BakedScene(info);
   if (!scene.ok()) return scene.status();
   absl::StatusOr<std::vector<std::vector<Vec2>>> uvs = LightmapUvs(*scene, s, layout->uv_channel);
   if (!uvs.ok()) return uvs.status();

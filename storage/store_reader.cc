@@ -144,7 +144,7 @@ absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store) {
                           std::pair{"N", &info.light_res}, std::pair{"bits", &info.bits}}) {
     if (absl::Status s = GetPositiveInt(store, a, key, out); !s.ok()) return s;
   }
-  info.columns = 6 * info.light_res * info.light_res;
+  info.columns = info.params.light_domain.Columns(info.light_res);
   if (absl::Status s = CheckInfo(store, info); !s.ok()) return s;
   return info;
 }
