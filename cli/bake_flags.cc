@@ -40,6 +40,12 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "level l times 2^l first (4D paper §4.3)")
       ->capture_default_str();
   cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
+  cmd.add_option("--refine", f.refine,
+                 "on: trace only where visibility changes (coarse probes, refined along "
+                 "silhouettes; fully visible texels get their exact integral); off: brute force, "
+                 "K rays in every texel")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd.add_flag("--keep-staging", f.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
   cmd.add_option("--tile-size", f.tile_size,
@@ -73,6 +79,7 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   p.column_terms = f.column_terms;
   p.seed = f.seed;
   p.keep_staging = f.keep_staging;
+  p.refine = f.refine == "on";
   p.tile_size = f.tile_size;
   p.column_group = f.column_group;
   if (f.bits != "auto") {

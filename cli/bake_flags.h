@@ -23,6 +23,7 @@ struct BakeFlags {
   std::string level_scaling = "uniform";
   uint64_t seed = 1;
   bool keep_staging = false;
+  std::string refine = "on";
   int tile_size = 32;      // BAKE_TILE edge (DESIGN.md §2)
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task
 };

@@ -32,6 +32,9 @@ struct BakeParams {
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task
   float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
+  // Visibility refinement (core/refined_row.h): trace only where visibility
+  // changes. false = brute force, every texel's K rays (core/transport_row.h).
+  bool refine = true;
   // Not a property of the matrix (not recorded with it): FINALIZE leaves
   // staging/ in the store for inspection.
   bool keep_staging = false;

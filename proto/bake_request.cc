@@ -127,6 +127,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
   p.keep_staging = r.keep_staging();
+  p.refine = r.refine() != "off";
   return p;
 }
 
@@ -149,7 +150,7 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
-        CheckOutputName(r)}) {
+        CheckChoice("refine", *r.mutable_refine(), "on", {"on", "off"}), CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
   // The fields one by one are fine; the core's own rules have the last word.
@@ -179,6 +180,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_tile_size(p.tile_size);
   r.set_column_group(p.column_group);
   r.set_keep_staging(p.keep_staging);
+  r.set_refine(p.refine ? "on" : "off");
   return r;
 }
 

@@ -22,32 +22,48 @@ constexpr char kDequantize[] =
     "position at the column's depth (0 = coarsest: the LL block and the details of the last "
     "step; details of step s have l = depth-1-s); scale 0 decodes to 0";
 
+constexpr char kRefinedEntry[] =
+    "texels decided by a uniform block: 0 if occluded, I_m = (1/pi) * integral over the texel "
+    "of max(0, n.w) dw if visible (exact, Lambert's polygon formula); traced texels entirely "
+    "above the horizon: I_m * sum_k V_k c_k / sum_k c_k; traced texels the horizon crosses: "
+    "Omega_m / (K pi) * sum_{c_k > 0} V_k c_k (c_k = n.w_k, w_k the jittered directions)";
+
 }  // namespace
 
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats) {
   const BakeParams& p = ctx.params;
-  return {{"format", store::kFormat},
-          {"scene", ctx.scene_spec},
-          {"scene_hash", ctx.scene_hash},
-          {"params", ToJson(p)},
-          {"layout", ToString(ctx.layout)},
-          {"N", p.light_res},
-          {"W", ctx.plan.width},
-          {"H", ctx.plan.height},
-          {"S", ctx.samples.size()},
-          {"M", ctx.plan.columns},
-          {"filters",
-           {{"row", std::string(ToString(p.row_filter))},
-            {"column", std::string(ToString(p.column_filter))}}},
-          {"bits", bits.bits},
-          {"level_scaling", std::string(ToString(p.level_scaling))},
-          {"bits_auto", p.bits == 0},
-          {"bits_needed", bits.bits_needed},
-          {"max_column_bits", bits.max_column_bits},
-          {"ray_epsilon", ctx.epsilon},
-          {"dither", kDither},
-          {"dequantize", kDequantize},
-          {"stats", std::move(stats)}};
+  nlohmann::json manifest = {{"format", store::kFormat},
+                             {"scene", ctx.scene_spec},
+                             {"scene_hash", ctx.scene_hash},
+                             {"params", ToJson(p)},
+                             {"layout", ToString(ctx.layout)},
+                             {"N", p.light_res},
+                             {"W", ctx.plan.width},
+                             {"H", ctx.plan.height},
+                             {"S", ctx.samples.size()},
+                             {"M", ctx.plan.columns},
+                             {"filters",
+                              {{"row", std::string(ToString(p.row_filter))},
+                               {"column", std::string(ToString(p.column_filter))}}},
+                             {"bits", bits.bits},
+                             {"level_scaling", std::string(ToString(p.level_scaling))},
+                             {"bits_auto", p.bits == 0},
+                             {"bits_needed", bits.bits_needed},
+                             {"max_column_bits", bits.max_column_bits},
+                             {"ray_epsilon", ctx.epsilon},
+                             {"dither", kDither},
+                             {"dequantize", kDequantize},
+                             {"stats", std::move(stats)}};
+  // Only a refined bake says so: a brute-force store keeps the bytes of
+  // every store baked before refinement existed.
+  if (ctx.refine) {
+    const RefineOptions& o = ctx.refine->options();
+    manifest["refinement"] = {{"start_spacing", o.start_spacing},
+                              {"stagger", o.stagger},
+                              {"follow", o.follow},
+                              {"transport_entry", kRefinedEntry}};
+  }
+  return manifest;
 }
 
 namespace {

@@ -231,6 +231,21 @@ TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
   EXPECT_EQ(back->column_group, p.column_group);
   EXPECT_EQ(back->ray_epsilon, p.ray_epsilon);
   EXPECT_EQ(ToJson(BakeParams{})["bits"], "auto");
+  // Refinement is recorded when on; a store without the key (every store
+  // baked before refinement existed, and --refine off) was brute-forced.
+  EXPECT_TRUE(p.refine);
+  EXPECT_EQ(ToJson(p)["refine"], "on");
+  EXPECT_TRUE(back->refine);
+  BakeParams brute = p;
+  brute.refine = false;
+  EXPECT_FALSE(ToJson(brute).contains("refine"));
+  absl::StatusOr<BakeParams> read = BakeParamsFromJson(ToJson(brute));
+  ASSERT_TRUE(read.ok());
+  EXPECT_FALSE(read->refine);
+  nlohmann::json bad = ToJson(p);
+  bad["refine"] = "maybe";
+  EXPECT_THAT(std::string(BakeParamsFromJson(bad).status().message()),
+              ::testing::HasSubstr("params.refine"));
 }
 
 TEST(StoreReaderTest, SamplesRoundTrip) {
