@@ -13,6 +13,7 @@
 // and the big bake of docs/RESULTS.md read it). A plain main(): linked with
 // Google Benchmark like every bench/*.cc, but a bake is too long to repeat.
 #include <sys/resource.h>
+#include <time.h>
 
 #include <chrono>
 #include <cstdio>
@@ -110,7 +111,10 @@ int Run(const Args& a) {
     if (e.phase() == last) return;
     last = e.phase();
     started.emplace(e.phase(), now());
-    std::fprintf(stderr, "%7.1f s  %s\n", now().wall, v1::Phase_Name(e.phase()).c_str());
+    timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    std::fprintf(stderr, "%7.1f s  %s (monotonic %.3f)\n", now().wall,
+                 v1::Phase_Name(e.phase()).c_str(), ts.tv_sec + 1e-9 * ts.tv_nsec);
   };
   absl::StatusOr<v1::Job> job =
       driver::EmbeddedBake(a.scene, params, store, {.workers = a.workers, .on_event = on_event});

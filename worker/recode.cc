@@ -1,0 +1,117 @@
+#include "worker/recode.h"
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/bake_params_io.h"
+#include "storage/store_layout.h"
+#include "storage/zarr_group.h"
+#include "worker/finalize.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status CheckTrace(const BakeContext& ctx, const std::filesystem::path& traced) {
+  const std::filesystem::path staging = store::Path(traced, store::kStaging);
+  if (!std::filesystem::is_directory(staging))
+    return absl::FailedPreconditionError(
+        absl::StrCat("traced: ", traced.string(), " has no staging (bake it with keep_staging)"));
+  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(staging);
+  if (!attrs.ok()) return attrs.status();
+  if (!attrs->contains("trace"))
+    return absl::FailedPreconditionError(
+        absl::StrCat(staging.string(), ": no trace record (not a kept staging)"));
+  const nlohmann::json& have = (*attrs)["trace"];
+  const nlohmann::json want = TraceRecord(ctx);
+  // The scene first: another scene differs in everything that follows.
+  std::vector<std::string> fields = {"scene_hash"};
+  for (const auto& [field, value] : want.items())
+    if (field != "scene_hash") fields.push_back(field);
+  for (const std::string& field : fields) {
+    const nlohmann::json& value = want[field];
+    if (!have.contains(field) || have[field] != value)
+      return absl::FailedPreconditionError(
+          absl::StrCat("traced: ", field, " is ", have.value(field, nlohmann::json()).dump(),
+                       " in ", traced.string(), ", the new parameters need ", value.dump()));
+  }
+  return absl::OkStatus();
+}
+
+// The new store's staging/ shares the trace's arrays through symbolic links
+// (nothing is copied; FINALIZE drops the links, not their targets) and holds
+// its own group results.
+absl::Status LinkStaging(const std::filesystem::path& traced, const std::filesystem::path& out) {
+  if (absl::Status s = WriteGroup(out); !s.ok()) return s;
+  if (absl::Status s = WriteGroup(store::Path(out, store::kStaging)); !s.ok()) return s;
+  for (const char* name : {store::kStagingTransport, store::kStagingTileEnergy}) {
+    std::error_code ec;
+    std::filesystem::create_directory_symlink(std::filesystem::absolute(store::Path(traced, name)),
+                                              store::Path(out, name), ec);
+    if (ec) return absl::InternalError(absl::StrCat(out.string(), ": ", name, ": ", ec.message()));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status TransformAll(const BakeContext& ctx, const std::filesystem::path& out, int threads) {
+  std::atomic<int> next{0};
+  std::mutex mu;
+  absl::Status first;
+  auto work = [&] {
+    for (int g; (g = next.fetch_add(1)) < ctx.plan.groups;) {
+      absl::Status s = TransformColumns(ctx, out, g, nullptr);
+      if (s.ok()) continue;
+      std::lock_guard lock(mu);
+      if (first.ok()) first = s;
+      next = ctx.plan.groups;  // no new group starts
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(work);
+    work();
+  }
+  return first;
+}
+
+}  // namespace
+
+nlohmann::json TraceRecord(const BakeContext& ctx) {
+  const BakeParams& p = ctx.params;
+  return {{"scene_hash", ctx.scene_hash},
+          {"light_res", p.light_res},
+          {"layout", p.layout},
+          {"supersample", p.supersample},
+          {"seed", p.seed},
+          {"row_filter", std::string(ToString(p.row_filter))},
+          {"tile_size", p.tile_size},
+          {"column_group", p.column_group},
+          {"ray_epsilon", ctx.epsilon},
+          {"refine", p.refine}};
+}
+
+absl::Status Recode(const BakeContext& ctx, const std::filesystem::path& traced,
+                    const std::filesystem::path& out, const RecodeOptions& options) {
+  if (std::filesystem::exists(out))
+    return absl::AlreadyExistsError(absl::StrCat("out: ", out.string(), " exists"));
+  if (absl::Status s = CheckTrace(ctx, traced); !s.ok()) return s;
+  const std::filesystem::path partial =
+      out.parent_path() / absl::StrCat(".", out.filename().string(), ".recoding");
+  std::error_code ec;
+  std::filesystem::remove_all(partial, ec);
+  absl::Status s = LinkStaging(traced, partial);
+  if (s.ok()) s = TransformAll(ctx, partial, options.threads);
+  if (s.ok()) s = Finalize(ctx, partial, {.keep_staging = false});
+  if (s.ok()) {
+    std::filesystem::rename(partial, out, ec);
+    if (ec) s = absl::InternalError(absl::StrCat("out: ", out.string(), ": ", ec.message()));
+  }
+  if (!s.ok()) std::filesystem::remove_all(partial, ec);
+  return s;
+}
+
+}  // namespace wavebake
