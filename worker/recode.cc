@@ -10,7 +10,9 @@
 #include "core/bake_params_io.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_group.h"
+#include "worker/bake_tile.h"
 #include "worker/finalize.h"
+#include "worker/staging.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
@@ -57,17 +59,19 @@ absl::Status LinkStaging(const std::filesystem::path& traced, const std::filesys
   return absl::OkStatus();
 }
 
-absl::Status TransformAll(const BakeContext& ctx, const std::filesystem::path& out, int threads) {
+// task(i) for i in [0, count) on `threads` threads; the first error stops
+// new tasks and is returned.
+absl::Status RunAll(int count, int threads, const std::function<absl::Status(int)>& task) {
   std::atomic<int> next{0};
   std::mutex mu;
   absl::Status first;
   auto work = [&] {
-    for (int g; (g = next.fetch_add(1)) < ctx.plan.groups;) {
-      absl::Status s = TransformColumns(ctx, out, g, nullptr);
+    for (int i; (i = next.fetch_add(1)) < count;) {
+      absl::Status s = task(i);
       if (s.ok()) continue;
       std::lock_guard lock(mu);
       if (first.ok()) first = s;
-      next = ctx.plan.groups;  // no new group starts
+      next = count;  // no new task starts
     }
   };
   {
@@ -76,6 +80,10 @@ absl::Status TransformAll(const BakeContext& ctx, const std::filesystem::path& o
     work();
   }
   return first;
+}
+
+std::filesystem::path PartialBeside(const std::filesystem::path& out, const char* what) {
+  return out.parent_path() / absl::StrCat(".", out.filename().string(), ".", what);
 }
 
 }  // namespace
@@ -94,17 +102,55 @@ nlohmann::json TraceRecord(const BakeContext& ctx) {
           {"refine", p.refine}};
 }
 
+absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesystem::path& dir,
+                                      const TraceOptions& options) {
+  if (std::filesystem::exists(dir))
+    return absl::AlreadyExistsError(absl::StrCat("dir: ", dir.string(), " exists"));
+  const std::filesystem::path partial = PartialBeside(dir, "tracing");
+  std::error_code ec;
+  std::filesystem::remove_all(partial, ec);
+  std::atomic<uint64_t> rays{0};
+  std::atomic<int> tiles{0};
+  std::mutex progress;
+  absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx));
+  if (s.ok()) {
+    s = RunAll(ctx.plan.tiles(), options.threads, [&](int t) {
+      TileStats stats;
+      if (absl::Status b = BakeTile(ctx, partial, t, &stats, {.cancel = options.cancel}); !b.ok())
+        return b;
+      const uint64_t total = rays += stats.rays_traced;
+      const int done = ++tiles;
+      if (options.on_tile) {
+        std::lock_guard lock(progress);
+        options.on_tile(done, total);
+      }
+      return absl::OkStatus();
+    });
+  }
+  if (s.ok()) {
+    std::filesystem::rename(partial, dir, ec);
+    if (ec) s = absl::InternalError(absl::StrCat("dir: ", dir.string(), ": ", ec.message()));
+  }
+  if (!s.ok()) {
+    std::filesystem::remove_all(partial, ec);
+    return s;
+  }
+  return rays.load();
+}
+
 absl::Status Recode(const BakeContext& ctx, const std::filesystem::path& traced,
                     const std::filesystem::path& out, const RecodeOptions& options) {
   if (std::filesystem::exists(out))
     return absl::AlreadyExistsError(absl::StrCat("out: ", out.string(), " exists"));
   if (absl::Status s = CheckTrace(ctx, traced); !s.ok()) return s;
-  const std::filesystem::path partial =
-      out.parent_path() / absl::StrCat(".", out.filename().string(), ".recoding");
+  const std::filesystem::path partial = PartialBeside(out, "recoding");
   std::error_code ec;
   std::filesystem::remove_all(partial, ec);
   absl::Status s = LinkStaging(traced, partial);
-  if (s.ok()) s = TransformAll(ctx, partial, options.threads);
+  if (s.ok()) {
+    s = RunAll(ctx.plan.groups, options.threads,
+               [&](int g) { return TransformColumns(ctx, partial, g, nullptr); });
+  }
   if (s.ok()) s = Finalize(ctx, partial, {.keep_staging = false});
   if (s.ok()) {
     std::filesystem::rename(partial, out, ec);

@@ -5,9 +5,13 @@
 // terms, bits, scaling, scope — comes from the same trace without tracing
 // again: `bake --auto` tries several column targets per light resolution
 // (driver/auto_bake.h) and the charts sweep dozens (bench/charts_data.cc).
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "nlohmann/json.hpp"
 #include "worker/bake_context.h"
 
@@ -18,6 +22,21 @@ namespace wavebake {
 // tiles and groups, the effective ray offset, refinement). BAKE_TILE's
 // CreateStaging records it in staging/.zattrs.
 nlohmann::json TraceRecord(const BakeContext& ctx);
+
+struct TraceOptions {
+  int threads = 1;                            // BAKE_TILE tasks at a time
+  const std::atomic<bool>* cancel = nullptr;  // raised: Cancelled, and nothing is left at `dir`
+  // After each tile: tiles done, and the rays traced so far.
+  std::function<void(int, uint64_t)> on_tile = {};
+};
+
+// The trace alone: BAKE_TILE × tiles into a new directory `dir` (root group
+// and staging with its trace record, nothing else) — the input of Recode and
+// of relighting the dense staged T (driver/staged_relight.h). Returns the
+// rays traced. `dir` must not exist (AlreadyExists); nothing is left there
+// on failure.
+absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesystem::path& dir,
+                                      const TraceOptions& options = {});
 
 struct RecodeOptions {
   int threads = 1;  // TRANSFORM_COLUMNS tasks at a time

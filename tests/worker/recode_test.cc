@@ -7,6 +7,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "tests/testing/file_tree.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/bake_tile.h"
@@ -65,6 +67,35 @@ TEST(RecodeTest, RecodedStoreIsTheFreshBakeOfTheNewColumnParameters) {
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
   EXPECT_EQ(entries, 3);
+}
+
+// The trace alone (TraceStaging), then the column stage (Recode): the store
+// of the three tasks by hand. Cancelled before it starts, it leaves nothing.
+TEST(RecodeTest, TraceThenRecodeIsTheBake) {
+  ScratchDir dir;
+  const auto ctx = ContextOrDie("builtin:cylinder-bump", Traced());
+  ASSERT_NE(ctx, nullptr);
+  int last_tiles = 0;
+  absl::StatusOr<uint64_t> rays =
+      TraceStaging(*ctx, dir.path() / "trace", {.threads = 2, .on_tile = [&](int tiles, uint64_t) {
+                                                  EXPECT_EQ(tiles, last_tiles + 1);
+                                                  last_tiles = tiles;
+                                                }});
+  ASSERT_TRUE(rays.ok()) << rays.status();
+  EXPECT_GT(*rays, 0u);
+  EXPECT_EQ(last_tiles, ctx->plan.tiles());
+  EXPECT_EQ(TraceStaging(*ctx, dir.path() / "trace").status().code(),
+            absl::StatusCode::kAlreadyExists);
+  ASSERT_TRUE(Recode(*ctx, dir.path() / "trace", dir.path() / "recoded.wbk").ok());
+  BakeByHand(*ctx, dir.path() / "fresh.wbk", false);
+  EXPECT_TRUE(ReadTree(dir.path() / "recoded.wbk") == ReadTree(dir.path() / "fresh.wbk"));
+
+  const std::atomic<bool> cancel{true};
+  EXPECT_EQ(TraceStaging(*ctx, dir.path() / "cancelled", {.cancel = &cancel}).status().code(),
+            absl::StatusCode::kCancelled);
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 3);  // trace, recoded.wbk, fresh.wbk
 }
 
 TEST(RecodeTest, OtherTraceParametersAreRefusedByName) {
