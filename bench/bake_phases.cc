@@ -12,20 +12,13 @@
 // The last line is one JSON object with every number (bench/bake_speed.sh
 // and the big bake of docs/RESULTS.md read it). A plain main(): linked with
 // Google Benchmark like every bench/*.cc, but a bake is too long to repeat.
-#include <sys/resource.h>
-#include <time.h>
-
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "driver/embedded_bake.h"
-#include "driver/job_query.h"
-#include "worker/store_manifest.h"
+#include "bench/bake_run.h"
 
 namespace wavebake {
 namespace {
@@ -34,23 +27,6 @@ namespace {
   std::fprintf(stderr, "bench_bake_phases: %s\n", what.c_str());
   std::exit(1);
 }
-
-double CpuSeconds() {
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec + u.ru_stime.tv_sec +
-         1e-6 * u.ru_stime.tv_usec;
-}
-
-double PeakRssMiB() {
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss / 1024.0;  // Linux: kilobytes
-}
-
-struct Mark {
-  double wall = 0, cpu = 0;
-};
 
 struct Args {
   std::string scene, layout = "camera", out;
@@ -98,62 +74,25 @@ int Run(const Args& a) {
   params.refine = a.refine;
   std::filesystem::create_directories(a.out);
   const std::filesystem::path store = std::filesystem::path(a.out) / "bake.wbk";
-
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  const double cpu0 = CpuSeconds();
-  auto now = [&] {
-    return Mark{std::chrono::duration<double>(Clock::now() - t0).count(), CpuSeconds() - cpu0};
-  };
-  std::map<v1::Phase, Mark> started;  // first event of each phase
-  v1::Phase last = v1::PHASE_UNSPECIFIED;
-  auto on_event = [&](const v1::JobEvent& e) {
-    if (e.phase() == last) return;
-    last = e.phase();
-    started.emplace(e.phase(), now());
-    timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    std::fprintf(stderr, "%7.1f s  %s (monotonic %.3f)\n", now().wall,
-                 v1::Phase_Name(e.phase()).c_str(), ts.tv_sec + 1e-9 * ts.tv_nsec);
-  };
-  absl::StatusOr<v1::Job> job =
-      driver::EmbeddedBake(a.scene, params, store, {.workers = a.workers, .on_event = on_event});
-  if (!job.ok()) Die(job.status().ToString());
-  if (job->phase() != v1::PHASE_DONE) Die(driver::JobOutcome(*job));
-  const Mark end = now();
-
-  auto span = [&](v1::Phase from, v1::Phase to) {
-    const Mark a_ = started.count(from) ? started[from] : Mark{};
-    const Mark b_ = started.count(to) ? started[to] : end;
-    return nlohmann::json{{"wall_s", b_.wall - a_.wall}, {"cpu_s", b_.cpu - a_.cpu}};
-  };
-  nlohmann::json out = {
-      {"scene", a.scene},
-      {"layout", a.layout},
-      {"light_res", a.light_res},
-      {"refine", a.refine},
-      {"workers", a.workers},
-      {"rays", job->rays_traced()},
-      {"tiles", job->tiles()},
-      {"groups", job->groups()},
-      {"store_bytes", DirectoryBytes(store)},
-      {"peak_rss_mib", PeakRssMiB()},
-      {"wall_s", end.wall},
-      {"cpu_s", end.cpu},
-      {"setup", span(v1::PHASE_UNSPECIFIED, v1::PHASE_BAKING)},
-      {"baking", span(v1::PHASE_BAKING, v1::PHASE_TRANSFORMING)},
-      {"transforming", span(v1::PHASE_TRANSFORMING, v1::PHASE_FINALIZING)},
-      {"finalizing", span(v1::PHASE_FINALIZING, v1::PHASE_DONE)},
-  };
+  absl::StatusOr<bench::PhasedBake> bake = bench::RunPhasedBake(
+      a.scene, params, store, a.workers, [](const std::string& phase, double t) {
+        std::fprintf(stderr, "%7.1f s  %s\n", t, phase.c_str());
+      });
+  if (!bake.ok()) Die(bake.status().ToString());
+  nlohmann::json out = bake->ToJson();
+  out["scene"] = a.scene;
+  out["layout"] = a.layout;
+  out["light_res"] = a.light_res;
+  out["refine"] = a.refine;
+  out["workers"] = a.workers;
+  out["peak_rss_mib"] = bench::PeakRssMiB();
+  const bench::PhasedBake& b = *bake;
   std::fprintf(stderr,
                "rays %lld, store %.1f MB, peak RSS %.0f MiB, wall %.1f s (cpu %.1f s): baking "
                "%.1f s (cpu %.1f), transforming %.1f s (cpu %.1f), finalizing %.1f s (cpu %.1f)\n",
-               static_cast<long long>(job->rays_traced()), out["store_bytes"].get<double>() / 1e6,
-               out["peak_rss_mib"].get<double>(), end.wall, end.cpu,
-               out["baking"]["wall_s"].get<double>(), out["baking"]["cpu_s"].get<double>(),
-               out["transforming"]["wall_s"].get<double>(),
-               out["transforming"]["cpu_s"].get<double>(),
-               out["finalizing"]["wall_s"].get<double>(), out["finalizing"]["cpu_s"].get<double>());
+               static_cast<long long>(b.rays), b.store_bytes / 1e6, bench::PeakRssMiB(),
+               b.total.wall, b.total.cpu, b.baking.wall, b.baking.cpu, b.transforming.wall,
+               b.transforming.cpu, b.finalizing.wall, b.finalizing.cpu);
   std::printf("%s\n", out.dump().c_str());
   if (!a.keep) std::filesystem::remove_all(store);
   return 0;

@@ -126,6 +126,26 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
 
 }  // namespace
 
+uint64_t BruteForceRays(const Cubemap& cubemap, const JitterPattern& pattern, Vec3 normal) {
+  const int n = cubemap.n();
+  const HorizonTest horizon(n, normal);
+  uint64_t rays = 0;
+  for (int face = 0; face < 6; ++face) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        const int m = (face * n + y) * n + x;
+        if (horizon.Below(pattern, m, normal, face, x, y)) continue;
+        const size_t first = static_cast<size_t>(m) * pattern.per_texel;
+        for (int k = 0; k < pattern.per_texel; ++k) {
+          const size_t i = first + k;
+          rays += normal.x * pattern.x[i] + normal.y * pattern.y[i] + normal.z * pattern.z[i] > 0;
+        }
+      }
+    }
+  }
+  return rays;
+}
+
 void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats) {

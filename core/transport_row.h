@@ -31,4 +31,10 @@ void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterP
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats);
 
+// The rays TransportRow traces for a sample of this normal, counted without
+// tracing them (the same horizon culling and per-ray test): brute force's
+// cost, for comparing refinement against it at resolutions where brute
+// force itself would take long.
+uint64_t BruteForceRays(const Cubemap& cubemap, const JitterPattern& pattern, Vec3 normal);
+
 }  // namespace wavebake
