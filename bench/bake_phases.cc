@@ -9,9 +9,9 @@
 //                           [--workers W] [--keep]
 //
 // The store goes to DIR/bake.wbk and is removed afterwards unless --keep.
-// The last line is one JSON object with every number (bench/bake_speed.sh
-// and the big bake of docs/RESULTS.md read it). A plain main(): linked with
-// Google Benchmark like every bench/*.cc, but a bake is too long to repeat.
+// The last line is one JSON object with every number (the big bake of
+// docs/RESULTS.md: builtin:cubes-wall --layout camera:512x512 --light-res 128). A plain main():
+// linked with Google Benchmark like every bench/*.cc, but a bake is too long to repeat.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>

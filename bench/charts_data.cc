@@ -1,4 +1,4 @@
-// The data behind docs/RESULTS.md (issue 7): sweeps of the real pipeline,
+// The data behind docs/RESULTS.md: sweeps of the real pipeline,
 // one CSV per chart, written into the directory given on the command line.
 //
 //   build/bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]
@@ -59,8 +59,8 @@ struct SceneCase {
   std::string layout;  // DESIGN.md §1 "Spatial layout"
 };
 
-// The three scenes issue 7 asks for: a camera layout, the bunny on a
-// Hilbert layout, and a regular-grid mesh.
+// Three kinds of spatial layout: a camera layout, the bunny on a Hilbert
+// layout, and a regular-grid mesh.
 std::vector<SceneCase> ChartScenes() {
   return {{"cubes-wall", "builtin:cubes-wall", "camera:64x64"},
           {"bunny", std::string(WB_SHARED_DATA) + "/models/bunny.obj", "hilbert:64x64"},
@@ -187,7 +187,7 @@ void SizeRow(const Staged& staged, const std::vector<ProbeCase>& probes, const B
 // Chart 1 (4D paper Fig. 7) and chart 6 (Fig. 8): bytes and kept
 // coefficients against matrix error, per mode × column filter × target with
 // the default (uniform) value coding, plus adaptive Haar with the paper's 2^l
-// level scaling as the baseline of issue 7; the adaptive Haar runs also give
+// level scaling (4D paper §4.3) as the baseline; the adaptive Haar runs also give
 // the mean depth by row level.
 void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv, Csv& depth_csv) {
   const std::vector<ProbeCase> probes = DenseUnderProbes(staged);

@@ -1,4 +1,4 @@
-// The runtime charts of issue 7, on real stores (bench/charts.sh runs it
+// The runtime charts of docs/RESULTS.md, on real stores (bench/charts.sh runs it
 // after bench_charts_data):
 //
 //   build/bench_charts_runtime OUT_DIR [--quick] [--threads T]

@@ -11,11 +11,11 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "cli/bake_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
-#include "cli/watch_display.h"
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
@@ -34,37 +34,12 @@ struct BakeCommandFlags {
   int max_light_res = 128;
 };
 
-// --auto owns the light resolution, the column terms, the bits and the depth
-// mode; it judges by an explicit --target-error. Errors name the flag.
-absl::Status CheckAutoFlags(const CLI::App& cmd, const BakeCommandFlags& f) {
-  auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
-  auto bad = [](const char* flag, const char* why) {
-    return absl::InvalidArgumentError(absl::StrCat(flag, ": ", why));
-  };
-  if (!f.auto_mode) {
-    for (const char* flag : {"--env", "--max-light-res"})
-      if (given(flag)) return bad(flag, "only with --auto");
-    return absl::OkStatus();
-  }
-  if (!given("--target-error"))
-    return bad("--target-error", "--auto needs the relighting error to meet, e.g. 0.05");
-  if (given("--light-res")) return bad("--light-res", "--auto chooses the light resolution");
-  if (given("--column-terms")) return bad("--column-terms", "--auto selects by --target-error");
-  if (f.bake.bits != "auto") return bad("--bits", "--auto needs --bits auto");
-  if (f.bake.column_mode != "adaptive")
-    return bad("--column-mode", "--auto needs the adaptive column mode");
-  const int n = f.max_light_res;
-  if (n < 8 || n > 256 || (n & (n - 1)) != 0)
-    return bad("--max-light-res", "not a power of two in 8..256");
-  return absl::OkStatus();
-}
-
 void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
              const std::atomic<bool>& interrupted) {
-  WatchDisplay display(f.quiet);
+  ProgressBar display(f.quiet);
   driver::AutoBakeOptions options;
   if (!f.envs.empty()) options.envs = f.envs;
-  options.search.target_error = f.bake.target_error;
+  options.search.target_error = f.bake.params.target_error;
   options.search.resolutions.clear();
   for (int n = 8; n <= f.max_light_res; n *= 2) options.search.resolutions.push_back(n);
   options.workers = f.workers;
@@ -85,16 +60,15 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
   std::printf("%s: written\n", f.out.c_str());
 }
 
-void Run(const CLI::App& cmd, const BakeCommandFlags& f) {
+void Run(const BakeCommandFlags& f) {
   LogToStderr(spdlog::level::warn);
   std::atomic<bool> interrupted{false};
   SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
   if (!params.ok()) Fail("bake", params.status());
-  if (absl::Status s = CheckAutoFlags(cmd, f); !s.ok()) Fail("bake", s);
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  WatchDisplay display(f.quiet);
+  ProgressBar display(f.quiet);
   absl::StatusOr<v1::Job> job = driver::EmbeddedBake(
       f.scene, *params, f.out,
       {.workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted});
@@ -124,18 +98,27 @@ void AddBakeCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress on stderr");
   AddBakeFlags(*cmd, f->bake);
-  cmd->add_flag("--auto", f->auto_mode,
-                "choose the light resolution, column target and bits: the smallest store whose "
-                "relighting under --env is within --target-error (relative RMS) of the "
-                "independent reference");
+  // --auto owns the light resolution and the column terms, and judges by an
+  // explicit --target-error (the parser's errors name the flags).
+  CLI::Option* auto_flag =
+      cmd->add_flag("--auto", f->auto_mode,
+                    "choose the light resolution, column target and bits: the smallest store "
+                    "whose relighting under every --env is within --target-error (relative RMS) "
+                    "of the independent reference")
+          ->needs(cmd->get_option("--target-error"))
+          ->excludes(cmd->get_option("--light-res"))
+          ->excludes(cmd->get_option("--column-terms"));
   cmd->add_option("--env", f->envs,
                   "--auto: a lighting to judge by (EXR/HDR or builtin:NAME); repeat it to judge "
                   "by several, the worst error counting. Default: builtin:sky, whose small "
                   "bright sun is the conservative case")
-      ->take_all();
+      ->take_all()
+      ->needs(auto_flag);
   cmd->add_option("--max-light-res", f->max_light_res, "--auto: the finest light resolution to try")
+      ->needs(auto_flag)
+      ->check(CLI::IsMember({8, 16, 32, 64, 128, 256}))
       ->capture_default_str();
-  cmd->callback([f, cmd] { Run(*cmd, *f); });
+  cmd->callback([f] { Run(*f); });
 }
 
 }  // namespace wavebake::cli

@@ -3,8 +3,8 @@
 #include <cstdio>
 
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/stderr_log.h"
 #include "driver/job_query.h"
 

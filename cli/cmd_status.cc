@@ -7,8 +7,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/stderr_log.h"
 #include "driver/job_query.h"
 

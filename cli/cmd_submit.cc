@@ -5,10 +5,10 @@
 
 #include "cli/bake_flags.h"
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/stderr_log.h"
-#include "cli/watch_display.h"
 #include "driver/job_query.h"
 #include "driver/job_submit.h"
 #include "driver/job_watch.h"
@@ -40,7 +40,7 @@ void Run(const SubmitFlags& f) {
   std::printf("%s\n", job->id().c_str());
   std::fflush(stdout);
   if (!f.wait) return;
-  WatchDisplay display(/*quiet=*/false);
+  ProgressBar display(/*quiet=*/false);
   absl::StatusOr<v1::Job> ended =
       driver::WatchJob(*client, job->id(), {.on_event = display.Callback()});
   display.Finish();

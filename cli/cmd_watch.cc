@@ -4,10 +4,10 @@
 #include <cstdio>
 
 #include "cli/client_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/stderr_log.h"
-#include "cli/watch_display.h"
 #include "driver/job_query.h"
 #include "driver/job_watch.h"
 
@@ -24,7 +24,7 @@ void Run(const WatchFlags& f) {
   LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("watch", client.status());
-  WatchDisplay display(/*quiet=*/false);
+  ProgressBar display(/*quiet=*/false);
   absl::StatusOr<v1::Job> job = driver::WatchJob(
       *client, f.job, {.patience_seconds = f.patience_seconds, .on_event = display.Callback()});
   display.Finish();

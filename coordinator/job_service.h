@@ -26,6 +26,9 @@ class JobServiceImpl final : public v1::JobService::Service {
 
  private:
   absl::StatusOr<JobInfo> PlanAndAdd(v1::BakeRequest request);
+  absl::Status CheckUploaded(v1::SceneRef& ref) const;
+
+  static constexpr int kMaxSceneFiles = 4096;
 
   ServiceDeps deps_;
 };

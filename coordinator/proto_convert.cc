@@ -18,7 +18,20 @@ static_assert(static_cast<int>(EventKind::kResumed) == v1::EVENT_RESUMED);
 grpc::Status ToGrpc(const absl::Status& status) {
   if (status.ok()) return grpc::Status::OK;
   // absl and gRPC share the canonical code numbers.
-  return {static_cast<grpc::StatusCode>(status.code()), std::string(status.message())};
+  const auto code = static_cast<grpc::StatusCode>(status.code());
+  std::string message(status.message());
+  // Payloads (coordinator/worker_errors.h) travel as the rich error model's
+  // details: type URL and serialized message, as a google.protobuf.Any.
+  v1::StatusDetails details;
+  status.ForEachPayload([&](absl::string_view type_url, const absl::Cord& value) {
+    google::protobuf::Any* any = details.add_details();
+    any->set_type_url(std::string(type_url));
+    any->set_value(std::string(value));
+  });
+  if (details.details_size() == 0) return {code, message};
+  details.set_code(static_cast<int32_t>(code));
+  details.set_message(message);
+  return {code, message, details.SerializeAsString()};
 }
 
 void ToProto(const JobInfo& info, v1::Job* job) {

@@ -1,8 +1,10 @@
 #pragma once
 // Every parameter of a bake job (DESIGN.md §5 flags). Plain data; validated
-// by ValidateBakeParams (core/bake_params.cc), recorded in the store's .zattrs.
+// by ValidateBakeParams (core/bake_params_io.h), recorded in the store's .zattrs.
 #include <cstdint>
 #include <string>
+
+#include "core/light_domain.h"
 
 namespace wavebake {
 
@@ -18,6 +20,7 @@ enum class LevelScaling { kUniform, kPaper };
 
 struct BakeParams {
   int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
+  LightDomain light_domain;       // the cube (default) or one expanded plane face
   std::string layout = "camera";  // camera[:WxH] | grid | hilbert:WxH
   int supersample = 4;            // K jittered directions per texel (rounded to a square)
   WaveletFilter row_filter = WaveletFilter::kHaar;  // haar | daub4
@@ -34,10 +37,15 @@ struct BakeParams {
   float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
   // Visibility refinement (core/refined_row.h): trace only where visibility
   // changes. false = brute force, every texel's K rays (core/transport_row.h).
+  // Refinement works on the cube's faces (core/refine_plan.h); a plane light
+  // domain is always traced by brute force (see refines()).
   bool refine = true;
   // Not a property of the matrix (not recorded with it): FINALIZE leaves
   // staging/ in the store for inspection.
   bool keep_staging = false;
+
+  // Whether the rows are traced by refinement: asked for, on the cube.
+  bool refines() const { return refine && !light_domain.is_plane(); }
 };
 
 }  // namespace wavebake

@@ -21,6 +21,8 @@ absl::StatusOr<SampleSet> MakeSampleSet(const Scene& scene, const RayCaster& cas
       return GridLayout(scene);
     case LayoutKind::kHilbert:
       return HilbertLayout(scene, layout.width, layout.height);
+    case LayoutKind::kUv:
+      return UvLayout(scene, layout);
   }
   return absl::InvalidArgumentError("layout: unknown kind");
 }

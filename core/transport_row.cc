@@ -146,46 +146,80 @@ uint64_t BruteForceRays(const Cubemap& cubemap, const JitterPattern& pattern, Ve
   return rays;
 }
 
-void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
-                  Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
-                  TransportStats* stats) {
-  CheckOrDie(row.size() == static_cast<size_t>(cubemap.size()), "row size differs from M");
-  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
-             "jitter pattern was made for another cubemap");
+namespace {
+
+// The row both overloads trace: `for_each_texel(trace, cull)` visits every
+// texel once, in the order rays should be traced in, calling trace(m) for
+// texels above the horizon and cull() for the others. Each texel's rays add
+// up in k order, so the row does not depend on the visiting order.
+template <class ForEachTexel>
+void TraceRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
+              float epsilon, std::span<float> row, TransportStats* stats,
+              ForEachTexel for_each_texel) {
+  CheckOrDie(row.size() == static_cast<size_t>(pattern.texels()), "row size differs from M");
   CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
 
   TransportStats local;
   const Vec3 origin = position + normal * epsilon;  // DESIGN.md §1: rays start at x + ε n
   std::fill(row.begin(), row.end(), 0.0f);
   RayBatch batch;
-  // Texels in Z order within each face (2×2 blocks, then 4×4, ...): packets
-  // of neighbouring directions traverse the BVH together (bench/transport.cc:
-  // 11 % more rays/s than row order). Each texel's rays still add up in k
-  // order, so the row does not depend on the order.
-  const int n = cubemap.n();
-  const HorizonTest horizon(n, normal);
-  for (int face = 0; face < 6; ++face) {
-    for (int z = 0; z < n * n; ++z) {
-      const int x = EvenBits(z), y = EvenBits(z >> 1), m = (face * n + y) * n + x;
-      if (horizon.Below(pattern, m, normal, face, x, y)) {
-        ++local.texels_culled;
-        continue;
-      }
-      if (batch.count + pattern.per_texel > kBatch) Flush(caster, origin, batch, row, local);
-      AddTexel(pattern, m, normal, batch);
-    }
-  }
+  for_each_texel(
+      [&](int m) {
+        if (batch.count + pattern.per_texel > kBatch) Flush(caster, origin, batch, row, local);
+        AddTexel(pattern, m, normal, batch);
+      },
+      [&] { ++local.texels_culled; });
   Flush(caster, origin, batch, row, local);
 
   // Ω_m · (1/K) · f_r with f_r = 1/π (albedo factored out, DESIGN.md §1).
   const float inv_k_pi = static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi));
-  for (int m = 0; m < cubemap.size(); ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
+  const int texels = pattern.texels();
+  for (int m = 0; m < texels; ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
 
   if (stats) {
     stats->rays_traced += local.rays_traced;
     stats->rays_occluded += local.rays_occluded;
     stats->texels_culled += local.texels_culled;
   }
+}
+
+}  // namespace
+
+void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
+                  Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
+                  TransportStats* stats) {
+  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
+             "jitter pattern was made for another cubemap");
+  // Texels in Z order within each face (2×2 blocks, then 4×4, ...): packets
+  // of neighbouring directions traverse the BVH together (bench/transport.cc:
+  // 11 % more rays/s than row order).
+  const int n = cubemap.n();
+  const HorizonTest horizon(n, normal);
+  TraceRow(caster, pattern, position, normal, epsilon, row, stats, [&](auto trace, auto cull) {
+    for (int face = 0; face < 6; ++face) {
+      for (int z = 0; z < n * n; ++z) {
+        const int x = EvenBits(z), y = EvenBits(z >> 1), m = (face * n + y) * n + x;
+        if (horizon.Below(pattern, m, normal, face, x, y)) {
+          cull();
+        } else {
+          trace(m);
+        }
+      }
+    }
+  });
+}
+
+void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
+                  float epsilon, std::span<float> row, TransportStats* stats) {
+  TraceRow(caster, pattern, position, normal, epsilon, row, stats, [&](auto trace, auto cull) {
+    for (int m = 0; m < pattern.texels(); ++m) {
+      if (CornersBelow(pattern, m, normal)) {
+        cull();
+      } else {
+        trace(m);
+      }
+    }
+  });
 }
 
 }  // namespace wavebake

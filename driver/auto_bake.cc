@@ -133,7 +133,7 @@ absl::StatusOr<Coded> CodeCandidate(Trace& trace, double column_target,
     return s;
   Coded c;
   AutoBakeMeasurement& m = c.measurement;
-  const int all = 6 * trace.light_res * trace.light_res;
+  const int all = trace.ctx->params.light_domain.Columns(trace.light_res);
   const int terms[] = {all, kDefaultRelightTerms};
   for (const auto& measure : measures) {
     absl::StatusOr<std::vector<double>> errors = measure->StoreErrors(store, terms, &m.bits);
@@ -271,6 +271,17 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
                                         const AutoBakeOptions& options) {
   const auto t0 = Clock::now();
   if (options.envs.empty()) return absl::InvalidArgumentError("env: give at least one");
+  // The search owns the light resolution and the coding: the uniform step of
+  // --bits auto is what keeps its error budget, and only adaptive depths
+  // make the column target mean the same at every N.
+  if (base.bits != 0) return absl::InvalidArgumentError("bits: --auto needs --bits auto");
+  if (base.column_mode != ColumnMode::kAdaptive)
+    return absl::InvalidArgumentError("column_mode: --auto needs --column-mode adaptive");
+  // Its yardstick is an environment, which a plane face does not span.
+  if (base.light_domain.is_plane())
+    return absl::InvalidArgumentError(
+        "light_domain: --auto measures under an environment and "
+        "needs the cube");
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
   absl::StatusOr<Measures> measures = MakeMeasures(scene, base, options);
   if (!measures.ok()) return measures.status();

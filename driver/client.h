@@ -19,9 +19,9 @@ namespace wavebake::driver {
 // name the command-line flag that sets them (--coordinator, --token-file,
 // --tls-ca), which is also the field a caller from Python or the web sets.
 struct ClientConfig {
-  std::string coordinator;  // host:port
-  std::string token_file;   // the bearer token, first line; empty = none
-  std::string tls_ca;       // PEM roots to trust; empty = plaintext
+  std::string coordinator{};  // host:port
+  std::string token_file{};   // the bearer token, first line; empty = none
+  std::string tls_ca{};       // PEM roots to trust; empty = plaintext
 };
 
 // absl and gRPC share the canonical codes; the message keeps the code's name

@@ -34,6 +34,11 @@ absl::Status CheckChoice(absl::string_view field, std::string& value, absl::stri
   return Bad(field, absl::StrCat("\"", value, "\" is not one of ", absl::StrJoin(choices, ", ")));
 }
 
+absl::Status CheckLightDomain(std::string& domain) {
+  if (domain.empty()) domain = "cube";
+  return ParseLightDomain(domain).status();
+}
+
 absl::Status CheckScene(v1::BakeRequest& r) {
   const v1::SceneSource& scene = r.scene();
   switch (scene.source_case()) {
@@ -123,6 +128,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.column_terms = r.column_terms();
   p.bits = r.bits();
   p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
+  p.light_domain = ParseLightDomain(r.light_domain()).value_or(LightDomain{});
   p.seed = r.seed();
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
@@ -141,6 +147,7 @@ std::string BuiltinSceneName(const v1::BakeRequest& request) {
 }
 
 absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
+  const bool refine_unset = r.refine().empty();
   for (absl::Status s :
        {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
         CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
@@ -150,8 +157,16 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
-        CheckChoice("refine", *r.mutable_refine(), "on", {"on", "off"}), CheckOutputName(r)}) {
+        CheckChoice("refine", *r.mutable_refine(), "on", {"on", "off"}),
+        CheckLightDomain(*r.mutable_light_domain()), CheckOutputName(r)}) {
     if (!s.ok()) return s;
+  }
+  // Refinement follows the cube's faces: a plane domain defaults to brute
+  // force and cannot ask for refinement.
+  if (ParseLightDomain(r.light_domain())->is_plane()) {
+    if (!refine_unset && r.refine() == "on")
+      return Bad("refine", "\"on\" needs the cube light domain (plane domains trace every texel)");
+    r.set_refine("off");
   }
   // The fields one by one are fine; the core's own rules have the last word.
   return ValidateBakeParams(ParamsOf(r));
@@ -175,12 +190,13 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_column_terms(p.column_terms);
   r.set_bits(p.bits);
   r.set_level_scaling(std::string(ToString(p.level_scaling)));
+  if (p.light_domain.is_plane()) r.set_light_domain(ToString(p.light_domain));
   r.set_seed(p.seed);
   r.set_row_filter(std::string(ToString(p.row_filter)));
   r.set_tile_size(p.tile_size);
   r.set_column_group(p.column_group);
   r.set_keep_staging(p.keep_staging);
-  r.set_refine(p.refine ? "on" : "off");
+  r.set_refine(p.refines() ? "on" : "off");
   return r;
 }
 

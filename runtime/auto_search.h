@@ -1,5 +1,5 @@
 #pragma once
-// The search policy of `wavebake bake --auto --target-error E` (issue 7):
+// The search policy of `wavebake bake --auto --target-error E`:
 // the light resolution N, the column target and (through --bits auto) the
 // bits of the smallest store whose relighting stays within E of the
 // independent reference (runtime/reference.h). Pure decisions from

@@ -19,12 +19,12 @@ void AppendBytes(void* context, void* data, int size) {
 }
 }  // namespace
 
-absl::Status WritePng(const std::filesystem::path& path, int width, int height,
-                      std::span<const float> rgb, float exposure_stops, Vec3 background) {
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
+                                                 float exposure_stops, Vec3 background) {
   if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * height * 3) {
-    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": image ", width, "x", height,
-                                                   " needs ", size_t(width) * height * 3,
-                                                   " floats, got ", rgb.size()));
+    return absl::InvalidArgumentError(absl::StrCat("image ", width, "x", height, " needs ",
+                                                   size_t(width) * height * 3, " floats, got ",
+                                                   rgb.size()));
   }
   const float scale = std::exp2(exposure_stops);
   std::vector<uint8_t> pixels(rgb.size());
@@ -34,9 +34,19 @@ absl::Status WritePng(const std::filesystem::path& path, int width, int height,
   }
   std::vector<std::byte> png;
   if (!stbi_write_png_to_func(AppendBytes, &png, width, height, 3, pixels.data(), width * 3)) {
-    return absl::InternalError(absl::StrCat(path.string(), ": PNG encoding failed"));
+    return absl::InternalError("PNG encoding failed");
   }
-  return AtomicWriteFile(path, png);
+  return png;
+}
+
+absl::Status WritePng(const std::filesystem::path& path, int width, int height,
+                      std::span<const float> rgb, float exposure_stops, Vec3 background) {
+  absl::StatusOr<std::vector<std::byte>> png =
+      EncodePng(width, height, rgb, exposure_stops, background);
+  if (!png.ok())
+    return absl::Status(png.status().code(),
+                        absl::StrCat(path.string(), ": ", png.status().message()));
+  return AtomicWriteFile(path, *png);
 }
 
 }  // namespace wavebake

@@ -69,7 +69,10 @@ nlohmann::json ToJson(const BakeParams& p) {
                       {"ray_epsilon", p.ray_epsilon}};
   // Absent means brute force: what every store baked before refinement
   // existed holds, so a --refine off store keeps their exact bytes.
-  if (p.refine) j["refine"] = "on";
+  if (p.refines()) j["refine"] = "on";
+  // Only a plane light domain is spelled out: a cube store's .zattrs stays
+  // byte-identical to the stores written before the field existed.
+  if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
   return j;
 }
 
@@ -102,6 +105,10 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   if (j.contains("refine")) {
     if (j["refine"] != "on" && j["refine"] != "off") return Bad("refine", "not \"on\" or \"off\"");
     p.refine = j["refine"] == "on";
+  }
+  if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
+    if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
+      return s;
   }
   p.target_error = target;
   p.ray_epsilon = static_cast<float>(epsilon);

@@ -1,6 +1,9 @@
 #pragma once
 // SCENE argument of DESIGN.md §5 → a checked Scene.
+#include <filesystem>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/scene.h"
@@ -19,5 +22,9 @@ namespace wavebake {
 // what it repaired. Errors are InvalidArgument and name the file and field.
 // The content hash of the result is SceneHash (core/scene_hash.h).
 absl::StatusOr<Scene> LoadScene(std::string_view spec, SceneReport* report = nullptr);
+
+// The meshes[i].file strings of a JSON scene file, as written (what a client
+// uploads with the scene, storage/scene_bundle.h). Errors as LoadScene's.
+absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path);
 
 }  // namespace wavebake

@@ -181,11 +181,9 @@ absl::StatusOr<Camera> ReadCamera(const Reader& r, const json& j) {
   return c;
 }
 
-}  // namespace
-
-absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path) {
-  const Reader r(path);
-  std::ifstream in(path);
+// The file's top level, with its keys and its meshes array checked.
+absl::StatusOr<json> ParseSceneFile(const Reader& r) {
+  std::ifstream in(r.path());
   if (!in) return r.Error("", "cannot open (missing or unreadable)");
   std::stringstream text;
   text << in.rdbuf();
@@ -199,6 +197,32 @@ absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path) {
   const auto meshes = j.find("meshes");
   if (meshes == j.end() || !meshes->is_array() || meshes->empty())
     return r.Error("meshes", "expected a non-empty array of meshes");
+  return j;
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path) {
+  const Reader r(path);
+  absl::StatusOr<json> j = ParseSceneFile(r);
+  if (!j.ok()) return j.status();
+  std::vector<std::string> files;
+  for (size_t i = 0; i < (*j)["meshes"].size(); ++i) {
+    const json& m = (*j)["meshes"][i];
+    const std::string field = absl::StrCat("meshes[", i, "].file");
+    if (!m.is_object() || !m.contains("file") || !m["file"].is_string())
+      return r.Error(field, "expected a path string");
+    files.push_back(m["file"].get<std::string>());
+  }
+  return files;
+}
+
+absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path) {
+  const Reader r(path);
+  absl::StatusOr<json> parsed = ParseSceneFile(r);
+  if (!parsed.ok()) return parsed.status();
+  const json& j = *parsed;
+  const auto meshes = j.find("meshes");
   Scene scene;
   scene.name = path.stem().string();
   for (size_t i = 0; i < meshes->size(); ++i)

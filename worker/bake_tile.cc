@@ -77,7 +77,10 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
       RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine,
                           ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, row,
                           &traced, scratch);
-    } else {
+    } else if (ctx.params.light_domain.is_plane()) {
+      TransportRow(ctx.caster, ctx.jitter, ctx.samples.position[id], ctx.samples.normal[id],
+                   ctx.epsilon, row, &traced);
+    } else {  // the cube's faces in Z order
       TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
                    ctx.samples.normal[id], ctx.epsilon, row, &traced);
     }

@@ -27,6 +27,31 @@ constexpr char kRefinedEntry[] =
     "of max(0, n.w) dw if visible (exact, Lambert's polygon formula); traced texels entirely "
     "above the horizon: I_m * sum_k V_k c_k / sum_k c_k; traced texels the horizon crosses: "
     "Omega_m / (K pi) * sum_{c_k > 0} V_k c_k (c_k = n.w_k, w_k the jittered directions)";
+// The uv layout's atlas (core/uv_atlas.h): where each mesh's texels are,
+// beside samples/uv_rects and samples/uv_domains.
+nlohmann::json UvManifest(const BakeContext& ctx) {
+  const SampleSet& s = ctx.samples;
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const UvChart& c : s.uv_charts) {
+    int64_t texels = 0;
+    for (int y = c.y; y < c.y + c.height; ++y)
+      for (int x = c.x; x < c.x + c.width; ++x) texels += s.grid[size_t(y) * s.width + x] >= 0;
+    meshes.push_back({{"name", c.mesh},
+                      {"rect", {c.x, c.y, c.width, c.height}},
+                      {"domain", {c.u0, c.v0, c.u1, c.v1}},
+                      {"texels", texels}});
+  }
+  return {{"channel", ctx.layout.uv_channel},
+          {"fill", std::string(ToString(ctx.layout.fill))},
+          {"allow_overlap", ctx.layout.allow_uv_overlap},
+          {"covered_texels", s.size()},
+          {"coverage", double(s.size()) / double(s.cells())},
+          {"texel_convention",
+           "texel (x, y) of the W×H lightmap covers u in [u0 + (x - rx)/rw·(u1 - u0), ...] of its "
+           "mesh, row 0 at the top (v = v1); uv = (u0 + (x + 0.5 - rx)/rw·(u1 - u0), "
+           "v1 - (y + 0.5 - ry)/rh·(v1 - v0)) at its centre, (rx, ry, rw, rh) the mesh's rect"},
+          {"meshes", meshes}};
+}
 
 }  // namespace
 
@@ -63,6 +88,7 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
                               {"follow", o.follow},
                               {"transport_entry", kRefinedEntry}};
   }
+  if (ctx.layout.kind == LayoutKind::kUv) manifest["uv"] = UvManifest(ctx);
   return manifest;
 }
 
@@ -91,13 +117,14 @@ nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& s
     arrays[name] = n;
     transport += n;
   }
-  for (const char* name :
-       {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo, store::kVertex}) {
+  for (const char* name : {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo,
+                           store::kVertex, store::kUvRects, store::kUvDomains}) {
     if (std::filesystem::exists(store::Path(store, name)))
       arrays[name] = DirectoryBytes(store::Path(store, name));
   }
   const uint64_t raw = uint64_t(ctx.samples.size()) * uint64_t(ctx.plan.columns) * 4;
-  // Bits per kept coefficient of each part of the sparse matrix (issue 7).
+  // Bits per kept coefficient of each part of the sparse matrix: where the
+  // bytes go, values against positions (docs/RESULTS.md chart 5).
   const double nnz = static_cast<double>(ReadNnz(store));
   const auto per = [&](const char* name) {
     return nnz > 0 ? 8.0 * arrays[name].get<double>() / nnz : 0.0;

@@ -1,7 +1,8 @@
 #pragma once
-// The commands of the bake service (DESIGN.md §5), one file each
-// (cli/cmd_<name>.cc): the embedded `bake`, the `coordinator` and `worker`
-// processes, and the clients of a running coordinator.
+// The subcommands of `wavebake` (DESIGN.md §5), one file each
+// (cli/cmd_<name>.cc): the embedded `bake`; the `coordinator` and `worker`
+// processes; the clients of a running coordinator; and the readers of a
+// finished store, `relight` and `eval`.
 #include <CLI/CLI.hpp>
 
 namespace wavebake::cli {
@@ -14,5 +15,8 @@ void AddWatchCommand(CLI::App& app);
 void AddStatusCommand(CLI::App& app);
 void AddCancelCommand(CLI::App& app);
 void AddFetchCommand(CLI::App& app);
+void AddHealthCommand(CLI::App& app);
+void AddRelightCommand(CLI::App& app);
+void AddEvalCommand(CLI::App& app);
 
 }  // namespace wavebake::cli
