@@ -62,12 +62,13 @@ TEST(RequestValidationTest, KeepsExplicitValuesAndSeedZero) {
 // force unless the request asks for refinement, which is an error.
 TEST(RequestValidationTest, PlaneDomainDefaultsToBruteForce) {
   v1::BakeRequest r = testing::BuiltinRequest("cubes-wall");
-  r.set_light_domain("plane:2");
-  ASSERT_TRUE(NormalizeBakeRequest(r).ok());
+  r.set_light_domain("plane:4");
+  const absl::Status s = NormalizeBakeRequest(r);
+  ASSERT_TRUE(s.ok()) << s;
   EXPECT_EQ(r.refine(), "off");
   EXPECT_FALSE(ToBakeParams(r)->refines());
   BakeParams p;
-  p.light_domain = *ParseLightDomain("plane:2");
+  p.light_domain = *ParseLightDomain("plane:4");
   EXPECT_EQ(ToBakeRequest(p).refine(), "off");  // asked for, but not on a plane
 }
 
@@ -85,7 +86,7 @@ TEST(RequestValidationTest, ErrorsStartWithTheField) {
       {[](auto& r) { r.set_error_scope("row"); }, "error_scope: "},
       {[](auto& r) { r.set_row_filter("cdf97"); }, "row_filter: "},
       {[](auto& r) { r.set_refine("yes"); }, "refine: "},
-      {[](auto& r) { r.set_light_domain("plane:2"), r.set_refine("on"); }, "refine: "},
+      {[](auto& r) { r.set_light_domain("plane:4"), r.set_refine("on"); }, "refine: "},
       {[](auto& r) { r.set_output_name(".hidden"); }, "output_name: "},
       {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256("abc"); },
        "scene.uploaded.sha256: "},
