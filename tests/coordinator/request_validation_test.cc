@@ -72,6 +72,23 @@ TEST(RequestValidationTest, PlaneDomainDefaultsToBruteForce) {
   EXPECT_EQ(ToBakeRequest(p).refine(), "off");  // asked for, but not on a plane
 }
 
+// Refinement integrates cosines: visibility rows are traced by brute force,
+// and asking for refinement with them is an error naming the field.
+TEST(RequestValidationTest, VisibilityTransportDefaultsToBruteForce) {
+  v1::BakeRequest r = testing::BuiltinRequest("cubes-wall");
+  r.set_transport("visibility");
+  ASSERT_TRUE(NormalizeBakeRequest(r).ok());
+  EXPECT_EQ(r.refine(), "off");
+  EXPECT_FALSE(ToBakeParams(r)->refines());
+  r.set_refine("on");
+  const absl::Status s = NormalizeBakeRequest(r);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(s.message()), ::testing::StartsWith("refine: "));
+  BakeParams p;
+  p.transport = Transport::kVisibility;
+  EXPECT_EQ(ToBakeRequest(p).refine(), "off");
+}
+
 TEST(RequestValidationTest, ErrorsStartWithTheField) {
   const std::vector<std::pair<std::function<void(v1::BakeRequest&)>, std::string>> cases = {
       {[](auto& r) { r.set_light_res(512); }, "light_res: "},
