@@ -124,7 +124,8 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
        // One process: excluding one of its loops for failing tasks helps
        // nobody; max_attempts still fails a job that fails everywhere.
        .worker_failure_limit = 1 << 30,
-       .wait_ms = 10},  // idle workers ask again soon: a phase's last task is not a wait
+       .wait_ms = 10,         // idle workers ask again soon: a phase's last task is not a wait
+       .hide_paths = false},  // the client is this machine's user
       MakeJobPlanner(
           {.data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes}),
       MakeJobCleanup(store_root));

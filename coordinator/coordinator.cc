@@ -59,6 +59,10 @@ absl::StatusOr<std::unique_ptr<Coordinator>> Coordinator::Start(CoordinatorOptio
         absl::StrCat("lease_seconds: ", options.lease_seconds, " is not positive"));
   }
   if (options.store_root.empty()) options.store_root = options.data_dir / "store";
+  // Absolute, so every message spells them one way (ClientPaths hides them).
+  std::error_code ec;
+  options.data_dir = std::filesystem::absolute(options.data_dir, ec);
+  options.store_root = std::filesystem::absolute(options.store_root, ec);
   auto c = std::make_unique<Coordinator>(Key{});
   c->options_ = std::move(options);
   if (absl::Status s = c->Init(std::move(plan_fn), std::move(cleanup_fn)); !s.ok()) return s;
@@ -94,7 +98,12 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
                    .plan = std::move(plan_fn),
                    .store_root = o.store_root,
                    .wait_ms = o.wait_ms,
-                   .stopping = &stopping_};
+                   .stopping = &stopping_,
+                   .client_paths = {}};
+  if (o.hide_paths) {
+    deps.client_paths.Hide(o.data_dir, "<data dir>");
+    deps.client_paths.Hide(o.store_root, "<store root>");
+  }
   job_service_ = std::make_unique<JobServiceImpl>(deps);
   worker_service_ = std::make_unique<WorkerServiceImpl>(deps);
   if (absl::Status s = BuildServer(); !s.ok()) return s;

@@ -1,4 +1,5 @@
 // Mesh files through assimp.
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -12,9 +13,38 @@
 namespace wavebake {
 namespace {
 
-absl::Status FileError(const std::filesystem::path& path, const auto&... what) {
-  return absl::InvalidArgumentError(absl::StrCat("scene file '", path.string(), "': ", what...));
-}
+// assimp opens every file through this, the mesh file and those it names (an
+// OBJ's mtllib, a glTF's buffers): a refused one is absent, read-only always.
+class ScopedIOSystem final : public Assimp::DefaultIOSystem {
+ public:
+  explicit ScopedIOSystem(const SceneFiles& files) : files_(files) {}
+  bool Exists(const char* file) const override {
+    const std::optional<std::filesystem::path> p = files_.Open(file);
+    return p && DefaultIOSystem::Exists(p->c_str());
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    const std::optional<std::filesystem::path> p = files_.Open(file);
+    if (!p || std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
+    return DefaultIOSystem::Open(p->c_str(), mode);
+  }
+
+ private:
+  const SceneFiles& files_;
+};
+
+class FileErrors {
+ public:
+  FileErrors(const std::filesystem::path& path, const SceneFiles& files)
+      : name_(files.Name(path)), files_(files) {}
+  absl::Status operator()(const auto&... what) const {
+    return absl::InvalidArgumentError(
+        files_.Scrub(absl::StrCat("scene file '", name_, "': ", what...)));
+  }
+
+ private:
+  std::string name_;
+  const SceneFiles& files_;
+};
 
 // The material's diffuse colour, unless the file has no material and assimp
 // made up its "DefaultMaterial" (whose colour is assimp's, not the author's).
@@ -64,19 +94,20 @@ std::string MeshName(const aiScene& scene, unsigned i, const std::filesystem::pa
 
 // Before post-processing, which would merge NaN vertices away and fail with
 // a puzzling message on a file without faces.
-absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path) {
+absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
+                      const FileErrors& error) {
   bool has_polygon = false;
   for (unsigned i = 0; i < scene.mNumMeshes; ++i)
     for (unsigned f = 0; f < scene.mMeshes[i]->mNumFaces; ++f)
       has_polygon = has_polygon || scene.mMeshes[i]->mFaces[f].mNumIndices >= 3;
-  if (!has_polygon) return FileError(path, "has no triangles (an empty mesh)");
+  if (!has_polygon) return error("has no triangles (an empty mesh)");
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
     const aiMesh& m = *scene.mMeshes[i];
     for (unsigned v = 0; v < m.mNumVertices; ++v) {
       const aiVector3D& p = m.mVertices[v];
       if (!IsFinite({p.x, p.y, p.z}))
-        return FileError(path, "mesh '", MeshName(scene, i, path), "': vertex ", v,
-                         " is not finite (", p.x, ", ", p.y, ", ", p.z, ")");
+        return error("mesh '", MeshName(scene, i, path), "': vertex ", v, " is not finite (", p.x,
+                     ", ", p.y, ", ", p.z, ")");
     }
   }
   return absl::OkStatus();
@@ -84,27 +115,31 @@ absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path) {
 
 }  // namespace
 
-absl::StatusOr<std::vector<Mesh>> ReadMeshFile(const std::filesystem::path& path) {
+absl::StatusOr<std::vector<Mesh>> ReadMeshFile(const std::filesystem::path& path,
+                                               const SceneFiles& files) {
+  const FileErrors error(path, files);
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return FileError(path, "no such file");
+  if (!files.Open(path) || !std::filesystem::is_regular_file(path, ec))
+    return error("no such file");
   Assimp::Importer importer;
+  importer.SetIOHandler(std::make_unique<ScopedIOSystem>(files).release());  // importer owns it
   // Read raw first: JoinIdenticalVertices silently merges a NaN vertex into
   // another one, so non-finite input must be caught before it runs.
   if (importer.ReadFile(path.string(), 0) == nullptr)
-    return FileError(path, "cannot read: ", importer.GetErrorString());
-  if (absl::Status s = CheckRaw(*importer.GetScene(), path); !s.ok()) return s;
+    return error("cannot read: ", importer.GetErrorString());
+  if (absl::Status s = CheckRaw(*importer.GetScene(), path, error); !s.ok()) return s;
   // PreTransformVertices bakes the node hierarchy into world space, so a mesh
   // is a Mesh; JoinIdenticalVertices makes vertices (the hilbert layout's
   // samples) shared between faces again.
   const aiScene* ai = importer.ApplyPostProcessing(
       aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
-  if (ai == nullptr) return FileError(path, "cannot process: ", importer.GetErrorString());
+  if (ai == nullptr) return error("cannot process: ", importer.GetErrorString());
   std::vector<Mesh> meshes;
   for (unsigned i = 0; i < ai->mNumMeshes; ++i) {
     Mesh m = Convert(*ai, *ai->mMeshes[i], MeshName(*ai, i, path));
     if (!m.triangles.empty()) meshes.push_back(std::move(m));
   }
-  if (meshes.empty()) return FileError(path, "has no triangles (an empty mesh)");
+  if (meshes.empty()) return error("has no triangles (an empty mesh)");
   return meshes;
 }
 

@@ -41,17 +41,17 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
   if (source.has_builtin()) {
     std::string name = source.builtin();
     if (!name.starts_with("builtin:")) name = "builtin:" + name;
-    return SceneSpec{name, name};
+    return SceneSpec{name, name, nullptr};
   }
   if (!source.has_uploaded()) return absl::InvalidArgumentError("scene: the task names no scene");
   const v1::SceneRef& ref = source.uploaded();
   if (!IsHexSha256(ref.sha256()))
     return absl::InvalidArgumentError("scene.uploaded.sha256: not 64 lowercase hex digits");
   if (auto it = local_.find(ref.sha256()); it != local_.end())
-    return SceneSpec{it->second, it->second};
+    return SceneSpec{it->second, it->second, nullptr};
   absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
   if (!path.ok()) return path.status();
-  return SceneSpec{path->string(), CachedSceneName(ref)};
+  return SceneSpec{path->string(), CachedSceneName(ref), ConfinedSceneFiles(path->parent_path())};
 }
 
 absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref,

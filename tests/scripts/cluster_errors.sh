@@ -39,6 +39,16 @@ printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$TMP/nan.obj"
 expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/nan.obj" "${AUTH[@]}"
 printf '# no geometry\n' >"$TMP/empty.obj"
 expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/empty.obj" "${AUTH[@]}"
+# An uploaded JSON scene reaches no server file: absolute paths and ".." are
+# refused naming the field, and no answer names a path of the coordinator.
+cp "$WB_SHARED_DATA/models/bunny.obj" "$TMP/data/server.obj"
+for ref in "$TMP/data/server.obj" "../../server.obj" "../../../../../../etc/passwd"; do
+  printf '{"meshes": [{"file": "%s"}]}\n' "$ref" >"$TMP/evil.json"
+  expect_error "INVALID_ARGUMENT: scene.uploaded: scene file 'evil.json'" \
+    "$WB" submit "$TMP/evil.json" --layout hilbert:64x64 "${AUTH[@]}"
+  grep -qF "meshes[0].file: '" "$TMP/err.txt" || fail "no field named: $(cat "$TMP/err.txt")"
+  if grep -qF "$TMP/data" "$TMP/err.txt"; then fail "a server path reached the client: $(cat "$TMP/err.txt")"; fi
+done
 head -c 1500000 /dev/zero | tr '\0' '#' | fold -w 100 >"$TMP/big.obj" # past the upload limit
 expect_error "INVALID_ARGUMENT: data:" "$WB" submit "$TMP/big.obj" "${AUTH[@]}"
 # Refused before sending.

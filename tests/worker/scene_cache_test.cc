@@ -123,6 +123,25 @@ TEST(SceneCacheTest, BytesThatDoNotHashToTheirNameAreRefusedAndNotCached) {
   EXPECT_EQ(fetch.calls, 2);
 }
 
+// A worker loads an uploaded scene as the coordinator planned it: reading
+// only what was uploaded (storage/scene_files.h), not its own disk.
+TEST(SceneCacheTest, UploadedScenesReadOnlyTheirUpload) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  const std::filesystem::path server_mesh = dir.path() / "server.obj";
+  std::ofstream(server_mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  FakeFetch fetch{.bytes = R"({"meshes": [{"file": ")" + server_mesh.string() + R"("}]})"};
+  absl::StatusOr<SceneSpec> spec =
+      cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "evil.json", 0), fetch.Fn());
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  ASSERT_NE(spec->files, nullptr);
+  std::string warning;
+  EXPECT_EQ(spec->files->Resolve(spec->load, server_mesh.string(), &warning).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_FALSE(spec->files->Open(server_mesh).has_value());
+  EXPECT_TRUE(spec->files->Open(spec->load).has_value());
+}
+
 TEST(SceneCacheTest, LocalScenesAreUsedInPlace) {
   ScratchDir dir;
   SceneCache cache(dir.path(), {{kSha, "scenes/room.json"}});
