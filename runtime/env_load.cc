@@ -1,6 +1,4 @@
 // LoadEnvMap (env_map.h): files, layouts, validation, built-ins.
-#include <stb/stb_image.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -13,20 +11,17 @@
 #include "runtime/env_cross.h"
 #include "runtime/env_map.h"
 #include "runtime/image_io.h"
+#include "runtime/stb_codecs.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 
 namespace {
 
 absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path) {
-  int w = 0, h = 0, channels = 0;
-  std::unique_ptr<float, void (*)(void*)> data(stbi_loadf(path.c_str(), &w, &h, &channels, 3),
-                                               stbi_image_free);
-  if (!data) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(path.string(), ": unreadable Radiance HDR: ", stbi_failure_reason()));
-  }
-  return EnvMap{w, h, std::vector<float>(data.get(), data.get() + size_t(w) * h * 3)};
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
+  if (!bytes.ok()) return bytes.status();
+  return DecodeRadianceHdr(*bytes, path.string());
 }
 
 // Radiance must be finite and non-negative: one bad texel would poison every

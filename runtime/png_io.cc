@@ -1,23 +1,14 @@
 // PNG half of image_io.h.
-#include <stb/stb_image_write.h>
-
 #include <cmath>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "runtime/image_io.h"
+#include "runtime/stb_codecs.h"
 #include "runtime/tonemap.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {
-
-namespace {
-void AppendBytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<std::byte>*>(context);
-  const auto* p = static_cast<const std::byte*>(data);
-  out->insert(out->end(), p, p + size);
-}
-}  // namespace
 
 absl::Status WritePng(const std::filesystem::path& path, int width, int height,
                       std::span<const float> rgb, float exposure_stops, Vec3 background) {
@@ -32,11 +23,10 @@ absl::Status WritePng(const std::filesystem::path& path, int width, int height,
     const auto c = ToneMapPixel({rgb[i], rgb[i + 1], rgb[i + 2]}, scale, background);
     pixels[i] = c[0], pixels[i + 1] = c[1], pixels[i + 2] = c[2];
   }
-  std::vector<std::byte> png;
-  if (!stbi_write_png_to_func(AppendBytes, &png, width, height, 3, pixels.data(), width * 3)) {
-    return absl::InternalError(absl::StrCat(path.string(), ": PNG encoding failed"));
-  }
-  return AtomicWriteFile(path, png);
+  absl::StatusOr<std::vector<std::byte>> png = EncodePng(width, height, pixels);
+  if (!png.ok())
+    return absl::InternalError(absl::StrCat(path.string(), ": ", png.status().message()));
+  return AtomicWriteFile(path, *png);
 }
 
 }  // namespace wavebake

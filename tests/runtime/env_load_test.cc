@@ -1,6 +1,5 @@
 // LoadEnvMap: formats, layouts and errors that name the file and pixel.
 #include <gtest/gtest.h>
-#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <fstream>
@@ -9,6 +8,8 @@
 #include "env_test_util.h"
 #include "gmock/gmock.h"
 #include "runtime/image_io.h"
+#include "runtime/stb_codecs.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 namespace {
@@ -34,7 +35,10 @@ TEST(LoadEnvTest, RadianceHdrRoundTripsWithinRgbePrecision) {
   EnvMap image = testing::UniformEnv(16, 8, 0.25f);
   testing::SetPixel(image, 3, 2, {100, 7, 0.5f});
   const auto path = testing::ScratchDir() / "small.hdr";
-  ASSERT_TRUE(stbi_write_hdr(path.c_str(), image.width, image.height, 3, image.rgb.data()));
+  absl::StatusOr<std::vector<std::byte>> hdr =
+      EncodeRadianceHdr(image.width, image.height, image.rgb);
+  ASSERT_TRUE(hdr.ok()) << hdr.status();
+  ASSERT_TRUE(AtomicWriteFile(path, *hdr).ok());
   const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
   ASSERT_TRUE(env.ok()) << env.status();
   ASSERT_EQ(env->rgb.size(), image.rgb.size());
