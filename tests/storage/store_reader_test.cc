@@ -10,6 +10,7 @@
 
 #include "core/quantizer.h"
 #include "storage/params_json.h"
+#include "storage/store_check.h"
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
@@ -197,6 +198,47 @@ TEST(StoreReaderTest, ErrorsNameTheProblem) {
   EXPECT_EQ(ReadColumn(bad, 0).status().code(), absl::StatusCode::kDataLoss);
 }
 
+// Zarr reads a missing chunk as the fill value; a finished store must not:
+// a deleted data chunk used to relight almost black with rc 0.
+TEST(StoreReaderTest, AMissingChunkIsDataLossNamingIt) {
+  for (const char* name : {store::kData, store::kIndices, store::kIndptr, store::kScale}) {
+    TempDir tmp;
+    const auto store = tmp.path() / "s.wbk";
+    WriteStore(store);
+    const std::filesystem::path chunk = store::Path(store, name) / "0";
+    ASSERT_TRUE(std::filesystem::remove(chunk)) << chunk;
+    for (absl::Status s : {ReadTransport(store).status(), ReadColumn(store, 0).status()}) {
+      EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss) << name << ": " << s;
+      EXPECT_THAT(s.message(), HasSubstr(chunk.string())) << s;
+    }
+  }
+}
+
+TEST(StoreReaderTest, ArraysThatDisagreeWithTheManifestAreDataLoss) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  WriteStore(store);
+  size_t nnz = 0;
+  for (const HandColumn& c : Columns()) nnz += c.positions.size();
+  nlohmann::json attrs = Attrs();
+  attrs["stats"] = {{"nnz", nnz}};
+  attrs["M"] = kM;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  ASSERT_TRUE(ReadTransport(store).ok());
+
+  attrs["stats"]["nnz"] = nnz + 5;  // FINALIZE wrote more than is there
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  absl::Status s = ReadTransport(store).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(s.message(), HasSubstr("stats.nnz"));
+  EXPECT_EQ(ReadColumn(store, 0).status().code(), absl::StatusCode::kDataLoss);
+
+  attrs = Attrs();
+  attrs["M"] = kM + 1;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_THAT(ReadStoreInfo(store).status().message(), HasSubstr("M"));
+}
+
 TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
   BakeParams p;
   p.light_res = 64;
@@ -256,6 +298,22 @@ TEST(StoreReaderTest, SamplesRoundTrip) {
   EXPECT_EQ(back->normal, s.normal);
   EXPECT_EQ(back->albedo, s.albedo);
   EXPECT_EQ(back->vertex, s.vertex);
+  ASSERT_TRUE(CheckStoreComplete(store).ok()) << CheckStoreComplete(store);
+
+  // The manifest's sample count holds the arrays to it; a chunk gone is named.
+  nlohmann::json attrs = Attrs();
+  attrs["S"] = 6;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_EQ(ReadSamples(store).status().code(), absl::StatusCode::kDataLoss);
+  attrs["S"] = 5;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  ASSERT_TRUE(ReadSamples(store).ok());
+  const std::filesystem::path chunk = store::Path(store, store::kNormal) / "0.0";
+  ASSERT_TRUE(std::filesystem::remove(chunk));
+  const absl::Status missing = ReadSamples(store).status();
+  EXPECT_EQ(missing.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(missing.message(), HasSubstr(chunk.string()));
+  EXPECT_EQ(CheckStoreComplete(store).code(), absl::StatusCode::kDataLoss);
 }
 
 }  // namespace
