@@ -52,4 +52,33 @@ for f in "$GRACE" "$TMP/env.exr"; do
     >/dev/null 2>&1 || rc=$?
   ((rc != 124)) || fail "hung on noise in $f"
 done
-echo "PASS: truncated and corrupt HDR/EXR environments are refused, naming the file, at once"
+
+# Radiance that would overflow the float relighting (an 8x8 block of RGBE
+# exponent 255, 1.7e38) is refused naming the texel: it used to give rc 0, a
+# black image and "rel_rms": null. At the documented limit (1e30) everywhere,
+# eval's errors are numbers.
+/usr/bin/python3 - "$TMP" <<'PY'
+import math, sys
+w, h = 64, 32
+head = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w)
+one = bytes([128, 128, 128, 129])  # 1.0, stored flat
+over = b"".join(bytes([255] * 4) if 8 <= x < 16 and 4 <= y < 12 else one
+                for y in range(h) for x in range(w))
+open(sys.argv[1] + "/over.hdr", "wb").write(head + over)
+e = math.floor(math.log2(1e30 / 255)) + 137  # mantissa * 2^(e-136) just below 1e30
+m = int(1e30 / 2 ** (e - 136))
+open(sys.argv[1] + "/max.hdr", "wb").write(head + bytes([m, m, m, e]) * (w * h))
+PY
+expect_refused "over.hdr: pixel (8, 4) channel R" "$WB" relight "$TMP/s.wbk" --env "$TMP/over.hdr" \
+  --out "$TMP/o.exr"
+expect_refused "over.hdr: pixel (8, 4)" "$WB" eval "$TMP/s.wbk" --env "$TMP/over.hdr" --reference \
+  --no-dense
+timeout 60 "$WB" eval "$TMP/s.wbk" --env "$TMP/max.hdr" --reference --json >"$TMP/max.json"
+/usr/bin/python3 - "$TMP/max.json" <<'PY' || fail "eval at the radiance limit: $(cat "$TMP/max.json")"
+import json, math, sys
+r = json.load(open(sys.argv[1]))
+for part in ("compressed", "dense"):
+    v = r[part]["rel_rms"]
+    assert v is not None and math.isfinite(v) and v < 0.5, (part, v)
+PY
+echo "PASS: truncated, corrupt and overflowing HDR/EXR environments are refused, naming the file, at once"
