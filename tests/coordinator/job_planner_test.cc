@@ -121,8 +121,25 @@ TEST_F(JobPlannerTest, BadScenesAreInvalidArgumentNamingTheField) {
   EXPECT_EQ(no_grid.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(std::string(no_grid.status().message()), StartsWith("layout: "));
 
+  // Layouts that do not fit the scene are refused here, before any task
+  // runs (they used to fail only inside BAKE_TILE): camera needs a camera, a
+  // hilbert grid a cell per vertex.
+  v1::BakeRequest no_camera = Uploaded("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.obj");
+  no_camera.set_layout("camera:16x16");
+  absl::StatusOr<PlannedJob> camera = plan(Request(no_camera, "e.wbk"));
+  EXPECT_EQ(camera.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(camera.status().message()), StartsWith("layout: camera:16x16 needs"));
+  v1::BakeRequest small = Uploaded("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.obj");
+  small.set_layout("hilbert:1x2");
+  absl::StatusOr<PlannedJob> hilbert = plan(Request(small, "f.wbk"));
+  EXPECT_EQ(hilbert.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(hilbert.status().message()),
+              StartsWith("layout: hilbert:1x2: scene 'tri' has 3 vertices, more than the 2 cells"));
+  small.set_layout("hilbert:2x2");
+  EXPECT_TRUE(plan(Request(small, "g.wbk")).ok());
+
   // Nothing was reserved for the refused jobs.
-  for (const char* name : {"a.wbk", "b.wbk", "c.wbk", "d.wbk"})
+  for (const char* name : {"a.wbk", "b.wbk", "c.wbk", "d.wbk", "e.wbk", "f.wbk"})
     EXPECT_FALSE(std::filesystem::exists(Options().store_root / PartialStorePath(name))) << name;
 }
 

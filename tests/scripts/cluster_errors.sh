@@ -49,6 +49,13 @@ for ref in "$TMP/data/server.obj" "../../server.obj" "../../../../../../etc/pass
   grep -qF "meshes[0].file: '" "$TMP/err.txt" || fail "no field named: $(cat "$TMP/err.txt")"
   if grep -qF "$TMP/data" "$TMP/err.txt"; then fail "a server path reached the client: $(cat "$TMP/err.txt")"; fi
 done
+# A layout that does not fit the scene is refused at submit, before any task.
+expect_error "INVALID_ARGUMENT: layout: camera:32x32 needs the scene's camera" \
+  "$WB" submit "$WB_SHARED_DATA/models/bunny.obj" --layout camera:32x32 "${AUTH[@]}"
+expect_error "INVALID_ARGUMENT: layout: hilbert:32x32: scene 'bunny' has 2503 vertices" \
+  "$WB" submit "$WB_SHARED_DATA/models/bunny.obj" --layout hilbert:32x32 "${AUTH[@]}"
+[[ -z $("$WB" status "${AUTH[@]}" | grep -v '^ *$' | tail -n +2) ]] ||
+  fail "refused submits made jobs: $("$WB" status "${AUTH[@]}")"
 head -c 1500000 /dev/zero | tr '\0' '#' | fold -w 100 >"$TMP/big.obj" # past the upload limit
 expect_error "INVALID_ARGUMENT: data:" "$WB" submit "$TMP/big.obj" "${AUTH[@]}"
 # Refused before sending.
