@@ -8,6 +8,7 @@
 #include <chrono>
 #include <fstream>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 
@@ -41,6 +42,22 @@ int64_t NowUnixMs() {
              std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
+
+// A TLS handshake that failed on the certificate (one the worker's --tls-ca
+// does not trust, or that does not name the address dialled): gRPC reports
+// it as UNAVAILABLE like a coordinator that is away, but waiting does not
+// cure it. ("tcp handshaker shutdown" is a connection attempt cut short: not
+// this.)
+bool TlsFailure(const grpc::Status& s) {
+  if (s.error_code() != grpc::StatusCode::UNAVAILABLE) return false;
+  const std::string m = absl::AsciiStrToLower(s.error_message());
+  return absl::StrContains(m, "ssl handshake failed") || absl::StrContains(m, "certificate") ||
+         absl::StrContains(m, "ssl_error");
+}
+
+// TLS failures before the worker gives up (~1.5 s of backoff when they come
+// one after another): a few, in case the coordinator is swapping its certificate.
+constexpr int kTlsTries = 5;
 
 int64_t BackoffMs(int attempt, int64_t cap) {
   return std::min<int64_t>(cap, int64_t{50} << std::min(attempt, 8));
@@ -141,7 +158,7 @@ void WorkerLoop::SetFatal(absl::Status status) {
 }
 
 // Retries while the coordinator is unreachable (it may be starting, or
-// restarting), until Drain.
+// restarting), until Drain; a TLS failure only kTlsTries times.
 absl::Status WorkerLoop::Register() {
   v1::WorkerInfo info;
   info.set_name(options_.name);
@@ -150,6 +167,7 @@ absl::Status WorkerLoop::Register() {
     v1::WorkerId id;
     const grpc::Status s = stub_->Register(Context().get(), info, &id);
     if (s.ok()) {
+      TlsWorks();
       std::lock_guard lock(mu_);
       worker_id_ = id.id();
       spdlog::info("worker {}: registered as \"{}\" with {} thread(s)", worker_id_, options_.name,
@@ -157,6 +175,7 @@ absl::Status WorkerLoop::Register() {
       return absl::OkStatus();
     }
     if (IsFatal(s.error_code())) return FromGrpc(s, "Register");
+    if (absl::Status tls = CountTlsFailure(s, "Register"); !tls.ok()) return tls;
     if (attempt % 20 == 0) spdlog::warn("worker: Register: {} (retrying)", s.error_message());
     if (!SleepUnlessDraining(BackoffMs(attempt, options_.max_backoff_ms))) return absl::OkStatus();
   }
@@ -173,10 +192,33 @@ absl::Status WorkerLoop::Recover(const grpc::Status& status, const std::string& 
                                  int attempt) {
   if (UnknownWorker(status)) return Reregister(worker_id);
   if (IsFatal(status.error_code())) return FromGrpc(status, "WorkerService");
+  if (absl::Status tls = CountTlsFailure(status, "WorkerService"); !tls.ok()) return tls;
   if (attempt % 20 == 0)
     spdlog::warn("worker {}: {} (retrying)", worker_id, status.error_message());
   SleepUnlessDraining(BackoffMs(attempt, options_.max_backoff_ms));
   return absl::OkStatus();
+}
+
+// After a handshake failed, gRPC backs off reconnecting and later calls fail
+// fast with other UNAVAILABLE messages: until a call gets through, they count
+// too, and the error quotes the handshake's.
+absl::Status WorkerLoop::CountTlsFailure(const grpc::Status& status, const char* rpc) {
+  std::lock_guard lock(mu_);
+  if (TlsFailure(status)) tls_error_ = status.error_message();
+  if (tls_error_.empty() || status.error_code() != grpc::StatusCode::UNAVAILABLE)
+    return absl::OkStatus();
+  if (++tls_failures_ < kTlsTries) return absl::OkStatus();
+  return absl::UnavailableError(absl::StrCat(
+      rpc, ": TLS: no trusted connection to the coordinator after ", kTlsTries,
+      " tries (check --tls-ca and that the coordinator's certificate names the address "
+      "dialled): ",
+      tls_error_));
+}
+
+void WorkerLoop::TlsWorks() {
+  std::lock_guard lock(mu_);
+  tls_failures_ = 0;
+  tls_error_.clear();
 }
 
 void WorkerLoop::LeaseLoop() {
@@ -194,6 +236,7 @@ void WorkerLoop::LeaseLoop() {
       if (absl::Status r = Recover(s, id, attempt++); !r.ok()) return SetFatal(r);
       continue;
     }
+    if (attempt > 0) TlsWorks();
     attempt = 0;
     if (reply.has_task()) {
       RunLeased(reply.task());
