@@ -18,6 +18,7 @@
 #include "cli/job_watch.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
+#include "worker/publish_store.h"
 
 namespace wavebake::cli {
 namespace {
@@ -77,8 +78,13 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
   std::printf("%s: written\n", f.out.c_str());
 }
 
-void Run(const CLI::App& cmd, const BakeCommandFlags& f) {
+void Run(const CLI::App& cmd, BakeCommandFlags f) {
   LogToStderr(spdlog::level::warn);
+  // A link at --out is where the user keeps the store: bake at its target.
+  absl::StatusOr<std::filesystem::path> out = ResolveOutputPath(f.out);
+  if (!out.ok()) Fail("bake", out.status());
+  const std::string given = f.out;
+  f.out = out->string();
   std::atomic<bool> interrupted{false};
   SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
@@ -95,7 +101,7 @@ void Run(const CLI::App& cmd, const BakeCommandFlags& f) {
   if (job->phase() != v1::PHASE_DONE) Fail("bake", JobOutcome(*job));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", f.out.c_str(), job->tiles(),
+  std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
 }

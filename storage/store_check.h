@@ -5,6 +5,7 @@
 // a missing chunk as the fill value, so a deleted chunk would otherwise read
 // as zeros — a silently dark relighting. Used by fetch's verification.
 #include <filesystem>
+#include <optional>
 
 #include "absl/status/status.h"
 
@@ -13,5 +14,12 @@ namespace wavebake {
 // DataLoss naming the missing chunk or the array that disagrees with the
 // manifest; the readers' errors (store_reader.h) otherwise.
 absl::Status CheckStoreComplete(const std::filesystem::path& store);
+
+// The first entry under `store` that no bake writes, if any: anything but a
+// Zarr tree of group and array directories holding .zgroup, .zattrs,
+// .zarray, chunk files ("0", "3.1") and atomic-write temporaries
+// (storage/atomic_file.h). Replacing a store deletes it; a user's file there
+// must not go with it.
+std::optional<std::filesystem::path> ForeignStoreEntry(const std::filesystem::path& store);
 
 }  // namespace wavebake

@@ -22,6 +22,7 @@
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
 #include "worker/group_result.h"
+#include "worker/publish_store.h"
 #include "worker/staging.h"
 #include "worker/transform_columns.h"
 
@@ -225,6 +226,62 @@ TEST(LocalBakeTest, ReplacesAnExistingStoreWhole) {
   // Same bytes as a fresh bake of the new params: nothing of the old store remains.
   ASSERT_TRUE(Bake(dir.path() / "fresh.wbk", 1, p).ok());
   EXPECT_EQ(ReadTree(out), ReadTree(dir.path() / "fresh.wbk"));
+}
+
+// Replacing a store deletes it: a file of the user's inside used to go with
+// it without a word. Now the replacement is refused naming the file, which
+// stays; a store with its kept staging (--keep-staging) is still replaced.
+TEST(LocalBakeTest, RefusesToReplaceAStoreHoldingAUsersFile) {
+  ScratchDir dir;
+  const auto out = dir.path() / "out.wbk";
+  LocalBakeOptions keep;
+  keep.threads = 2;
+  keep.keep_staging = true;
+  ASSERT_TRUE(RunLocalBake(kScene, SmallJob(), out, keep).ok());
+  ASSERT_TRUE(std::filesystem::exists(out / "staging" / "groups"));
+  ASSERT_TRUE(Bake(out, 2).ok()) << "kept staging is the bake's own";
+  for (const std::filesystem::path& foreign :
+       {out / "notes.txt", out / "transport" / "data" / "notes.txt", out / "mine" / "x.bin"}) {
+    std::filesystem::create_directories(foreign.parent_path());
+    { std::ofstream(foreign) << "keep me"; }
+    absl::StatusOr<BakeSummary> s = Bake(out, 2);
+    EXPECT_EQ(s.status().code(), absl::StatusCode::kAlreadyExists) << s.status();
+    const bool in_own_dir = foreign.parent_path().filename() == "mine";  // not a Zarr node
+    EXPECT_THAT(s.status().message(),
+                HasSubstr((in_own_dir ? foreign.parent_path() : foreign).string() + ","));
+    EXPECT_EQ(ReadTree(dir.path()).at(std::filesystem::relative(foreign, dir.path()).string()),
+              "keep me");
+    EXPECT_THAT(Leftovers(dir.path(), "out.wbk"), ::testing::IsEmpty());
+    std::filesystem::remove_all(foreign);
+    if (in_own_dir) std::filesystem::remove(foreign.parent_path());
+  }
+}
+
+// --out through a symbolic link: the store goes to the link's target (it used
+// to fail with "INTERNAL: rename … Not a directory"); given a link, the
+// publishing step refuses it clearly.
+TEST(LocalBakeTest, ASymlinkedOutputIsResolvedToItsTarget) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / "disk");
+  const auto target = dir.path() / "disk" / "real.wbk";
+  const auto link = dir.path() / "out.wbk";
+  std::filesystem::create_symlink("disk/real.wbk", link);  // dangling: nothing baked yet
+  absl::StatusOr<std::filesystem::path> resolved = ResolveOutputPath(link);
+  ASSERT_TRUE(resolved.ok()) << resolved.status();
+  EXPECT_EQ(*resolved, dir.path() / "disk/real.wbk");
+  ASSERT_TRUE(Bake(*resolved, 2).ok());
+  ASSERT_TRUE(ReadStoreInfo(link).ok()) << "readable through the link";
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  ASSERT_TRUE(Bake(*ResolveOutputPath(link), 2).ok()) << "replaced through the link";
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+
+  const absl::Status refused = CheckOutputPath(link);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(refused.message(), HasSubstr("symbolic link"));
+  EXPECT_EQ(Bake(link, 1).status().code(), absl::StatusCode::kInvalidArgument);
+  std::filesystem::create_symlink("loop", dir.path() / "loop");
+  EXPECT_THAT(ResolveOutputPath(dir.path() / "loop").status().message(),
+              HasSubstr("too many levels"));
 }
 
 // A failure midway (here: the group results cannot be written) removes the
