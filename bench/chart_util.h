@@ -2,12 +2,18 @@
 // What the chart generators (bench/charts_data.cc, bench/charts_runtime.cc)
 // share: dying loudly on an error (a chart must not be drawn from a partial
 // sweep) and CSV output. Header-only: every bench/*.cc is its own binary.
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "absl/status/statusor.h"
 
@@ -29,6 +35,31 @@ template <typename T>
 T Value(absl::StatusOr<T> v) {
   if (!v.ok()) Die(v.status().ToString());
   return *std::move(v);
+}
+
+// Runs task(i) for every i in [0, count) on `threads` threads and dies on
+// the first failure. Chart 2 times the trace and the column stage apart and
+// recompresses one trace many times, so it drives the task functions itself
+// rather than through a job; this loop is only for that.
+inline void RunTasksOrDie(int count, int threads, const std::function<absl::Status(int)>& task) {
+  std::atomic<int> next{0};
+  std::mutex mu;
+  absl::Status first;
+  auto work = [&] {
+    for (int i; (i = next.fetch_add(1)) < count;) {
+      if (absl::Status s = task(i); !s.ok()) {
+        std::lock_guard lock(mu);
+        if (first.ok()) first = s;
+        next = count;  // no new task starts
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(work);
+    work();
+  }
+  Check(first);
 }
 
 inline double SecondsSince(std::chrono::steady_clock::time_point start) {

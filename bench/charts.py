@@ -56,7 +56,7 @@ def size_error(rows, out):
         for mode, color in MODE_COLORS.items():
             for filt, style in FILTER_STYLES.items():
                 # coding: uniform step (default) or the paper's 2^l scaling
-                # (issue 7 baseline, adaptive / haar only, drawn dotted).
+                # (4D paper §4.3: the baseline, adaptive / haar only, dotted).
                 for coding in ("uniform", "paper"):
                     sel = [r for r in rows
                            if r["scene"] == scene and r["mode"] == mode and r["filter"] == filt

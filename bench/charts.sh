@@ -1,5 +1,5 @@
 #!/bin/bash
-# The charts of docs/RESULTS.md in one command (issue 7): builds
+# The charts of docs/RESULTS.md in one command: builds
 # bench_charts_data and bench_charts_runtime, runs the sweeps into
 # docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).

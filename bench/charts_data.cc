@@ -1,4 +1,4 @@
-// The data behind docs/RESULTS.md (issue 7): sweeps of the real pipeline,
+// The data behind docs/RESULTS.md: sweeps of the real pipeline,
 // one CSV per chart, written into the directory given on the command line.
 //
 //   build/bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]
@@ -29,10 +29,10 @@
 
 #include "absl/status/statusor.h"
 #include "bench/chart_util.h"
-#include "cli/reference_measure.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
 #include "core/cubemap.h"
+#include "driver/reference_measure.h"
 #include "runtime/dense_trace.h"
 #include "runtime/env_map.h"
 #include "runtime/env_resample.h"
@@ -44,7 +44,6 @@
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
 #include "worker/staging.h"
-#include "worker/task_pool.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
@@ -53,6 +52,7 @@ namespace {
 using charts::Check;
 using charts::Csv;
 using charts::Die;
+using charts::RunTasksOrDie;
 using charts::SecondsSince;
 using charts::Value;
 
@@ -62,8 +62,8 @@ struct SceneCase {
   std::string layout;  // DESIGN.md §1 "Spatial layout"
 };
 
-// The three scenes issue 7 asks for: a camera layout, the bunny on a
-// Hilbert layout, and a regular-grid mesh.
+// Three kinds of spatial layout: a camera layout, the bunny on a Hilbert
+// layout, and a regular-grid mesh.
 std::vector<SceneCase> ChartScenes() {
   return {{"cubes-wall", "builtin:cubes-wall", "camera:64x64"},
           {"bunny", std::string(WB_SHARED_DATA) + "/models/bunny.obj", "hilbert:64x64"},
@@ -97,8 +97,8 @@ Staged BakeStaging(const SceneCase& scene, int light_res, const RunConfig& run) 
   const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(scene.spec, s.base));
   Check(CreateStaging(ctx->plan, s.store));
   std::vector<TileStats> stats(ctx->plan.tiles());
-  Check(RunTasks(ctx->plan.tiles(), run.threads,
-                 [&](int t) { return BakeTile(*ctx, s.store, t, &stats[t]); }));
+  RunTasksOrDie(ctx->plan.tiles(), run.threads,
+                [&](int t) { return BakeTile(*ctx, s.store, t, &stats[t]); });
   s.bake_seconds = SecondsSince(start);
   for (const TileStats& t : stats) s.rays += t.rays_traced;
   std::fprintf(stderr, "traced %s N=%d: %.1f s, %.1f Mrays\n", scene.name.c_str(), light_res,
@@ -124,8 +124,8 @@ Compressed Compress(const Staged& staged, const BakeParams& params, const RunCon
   DropFinalArrays(staged.store);
   const auto start = std::chrono::steady_clock::now();
   const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, params));
-  Check(RunTasks(ctx->plan.groups, run.threads,
-                 [&](int g) { return TransformColumns(*ctx, staged.store, g, nullptr); }));
+  RunTasksOrDie(ctx->plan.groups, run.threads,
+                [&](int g) { return TransformColumns(*ctx, staged.store, g, nullptr); });
   Check(Finalize(*ctx, staged.store, {.keep_staging = true}));
   Compressed c;
   c.seconds = SecondsSince(start);
@@ -192,7 +192,7 @@ void SizeRow(const Staged& staged, const std::vector<ProbeCase>& probes, const B
 // Chart 1 (4D paper Fig. 7) and chart 6 (Fig. 8): bytes and kept
 // coefficients against matrix error, per mode × column filter × target with
 // the default (uniform) value coding, plus adaptive Haar with the paper's 2^l
-// level scaling as the baseline of issue 7; the adaptive Haar runs also give
+// level scaling (4D paper §4.3) as the baseline; the adaptive Haar runs also give
 // the mean depth by row level.
 void SweepSizeAndDepth(const Staged& staged, const RunConfig& run, Csv& size_csv, Csv& depth_csv) {
   const std::vector<ProbeCase> probes = DenseUnderProbes(staged);
@@ -246,7 +246,7 @@ void SweepBits(const Staged& staged, const RunConfig& run, Csv& csv) {
 
 // Chart 2: trace time (and column stage, size, matrix error) against N,
 // and the relighting error under `env` against the independent reference
-// (cli/reference_measure.h, traced once): the dense T at N (discretization
+// (driver/reference_measure.h, traced once): the dense T at N (discretization
 // alone) and the store with all 6N² wavelet lights and with the runtime's
 // default 256 — what `eval --reference` reports, and what `bake --auto`
 // chooses N by.
@@ -256,8 +256,8 @@ void SweepLightRes(const SceneCase& scene, const std::string& env, const RunConf
   BakeParams base;
   base.layout = scene.layout;
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<cli::ReferenceMeasure> measure =
-      Value(cli::ReferenceMeasure::Create(scene.spec, base, env, run.quick ? 0.01 : 0.002));
+  const std::unique_ptr<driver::ReferenceMeasure> measure =
+      Value(driver::ReferenceMeasure::Create(scene.spec, base, env, run.quick ? 0.01 : 0.002));
   std::fprintf(stderr, "reference %s: rel SE %.4f, %.1f s\n", scene.name.c_str(),
                measure->reference().rel_se, SecondsSince(start));
   for (int n : resolutions) {

@@ -1,4 +1,4 @@
-// The runtime charts of issue 7, on real stores (bench/charts.sh runs it
+// The runtime charts of docs/RESULTS.md, on real stores (bench/charts.sh runs it
 // after bench_charts_data):
 //
 //   build/bench_charts_runtime OUT_DIR [--quick] [--threads T]
@@ -36,6 +36,8 @@
 #include "bench/chart_util.h"
 #include "core/bake_params.h"
 #include "core/bake_params_io.h"
+#include "driver/embedded_bake.h"
+#include "driver/job_query.h"
 #include "runtime/env_map.h"
 #include "runtime/eval.h"
 #include "runtime/incremental.h"
@@ -43,7 +45,6 @@
 #include "runtime/relighter.h"
 #include "runtime/row_basis.h"
 #include "storage/store_reader.h"
-#include "worker/local_bake.h"
 
 namespace wavebake {
 namespace {
@@ -85,15 +86,17 @@ Store BakeStore(ColumnMode mode, const RunConfig& run) {
   Store s;
   s.mode = std::string(ToString(mode));
   const std::filesystem::path path = run.work_dir / (s.mode + ".wbk");
-  const BakeSummary summary = Value(RunLocalBake(
-      kScene, p, path,
-      LocalBakeOptions{.threads = run.threads, .keep_staging = false, .progress = {}}));
+  const auto t0 = std::chrono::steady_clock::now();
+  const v1::Job job = Value(driver::EmbeddedBake(kScene, p, path, {.workers = run.threads}));
+  if (job.phase() != v1::PHASE_DONE) Die(driver::JobOutcome(job));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   s.columns = Value(ReadTransport(path));
   s.samples = Value(ReadSamples(path));
   s.matrix_rel_rms = Value(ReadStoreInfo(path)).attrs.at("stats").at("matrix_rel_rms");
   std::fprintf(stderr, "baked %s %s N=%d: %.1f s, nnz %lld, matrix_rel_rms %.5f\n", kScene,
-               s.mode.c_str(), p.light_res, summary.seconds_bake + summary.seconds_columns,
-               static_cast<long long>(summary.nnz), s.matrix_rel_rms);
+               s.mode.c_str(), p.light_res, seconds,
+               static_cast<long long>(s.columns.indptr.back()), s.matrix_rel_rms);
   return s;
 }
 

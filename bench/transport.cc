@@ -1,4 +1,4 @@
-// Throughput of the bake's hot loop, TransportRow (worker/transport_row.h), on
+// Throughput of the bake's hot loop, TransportRow (core/transport_row.h), on
 // a tessellated sphere over a tessellated plane (~6k triangles), N=32, K=4,
 // one thread — beside a baseline measured in the same run: the row's M·K
 // directions traced one by one with rtcOccluded1 and no horizon culling.

@@ -2,8 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/cluster_commands.h"
-#include "cli/runtime_commands.h"
+#include "cli/command_error.h"
+#include "cli/commands.h"
 
 namespace wavebake::cli {
 
@@ -23,7 +23,9 @@ int Run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help is success; a flag the parser refused is bad input like any other.
+    const int status = app.exit(e);
+    return status == 0 || dynamic_cast<const CLI::RuntimeError*>(&e) ? status : kExitBadInput;
   }
   return 0;
 }

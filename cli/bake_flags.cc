@@ -6,14 +6,28 @@
 #include "core/bake_params_io.h"
 
 namespace wavebake::cli {
+namespace {
+
+// A parsed name into `out`; the error keeps the parser's field name, with
+// `prefix` for the two filters (row_filter, column_filter).
+template <typename T>
+absl::Status Set(absl::StatusOr<T> parsed, T& out, const char* prefix = "") {
+  if (!parsed.ok())
+    return absl::InvalidArgumentError(absl::StrCat(prefix, parsed.status().message()));
+  out = *parsed;
+  return absl::OkStatus();
+}
+
+}  // namespace
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
-  cmd.add_option("--light-res", f.light_res,
+  BakeParams& p = f.params;
+  cmd.add_option("--light-res", p.light_res,
                  "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
-  cmd.add_option("--layout", f.layout, "spatial layout: camera[:WxH] | grid | hilbert:WxH")
+  cmd.add_option("--layout", p.layout, "spatial layout: camera[:WxH] | grid | hilbert:WxH")
       ->capture_default_str();
-  cmd.add_option("--supersample", f.supersample, "jittered directions per texel K")
+  cmd.add_option("--supersample", p.supersample, "jittered directions per texel K")
       ->capture_default_str();
   cmd.add_option("--row-filter", f.row_filter, "row transform: haar | daub4")
       ->capture_default_str();
@@ -22,59 +36,40 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
   cmd.add_option("--column-filter", f.column_filter, "column filter: haar | legall53 | cdf97")
       ->capture_default_str();
   cmd.add_option(
-         "--target-error", f.target_error,
+         "--target-error", p.target_error,
          "relative RMS error budget of the stored columns (DESIGN.md §1, see --error-scope)")
       ->capture_default_str();
   cmd.add_option("--error-scope", f.error_scope,
                  "matrix: budget relative to the mean column energy; column: to each column's own")
       ->capture_default_str();
-  cmd.add_option("--column-terms", f.column_terms,
+  cmd.add_option("--column-terms", p.column_terms,
                  "keep exactly K coefficients per column instead of --target-error");
-  cmd.add_option(
-         "--bits", f.bits,
-         "quantization bits 2..16 (each column's max to the largest code), or auto (the error "
-         "budget's quantization half)")
+  cmd.add_option("--bits", f.bits,
+                 "quantization bits 2..16 (each column's max to the largest code), or auto (the "
+                 "error budget's quantization half)")
       ->capture_default_str();
   cmd.add_option("--level-scaling", f.level_scaling,
                  "uniform: one step per column (auto: one matrix-wide step); paper: values of "
                  "level l times 2^l first (4D paper §4.3)")
       ->capture_default_str();
-  cmd.add_option("--seed", f.seed, "job seed (jitter and dither)")->capture_default_str();
-  cmd.add_flag("--keep-staging", f.keep_staging,
+  cmd.add_option("--seed", p.seed, "job seed (jitter and dither)")->capture_default_str();
+  cmd.add_flag("--keep-staging", p.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
-  cmd.add_option("--tile-size", f.tile_size,
+  cmd.add_option("--tile-size", p.tile_size,
                  "spatial tile edge of one BAKE_TILE task (power of two)")
       ->capture_default_str();
-  cmd.add_option("--column-group", f.column_group, "columns per TRANSFORM_COLUMNS task")
+  cmd.add_option("--column-group", p.column_group, "columns per TRANSFORM_COLUMNS task")
       ->capture_default_str();
 }
 
 absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
-  BakeParams p;
-  p.light_res = f.light_res;
-  p.layout = f.layout;
-  p.supersample = f.supersample;
-  auto row = ParseWaveletFilter(f.row_filter);
-  if (!row.ok()) return absl::InvalidArgumentError(absl::StrCat("row_", row.status().message()));
-  p.row_filter = *row;
-  auto mode = ParseColumnMode(f.column_mode);
-  if (!mode.ok()) return mode.status();
-  p.column_mode = *mode;
-  auto col = ParseWaveletFilter(f.column_filter);
-  if (!col.ok()) return absl::InvalidArgumentError(absl::StrCat("column_", col.status().message()));
-  p.column_filter = *col;
-  auto scope = ParseErrorScope(f.error_scope);
-  if (!scope.ok()) return scope.status();
-  p.error_scope = *scope;
-  auto scaling = ParseLevelScaling(f.level_scaling);
-  if (!scaling.ok()) return scaling.status();
-  p.level_scaling = *scaling;
-  p.target_error = f.target_error;
-  p.column_terms = f.column_terms;
-  p.seed = f.seed;
-  p.keep_staging = f.keep_staging;
-  p.tile_size = f.tile_size;
-  p.column_group = f.column_group;
+  BakeParams p = f.params;
+  for (absl::Status s : {Set(ParseWaveletFilter(f.row_filter), p.row_filter, "row_"),
+                         Set(ParseColumnMode(f.column_mode), p.column_mode),
+                         Set(ParseWaveletFilter(f.column_filter), p.column_filter, "column_"),
+                         Set(ParseErrorScope(f.error_scope), p.error_scope),
+                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling)})
+    if (!s.ok()) return s;
   if (f.bits != "auto") {
     const char* end = f.bits.data() + f.bits.size();
     auto [ptr, ec] = std::from_chars(f.bits.data(), end, p.bits);

@@ -1,5 +1,7 @@
 #pragma once
-// The bake flags of DESIGN.md §5, shared by `bake` and `submit`.
+// The bake flags of DESIGN.md §5, shared by `bake` and `submit`. Numbers bind
+// straight to BakeParams; names are parsed by core/bake_params_io.h, so the
+// command line, the RPC and the store refuse the same strings.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -8,26 +10,14 @@
 
 namespace wavebake::cli {
 
-// Raw flag values as typed; ToParams turns them into validated BakeParams.
 struct BakeFlags {
-  int light_res = 32;
-  std::string layout = "camera";
-  int supersample = 4;
-  std::string row_filter = "haar";
-  std::string column_mode = "adaptive";
-  std::string column_filter = "haar";
-  double target_error = 0.01;
-  std::string error_scope = "matrix";
-  int column_terms = 0;
-  std::string bits = "auto";
-  std::string level_scaling = "uniform";
-  uint64_t seed = 1;
-  bool keep_staging = false;
-  int tile_size = 32;      // BAKE_TILE edge (DESIGN.md §2)
-  int column_group = 256;  // columns per TRANSFORM_COLUMNS task
+  BakeParams params;  // the numeric flags, and the defaults of the named ones
+  std::string row_filter = "haar", column_mode = "adaptive", column_filter = "haar",
+              error_scope = "matrix", bits = "auto", level_scaling = "uniform";
 };
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f);
+// Errors name the field (e.g. "column_mode: 'fast' is not adaptive, full or 2d").
 absl::StatusOr<BakeParams> ToParams(const BakeFlags& f);
 
 }  // namespace wavebake::cli

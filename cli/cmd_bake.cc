@@ -1,7 +1,7 @@
 // `wavebake bake SCENE --out OUT.wbk [--workers N] [bake flags]` (DESIGN.md
 // §5): the embedded default, a coordinator and N workers in this process
-// (cli/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
-// at OUT. With --auto (cli/auto_bake.h) the light resolution, column
+// (driver/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
+// at OUT. With --auto (driver/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
 // of the independent reference under --env.
 #include <atomic>
@@ -10,14 +10,15 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "cli/auto_bake.h"
 #include "cli/bake_flags.h"
-#include "cli/cluster_commands.h"
 #include "cli/command_error.h"
-#include "cli/embedded_bake.h"
-#include "cli/job_watch.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
+#include "driver/auto_bake.h"
+#include "driver/embedded_bake.h"
+#include "driver/job_query.h"
 #include "worker/publish_store.h"
 
 namespace wavebake::cli {
@@ -30,55 +31,38 @@ struct BakeCommandFlags {
   bool quiet = false;
   BakeFlags bake;
   bool auto_mode = false;
-  std::string env = kDefaultAutoEnv;
+  std::string env = driver::kDefaultAutoEnv;
   int max_light_res = 128;
 };
 
-// --auto owns the light resolution, the column terms, the bits and the depth
-// mode; it judges by an explicit --target-error. Errors name the flag.
-absl::Status CheckAutoFlags(const CLI::App& cmd, const BakeCommandFlags& f) {
-  auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
-  auto bad = [](const char* flag, const char* why) {
-    return absl::InvalidArgumentError(absl::StrCat(flag, ": ", why));
-  };
-  if (!f.auto_mode) {
-    for (const char* flag : {"--env", "--max-light-res"})
-      if (given(flag)) return bad(flag, "only with --auto");
-    return absl::OkStatus();
-  }
-  if (!given("--target-error"))
-    return bad("--target-error", "--auto needs the relighting error to meet, e.g. 0.05");
-  if (given("--light-res")) return bad("--light-res", "--auto chooses the light resolution");
-  if (given("--column-terms")) return bad("--column-terms", "--auto selects by --target-error");
-  if (f.bake.bits != "auto") return bad("--bits", "--auto needs --bits auto");
-  if (f.bake.column_mode != "adaptive")
-    return bad("--column-mode", "--auto needs the adaptive column mode");
-  const int n = f.max_light_res;
-  if (n < 8 || n > 256 || (n & (n - 1)) != 0)
-    return bad("--max-light-res", "not a power of two in 8..256");
-  return absl::OkStatus();
-}
-
 void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
              const std::atomic<bool>& interrupted) {
-  AutoBakeOptions options;
+  ProgressBar display(f.quiet);
+  driver::AutoBakeOptions options;
   options.env = f.env;
-  options.search.target_error = f.bake.target_error;
+  options.search.target_error = f.bake.params.target_error;
   options.search.resolutions.clear();
   for (int n = 8; n <= f.max_light_res; n *= 2) options.search.resolutions.push_back(n);
   options.workers = f.workers;
-  options.quiet = f.quiet;
+  if (!f.quiet) {
+    options.on_message = [&](const std::string& line) {
+      display.Finish();
+      std::fprintf(stderr, "auto: %s\n", line.c_str());
+    };
+    options.on_event = display.Callback();
+  }
   options.interrupted = &interrupted;
-  absl::StatusOr<AutoBakeReport> report = AutoBake(f.scene, params, f.out, options);
+  absl::StatusOr<driver::AutoBakeReport> report = driver::AutoBake(f.scene, params, f.out, options);
+  display.Finish();
   if (!report.ok() && absl::IsCancelled(report.status()))
     Fail("bake", "interrupted; nothing written", kExitInterrupted);
   if (!report.ok()) Fail("bake", report.status());
-  std::printf("%s", AutoBakeTable(*report).c_str());
+  std::printf("%s", driver::AutoBakeTable(*report).c_str());
   if (!report->failure.empty()) Fail("bake", absl::StrCat("--auto: ", report->failure));
   std::printf("%s: written\n", f.out.c_str());
 }
 
-void Run(const CLI::App& cmd, BakeCommandFlags f) {
+void Run(BakeCommandFlags f) {
   LogToStderr(spdlog::level::warn);
   // A link at --out is where the user keeps the store: bake at its target.
   absl::StatusOr<std::filesystem::path> out = ResolveOutputPath(f.out);
@@ -89,16 +73,17 @@ void Run(const CLI::App& cmd, BakeCommandFlags f) {
   SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
   if (!params.ok()) Fail("bake", params.status());
-  if (absl::Status s = CheckAutoFlags(cmd, f); !s.ok()) Fail("bake", s);
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  absl::StatusOr<v1::Job> job =
-      EmbeddedBake(f.scene, *params, f.out,
-                   {.workers = f.workers, .quiet = f.quiet, .interrupted = &interrupted});
+  ProgressBar display(f.quiet);
+  absl::StatusOr<v1::Job> job = driver::EmbeddedBake(
+      f.scene, *params, f.out,
+      {.workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted});
+  display.Finish();
   if (!job.ok()) Fail("bake", job.status());
   if (job->phase() == v1::PHASE_CANCELLED && interrupted)
     Fail("bake", "interrupted; nothing written", kExitInterrupted);
-  if (job->phase() != v1::PHASE_DONE) Fail("bake", JobOutcome(*job));
+  if (job->phase() != v1::PHASE_DONE) Fail("bake", driver::JobOutcome(*job));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
@@ -120,17 +105,26 @@ void AddBakeCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress on stderr");
   AddBakeFlags(*cmd, f->bake);
-  cmd->add_flag("--auto", f->auto_mode,
-                "choose the light resolution, column target and bits: the smallest store whose "
-                "relighting under --env is within --target-error (relative RMS) of the "
-                "independent reference");
+  // --auto owns the light resolution and the column terms, and judges by an
+  // explicit --target-error (the parser's errors name the flags).
+  CLI::Option* auto_flag =
+      cmd->add_flag("--auto", f->auto_mode,
+                    "choose the light resolution, column target and bits: the smallest store "
+                    "whose relighting under --env is within --target-error (relative RMS) of "
+                    "the independent reference")
+          ->needs(cmd->get_option("--target-error"))
+          ->excludes(cmd->get_option("--light-res"))
+          ->excludes(cmd->get_option("--column-terms"));
   cmd->add_option("--env", f->env,
                   "--auto: the lighting to judge by (EXR/HDR or builtin:NAME); the default's "
                   "small bright sun is the conservative case")
+      ->needs(auto_flag)
       ->capture_default_str();
   cmd->add_option("--max-light-res", f->max_light_res, "--auto: the finest light resolution to try")
+      ->needs(auto_flag)
+      ->check(CLI::IsMember({8, 16, 32, 64, 128, 256}))
       ->capture_default_str();
-  cmd->callback([f, cmd] { Run(*cmd, *f); });
+  cmd->callback([f] { Run(*f); });
 }
 
 }  // namespace wavebake::cli

@@ -2,30 +2,27 @@
 // the job's tasks, and its partial store is removed.
 #include <cstdio>
 
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
-#include "cli/job_watch.h"
+#include "cli/commands.h"
 #include "cli/stderr_log.h"
+#include "driver/job_query.h"
 
 namespace wavebake::cli {
 namespace {
 
 struct CancelFlags {
   std::string job;
-  ClientFlags client;
+  driver::ClientConfig client;
 };
 
 void Run(const CancelFlags& f) {
   LogToStderr(spdlog::level::warn);
-  absl::StatusOr<Client> client = Client::Connect(f.client);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("cancel", client.status());
-  v1::JobId id;
-  id.set_id(f.job);
-  v1::Job job;
-  if (grpc::Status s = client->jobs().Cancel(client->Call().get(), id, &job); !s.ok())
-    Fail("cancel", FromGrpc(s));
-  std::printf("%s\n", JobOutcome(job).c_str());
+  absl::StatusOr<v1::Job> job = driver::CancelJob(*client, f.job);
+  if (!job.ok()) Fail("cancel", job.status());
+  std::printf("%s\n", driver::JobOutcome(*job).c_str());
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "cli/command_error.h"
-#include "cli/runtime_commands.h"
+#include "cli/commands.h"
 #include "runtime/eval.h"
 
 namespace wavebake::cli {

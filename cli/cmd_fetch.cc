@@ -3,11 +3,11 @@
 // verifies every array before it appears at DIR.
 #include <cstdio>
 
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/stderr_log.h"
-#include "cli/store_fetch.h"
+#include "driver/store_fetch.h"
 
 namespace wavebake::cli {
 namespace {
@@ -15,14 +15,14 @@ namespace {
 struct FetchFlags {
   std::string job;
   std::string out;
-  ClientFlags client;
+  driver::ClientConfig client;
 };
 
 void Run(const FetchFlags& f) {
   LogToStderr(spdlog::level::warn);
-  absl::StatusOr<Client> client = Client::Connect(f.client);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("fetch", client.status());
-  absl::StatusOr<FetchSummary> summary = FetchStore(*client, f.job, f.out);
+  absl::StatusOr<driver::FetchSummary> summary = driver::FetchStore(*client, f.job, f.out);
   if (!summary.ok()) Fail("fetch", summary.status());
   std::printf("%s: %d files, %lld bytes, %d arrays verified\n", f.out.c_str(), summary->files,
               static_cast<long long>(summary->bytes), summary->arrays);

@@ -3,11 +3,10 @@
 // an environment, written as an image (camera layouts) or a vertex-coloured
 // mesh (mesh layouts). With --rotate-sequence, a rotating environment over
 // many frames (runtime/relight_sequence.h): frames and errors.csv into --out.
-#include <algorithm>
 #include <cstdio>
 
 #include "cli/command_error.h"
-#include "cli/runtime_commands.h"
+#include "cli/commands.h"
 #include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 
@@ -31,11 +30,6 @@ SequenceMode ModeOf(const std::string& name) {
 void RunSequence(const RelightFlags& f) {
   absl::StatusOr<RotateSequence> rotation = ParseRotateSequence(f.rotate_sequence);
   if (!rotation.ok()) Fail("relight", rotation.status());
-  if (f.incremental != "per-band" && f.incremental != "basic" && f.incremental != "none")
-    Fail("relight", "incremental: '" + f.incremental + "' is not per-band, basic or none",
-         kExitBadInput);
-  if (f.frame_format != "png" && f.frame_format != "exr" && f.frame_format != "ply")
-    Fail("relight", "frame-format: '" + f.frame_format + "' is not png, exr or ply", kExitBadInput);
   SequenceOptions options{.rotation = *rotation,
                           .terms = f.terms,
                           .mode = ModeOf(f.incremental),
@@ -44,17 +38,11 @@ void RunSequence(const RelightFlags& f) {
                           .frame_extension = "." + f.frame_format};
   absl::StatusOr<std::vector<SequenceFrame>> frames = RelightSequence(f.store, f.env, options);
   if (!frames.ok()) Fail("relight", frames.status());
-  double sum = 0, worst = 0, seconds = 0;
-  for (const SequenceFrame& fr : *frames) {
-    sum += fr.rel_rms;
-    worst = std::max(worst, fr.rel_rms);
-    seconds += fr.seconds;
-  }
-  const double n = static_cast<double>(frames->size());
+  const SequenceSummary sum = Summarize(*frames);
   std::printf(
       "wrote %zu frames and errors.csv to %s: rel_rms vs all lights mean %.5f max %.5f, "
       "%.2f ms/frame\n",
-      frames->size(), f.out.c_str(), sum / n, worst, 1e3 * seconds / n);
+      frames->size(), f.out.c_str(), sum.mean_rel_rms, sum.max_rel_rms, 1e3 * sum.mean_seconds);
 }
 
 void Run(const RelightFlags& f) {
@@ -87,8 +75,10 @@ void AddRelightCommand(CLI::App& app) {
   cmd->add_option("--incremental", flags->incremental,
                   "with --rotate-sequence: per-band (Overbeck §6.2.2), basic (Overbeck ch. 4, "
                   "never resets: ghosts under fast rotation) or none")
+      ->check(CLI::IsMember({"per-band", "basic", "none"}))
       ->capture_default_str();
   cmd->add_option("--frame-format", flags->frame_format, "with --rotate-sequence: png | exr | ply")
+      ->check(CLI::IsMember({"png", "exr", "ply"}))
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
                   "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory with "

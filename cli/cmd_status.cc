@@ -6,17 +6,18 @@
 #include <cstdio>
 
 #include "absl/strings/str_cat.h"
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/stderr_log.h"
+#include "driver/job_query.h"
 
 namespace wavebake::cli {
 namespace {
 
 struct StatusFlags {
   std::string job;
-  ClientFlags client;
+  driver::ClientConfig client;
   bool json = false;
   bool active = false;
   int limit = 20;
@@ -57,27 +58,20 @@ void PrintRow(const v1::Job& job) {
 
 void Run(const StatusFlags& f) {
   LogToStderr(spdlog::level::warn);
-  absl::StatusOr<Client> client = Client::Connect(f.client);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("status", client.status());
   if (!f.job.empty()) {
-    v1::JobId id;
-    id.set_id(f.job);
-    v1::Job job;
-    if (grpc::Status s = client->jobs().Get(client->Call().get(), id, &job); !s.ok())
-      Fail("status", FromGrpc(s));
-    f.json ? PrintJson(job) : PrintDetail(job);
+    absl::StatusOr<v1::Job> job = driver::GetJob(*client, f.job);
+    if (!job.ok()) Fail("status", job.status());
+    f.json ? PrintJson(*job) : PrintDetail(*job);
     return;
   }
-  v1::ListRequest request;
-  request.set_limit(f.limit);
-  request.set_active_only(f.active);
-  v1::JobList list;
-  if (grpc::Status s = client->jobs().List(client->Call().get(), request, &list); !s.ok())
-    Fail("status", FromGrpc(s));
+  absl::StatusOr<std::vector<v1::Job>> jobs = driver::ListJobs(*client, f.limit, f.active);
+  if (!jobs.ok()) Fail("status", jobs.status());
   if (!f.json)
     std::printf("%-6s %-13s %9s %12s %-24s %s\n", "JOB", "PHASE", "TASKS", "RAYS", "STORE",
                 "ERROR");
-  for (const v1::Job& job : list.jobs()) f.json ? PrintJson(job) : PrintRow(job);
+  for (const v1::Job& job : *jobs) f.json ? PrintJson(job) : PrintRow(job);
 }
 
 }  // namespace

@@ -4,12 +4,14 @@
 #include <cstdio>
 
 #include "cli/bake_flags.h"
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
-#include "cli/job_submit.h"
-#include "cli/job_watch.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/stderr_log.h"
+#include "driver/job_query.h"
+#include "driver/job_submit.h"
+#include "driver/job_watch.h"
 #include "proto/bake_request.h"
 
 namespace wavebake::cli {
@@ -18,7 +20,7 @@ namespace {
 struct SubmitFlags {
   std::string scene;
   BakeFlags bake;
-  ClientFlags client;
+  driver::ClientConfig client;
   std::string output_name;
   int max_attempts = kDefaultMaxAttempts;
   bool wait = false;
@@ -31,17 +33,20 @@ void Run(const SubmitFlags& f) {
   v1::BakeRequest request = ToBakeRequest(*params);
   request.set_output_name(f.output_name);
   request.set_max_attempts(f.max_attempts);
-  absl::StatusOr<Client> client = Client::Connect(f.client);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("submit", client.status());
-  absl::StatusOr<v1::Job> job = SubmitScene(*client, request, f.scene);
+  absl::StatusOr<v1::Job> job = driver::SubmitScene(*client, request, f.scene);
   if (!job.ok()) Fail("submit", job.status());
   std::printf("%s\n", job->id().c_str());
   std::fflush(stdout);
   if (!f.wait) return;
-  absl::StatusOr<v1::Job> ended = WatchJob(*client, job->id());
+  ProgressBar display(/*quiet=*/false);
+  absl::StatusOr<v1::Job> ended =
+      driver::WatchJob(*client, job->id(), {.on_event = display.Callback()});
+  display.Finish();
   if (!ended.ok()) Fail("submit", ended.status());
-  if (ended->phase() != v1::PHASE_DONE) Fail("submit", JobOutcome(*ended));
-  std::fprintf(stderr, "%s\n", JobOutcome(*ended).c_str());
+  if (ended->phase() != v1::PHASE_DONE) Fail("submit", driver::JobOutcome(*ended));
+  std::fprintf(stderr, "%s\n", driver::JobOutcome(*ended).c_str());
 }
 
 }  // namespace

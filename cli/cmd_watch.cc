@@ -3,29 +3,34 @@
 // lines otherwise. Exit 0 if the job is DONE.
 #include <cstdio>
 
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
-#include "cli/job_watch.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
 #include "cli/stderr_log.h"
+#include "driver/job_query.h"
+#include "driver/job_watch.h"
 
 namespace wavebake::cli {
 namespace {
 
 struct WatchFlags {
   std::string job;
-  ClientFlags client;
+  driver::ClientConfig client;
   double patience_seconds = 60;
 };
 
 void Run(const WatchFlags& f) {
   LogToStderr(spdlog::level::warn);
-  absl::StatusOr<Client> client = Client::Connect(f.client);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("watch", client.status());
-  absl::StatusOr<v1::Job> job = WatchJob(*client, f.job, f.patience_seconds);
+  ProgressBar display(/*quiet=*/false);
+  absl::StatusOr<v1::Job> job = driver::WatchJob(
+      *client, f.job, {.patience_seconds = f.patience_seconds, .on_event = display.Callback()});
+  display.Finish();
   if (!job.ok()) Fail("watch", job.status());
-  if (job->phase() != v1::PHASE_DONE) Fail("watch", JobOutcome(*job));
-  std::printf("%s\n", JobOutcome(*job).c_str());
+  if (job->phase() != v1::PHASE_DONE) Fail("watch", driver::JobOutcome(*job));
+  std::printf("%s\n", driver::JobOutcome(*job).c_str());
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 // signal stops the running tasks too (reported as failed).
 #include <thread>
 
-#include "cli/client.h"
-#include "cli/cluster_commands.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
+#include "cli/commands.h"
 #include "cli/signal_watcher.h"
 #include "cli/stderr_log.h"
 #include "worker/worker_loop.h"
@@ -15,7 +15,7 @@ namespace wavebake::cli {
 namespace {
 
 struct WorkerFlags {
-  ClientFlags client;
+  driver::ClientConfig client;
   std::string store_root;
   std::string scene_cache;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -41,7 +41,7 @@ void Run(const WorkerFlags& f) {
     }
   });
   // No waiting here: the loop registers as soon as the coordinator is up.
-  absl::StatusOr<Client> client = Client::Connect(f.client, /*connect_seconds=*/0);
+  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client, /*connect_seconds=*/0);
   if (!client.ok()) Fail("worker", client.status());
   WorkerLoop loop(client->channel(), {.store_root = f.store_root,
                                       .scene_cache_dir = f.scene_cache,

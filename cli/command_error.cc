@@ -5,10 +5,6 @@
 
 namespace wavebake::cli {
 
-absl::Status FromGrpc(const grpc::Status& status) {
-  return absl::Status(static_cast<absl::StatusCode>(status.error_code()), status.error_message());
-}
-
 void Fail(const std::string& command, const absl::Status& status) {
   const absl::StatusCode code = status.code();
   const bool bad_input =

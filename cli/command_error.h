@@ -3,8 +3,6 @@
 // any error, with a message that names the bad input"): the message goes to
 // stderr as "wavebake <command>: <status>", and a CLI::RuntimeError carries
 // the exit status out through CLI::App::exit, which prints nothing more.
-#include <grpcpp/support/status.h>
-
 #include <string>
 
 #include "absl/status/status.h"
@@ -15,10 +13,6 @@ namespace wavebake::cli {
 inline constexpr int kExitFailure = 1;        // an error, a job that FAILED or was CANCELLED
 inline constexpr int kExitBadInput = 2;       // a flag, file or request the command refused
 inline constexpr int kExitInterrupted = 130;  // SIGINT / SIGTERM ended the command early
-
-// absl and gRPC share the canonical codes; the message keeps the code's name
-// (e.g. "UNAUTHENTICATED: missing bearer token").
-absl::Status FromGrpc(const grpc::Status& status);
 
 // INVALID_ARGUMENT (and a few like it) exit with kExitBadInput, the rest with kExitFailure.
 [[noreturn]] void Fail(const std::string& command, const absl::Status& status);

@@ -4,48 +4,75 @@
 
 #include <cstdio>
 
-namespace wavebake::cli {
+#include "absl/strings/ascii.h"
+#include "driver/job_watch.h"
 
-ProgressReporter::ProgressReporter()
-    : tty_(isatty(STDERR_FILENO) != 0),
+namespace wavebake::cli {
+namespace {
+
+std::string PhaseLabel(v1::Phase p) {
+  switch (p) {
+    case v1::PHASE_BAKING:
+      return "bake tiles";
+    case v1::PHASE_TRANSFORMING:
+      return "transform columns";
+    case v1::PHASE_FINALIZING:
+      return "finalize";
+    default:  // PHASE_DONE -> "done"
+      return absl::AsciiStrToLower(v1::Phase_Name(p).substr(6));
+  }
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(bool quiet)
+    : quiet_(quiet),
+      tty_(isatty(STDERR_FILENO) != 0),
       start_(Clock::now()),
       phase_start_(start_),
       last_print_(start_) {}
 
-void ProgressReporter::Update(const ProgressState& s) {
+void ProgressBar::Show(const v1::JobEvent& e) {
+  if (quiet_) return;
+  if (const std::string notable = driver::NotableEventText(e); !notable.empty())
+    std::fprintf(stderr, "\n%s\n", notable.c_str());
+  if (e.phase() == v1::PHASE_QUEUED) return;
   const auto now = Clock::now();
-  const bool new_phase = s.phase != phase_;
+  const bool new_phase = e.phase() != phase_;
   if (new_phase) {
     if (drawn_ && tty_) std::fputc('\n', stderr);
-    phase_ = s.phase;
+    phase_ = e.phase();
     phase_start_ = now;
   }
-  const bool last = s.total > 0 && s.done == s.total;
+  const int64_t done = e.phase_tasks_done(), total = e.phase_tasks_total();
+  const bool last = total > 0 && done == total;
   if (!tty_ && !new_phase && !last && now - last_print_ < std::chrono::seconds(3)) return;
   if (tty_ && !new_phase && !last && now - last_print_ < std::chrono::milliseconds(100)) return;
   last_print_ = now;
 
+  // The coordinator's rate and ETA when it sent them (>= 0), else our own clock's.
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double in_phase = std::chrono::duration<double>(now - phase_start_).count();
-  const double frac = s.total > 0 ? double(s.done) / double(s.total) : 0;
-  const double eta = s.eta_seconds >= 0 ? s.eta_seconds
-                     : frac > 0         ? in_phase * (1 - frac) / frac
-                                        : 0;
-  const double mrays = s.rays_per_second >= 0 ? s.rays_per_second / 1e6
-                       : elapsed > 0          ? s.rays / elapsed / 1e6
-                                              : 0;
+  const double frac = total > 0 ? double(done) / double(total) : 0;
+  const double eta = e.eta_seconds() >= 0 ? e.eta_seconds()
+                     : frac > 0           ? in_phase * (1 - frac) / frac
+                                          : 0;
+  const double mrays = e.rays_per_second() >= 0 ? e.rays_per_second() / 1e6
+                       : elapsed > 0            ? e.rays_traced() / elapsed / 1e6
+                                                : 0;
   char bar[31];
   const int filled = static_cast<int>(frac * 30);
   for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '.';
   bar[30] = 0;
   std::fprintf(stderr, "%s%-18s [%s] %3d%% %lld/%lld  %.1f Mrays/s  ETA %.0fs%s", tty_ ? "\r" : "",
-               s.phase.c_str(), bar, static_cast<int>(frac * 100), static_cast<long long>(s.done),
-               static_cast<long long>(s.total), mrays, eta, tty_ ? "\033[K" : "\n");
+               PhaseLabel(e.phase()).c_str(), bar, static_cast<int>(frac * 100),
+               static_cast<long long>(done), static_cast<long long>(total), mrays, eta,
+               tty_ ? "\033[K" : "\n");
   std::fflush(stderr);
   drawn_ = true;
 }
 
-void ProgressReporter::Finish() {
+void ProgressBar::Finish() {
   if (drawn_ && tty_) std::fputc('\n', stderr);
   drawn_ = false;
 }

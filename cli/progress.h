@@ -1,33 +1,34 @@
 #pragma once
-// Progress of long work on stderr: a redrawn bar on a terminal, plain lines
-// (at most one every few seconds, and at every phase change) otherwise.
+// A followed job on stderr (DESIGN.md §5 "Long work shows a progress bar on
+// a terminal and plain progress lines otherwise"): each event of
+// driver/job_watch.h redraws the bar with the coordinator's own per-phase
+// task counts, rays/s and ETA; the notable events (failures, expired leases,
+// restarts) get a line of their own.
 #include <chrono>
-#include <cstdint>
+#include <functional>
 #include <string>
+
+#include "wavebake.pb.h"
 
 namespace wavebake::cli {
 
-struct ProgressState {
-  std::string phase;  // e.g. "bake tiles", "transform columns", "finalize"
-  int64_t done = 0, total = 0;
-  uint64_t rays = 0;  // rays traced so far in the whole job
-  // When known better by the caller (a coordinator's live numbers), >= 0
-  // replaces the reporter's own estimates from its clock.
-  double rays_per_second = -1;
-  double eta_seconds = -1;
-};
-
-class ProgressReporter {
+class ProgressBar {
  public:
-  ProgressReporter();
-  void Update(const ProgressState& s);
-  void Finish();  // ends the bar's line
+  explicit ProgressBar(bool quiet);
+  ~ProgressBar() { Finish(); }
+
+  void Show(const v1::JobEvent& event);
+  // For driver::WatchOptions::on_event; the bar must outlive the watch.
+  std::function<void(const v1::JobEvent&)> Callback() {
+    return [this](const v1::JobEvent& e) { Show(e); };
+  }
+  void Finish();  // ends the bar's line (also on destruction)
 
  private:
   using Clock = std::chrono::steady_clock;
-  bool tty_;
+  bool quiet_, tty_;
   Clock::time_point start_, phase_start_, last_print_;
-  std::string phase_;
+  v1::Phase phase_ = v1::PHASE_UNSPECIFIED;
   bool drawn_ = false;
 };
 

@@ -104,7 +104,7 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
 }
 
 int64_t EstimateRays(int64_t samples, int light_res, int supersample) {
-  // K is rounded up to a square (worker/jitter_pattern.h).
+  // K is rounded up to a square (core/jitter_pattern.h).
   const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
   return samples * 6 * light_res * light_res * strata * strata / 2;
 }

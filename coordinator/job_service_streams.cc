@@ -39,7 +39,7 @@ grpc::Status JobServiceImpl::Watch(grpc::ServerContext* context, const v1::JobId
       absl::StatusOr<std::vector<EventRecord>> events = deps_.table->ReadEvents(*id, seq, 256);
       if (!events.ok()) return Reply(events.status());
       for (const EventRecord& e : *events) {
-        ToProto(e, &event);
+        ToProto(e, info->record, &event);
         event.set_message(deps_.client_paths(event.message()));
         if (!writer->Write(event)) return grpc::Status::OK;  // the client went away
         seq = e.seq;

@@ -3,6 +3,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "coordinator/lease_table.h"
+#include "coordinator/worker_errors.h"
 
 namespace wavebake {
 
@@ -28,16 +29,14 @@ absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
     if (!broken_.ok()) return broken_;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     const int64_t now = clock_->NowMs();
     Transition tx;
     ExpireLocked(now, tx, cleanups);  // may exclude this worker
     w->second.last_seen_ms = now;
     if (w->second.rec.excluded) {
-      refused = absl::FailedPreconditionError(
-          absl::StrCat("worker_id: worker ", worker_id, " is excluded after ",
-                       w->second.rec.consecutive_failures, " consecutive failures"));
+      refused = ExcludedWorkerError(worker_id, w->second.rec.consecutive_failures);
     } else if (!runnable_.empty()) {
       JobState& js = jobs_.at(*runnable_.begin());  // oldest job with a ready task
       const int idx = *js.ready.begin();            // its lowest ready task
@@ -85,7 +84,7 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
     if (!broken_.ok()) return broken_;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     const int64_t now = clock_->NowMs();
     Transition tx;
@@ -133,7 +132,7 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
     if (!workers_.contains(worker_id)) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     auto job = jobs_.find(key.job_id);
     if (job == jobs_.end()) {
@@ -194,7 +193,7 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
     if (!workers_.contains(worker_id)) {
-      return absl::NotFoundError(absl::StrCat("worker_id: unknown worker ", worker_id));
+      return UnknownWorkerError(worker_id);
     }
     auto job = jobs_.find(key.job_id);
     if (job == jobs_.end()) {

@@ -1,5 +1,7 @@
 #include "coordinator/proto_convert.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 
 namespace wavebake {
@@ -16,7 +18,20 @@ static_assert(static_cast<int>(EventKind::kResumed) == v1::EVENT_RESUMED);
 grpc::Status ToGrpc(const absl::Status& status) {
   if (status.ok()) return grpc::Status::OK;
   // absl and gRPC share the canonical code numbers.
-  return {static_cast<grpc::StatusCode>(status.code()), std::string(status.message())};
+  const auto code = static_cast<grpc::StatusCode>(status.code());
+  std::string message(status.message());
+  // Payloads (coordinator/worker_errors.h) travel as the rich error model's
+  // details: type URL and serialized message, as a google.protobuf.Any.
+  v1::StatusDetails details;
+  status.ForEachPayload([&](absl::string_view type_url, const absl::Cord& value) {
+    google::protobuf::Any* any = details.add_details();
+    any->set_type_url(std::string(type_url));
+    any->set_value(std::string(value));
+  });
+  if (details.details_size() == 0) return {code, message};
+  details.set_code(static_cast<int32_t>(code));
+  details.set_message(message);
+  return {code, message, details.SerializeAsString()};
 }
 
 void ToProto(const JobInfo& info, v1::Job* job) {
@@ -43,7 +58,35 @@ void ToProto(const JobInfo& info, v1::Job* job) {
   job->set_leased_tasks(info.leased_tasks);
 }
 
-void ToProto(const EventRecord& e, v1::JobEvent* out) {
+namespace {
+
+// The tasks of one phase done and in all, out of the job's `done` (tasks run
+// phase after phase: tiles, then groups, then FINALIZE).
+void SetPhaseTasks(const JobRecord& job, v1::JobEvent* out) {
+  const int done = out->tasks_done();
+  int before = 0, total = job.tasks_total();
+  switch (out->phase()) {
+    case v1::PHASE_BAKING:
+      total = job.tiles;
+      break;
+    case v1::PHASE_TRANSFORMING:
+      before = job.tiles;
+      total = job.groups;
+      break;
+    case v1::PHASE_FINALIZING:
+      before = job.tiles + job.groups;
+      total = 1;
+      break;
+    default:  // queued or ended: the whole job
+      break;
+  }
+  out->set_phase_tasks_done(std::clamp(done - before, 0, total));
+  out->set_phase_tasks_total(total);
+}
+
+}  // namespace
+
+void ToProto(const EventRecord& e, const JobRecord& job, v1::JobEvent* out) {
   out->Clear();
   out->set_job_id(absl::StrCat(e.job_id));
   out->set_seq(e.seq);
@@ -62,6 +105,7 @@ void ToProto(const EventRecord& e, v1::JobEvent* out) {
   out->set_bytes_written(e.bytes_written);
   out->set_eta_seconds(-1);
   out->set_stats_json(e.stats_json);
+  SetPhaseTasks(job, out);
 }
 
 void ProgressEvent(const JobInfo& info, int64_t last_seq, int64_t now_ms, v1::JobEvent* out) {
@@ -78,6 +122,7 @@ void ProgressEvent(const JobInfo& info, int64_t last_seq, int64_t now_ms, v1::Jo
   out->set_rays_per_second(info.rays_per_second);
   out->set_bytes_written(info.bytes_written);
   out->set_eta_seconds(info.eta_seconds);
+  SetPhaseTasks(r, out);
 }
 
 bool ToProto(const LeaseGrant& g, v1::Task* task) {

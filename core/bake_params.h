@@ -1,6 +1,6 @@
 #pragma once
 // Every parameter of a bake job (DESIGN.md §5 flags). Plain data; validated
-// by ValidateBakeParams (core/bake_params.cc), recorded in the store's .zattrs.
+// by ValidateBakeParams (core/bake_params_io.h), recorded in the store's .zattrs.
 #include <cstdint>
 #include <string>
 

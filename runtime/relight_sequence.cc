@@ -1,5 +1,6 @@
 #include "runtime/relight_sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -108,6 +109,19 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
     if (absl::Status s = WriteErrorsCsv(o.out_dir, frames); !s.ok()) return s;
   }
   return frames;
+}
+
+SequenceSummary Summarize(std::span<const SequenceFrame> frames) {
+  SequenceSummary sum;
+  if (frames.empty()) return sum;
+  for (const SequenceFrame& f : frames) {
+    sum.mean_rel_rms += f.rel_rms;
+    sum.max_rel_rms = std::max(sum.max_rel_rms, f.rel_rms);
+    sum.mean_seconds += f.seconds;
+  }
+  sum.mean_rel_rms /= static_cast<double>(frames.size());
+  sum.mean_seconds /= static_cast<double>(frames.size());
+  return sum;
 }
 
 }  // namespace wavebake

@@ -8,6 +8,7 @@
 // frame relit with every wavelet light (the store's best answer), so the
 // number isolates what the lighting approximation costs.
 #include <filesystem>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -42,6 +43,13 @@ struct SequenceOptions {
   std::filesystem::path out_dir;
   std::string frame_extension = ".png";
 };
+
+// Over a sequence's frames: what `relight` prints and the charts plot.
+struct SequenceSummary {
+  double mean_rel_rms = 0, max_rel_rms = 0;
+  double mean_seconds = 0;
+};
+SequenceSummary Summarize(std::span<const SequenceFrame> frames);
 
 // Also writes out_dir/errors.csv (frame, degrees, rel_rms, seconds).
 absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem::path& store,

@@ -3,7 +3,7 @@
 // bytes of each chunk are regrouped by their place inside the element — all
 // first bytes, then all second bytes, … For small integers (delta-coded
 // transport/indices, int16 transport/data) the high bytes become long runs of
-// 0x00/0xFF that zstd packs far tighter than interleaved (issue 7, measured in
+// 0x00/0xFF that zstd packs far tighter than interleaved (measured in
 // docs/RESULTS.md). Debian's numcodecs 0.11 reads it.
 #include <cstddef>
 #include <span>

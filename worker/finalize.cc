@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/column_coding.h"
+#include "core/quantization_steps.h"
 #include "core/quantizer.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
@@ -12,9 +14,7 @@
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
-#include "worker/column_coding.h"
 #include "worker/group_result.h"
-#include "worker/quantization_steps.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
 
@@ -69,7 +69,7 @@ struct CscArrays {
 
 // zstd level of the nnz-long arrays: 9 packed cubes-wall indices 10 % and
 // values 4 % tighter than 3 at ~0.2 s per 20 MB; 19 gained 5 % more for 10×
-// the time (issue 7).
+// the time.
 constexpr int kNnzZstdLevel = 9;
 
 absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,

@@ -11,7 +11,7 @@ namespace {
 constexpr int kFaces = 6;
 
 // The row's shape is fixed by the job's BakeParams, so a mismatch is a
-// programming error, not bad input (as in worker/transport_row.cc).
+// programming error, not bad input (as in core/transport_row.cc).
 void CheckRowOrDie(int n, std::span<const float> row) {
   if (n > 0 && (n & (n - 1)) == 0 && row.size() == static_cast<size_t>(kFaces) * n * n) return;
   std::fprintf(stderr, "RowTransform: row of %zu entries is not 6·n² for n=%d a power of two\n",

@@ -81,7 +81,8 @@ nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& s
       arrays[name] = DirectoryBytes(store::Path(store, name));
   }
   const uint64_t raw = uint64_t(ctx.samples.size()) * uint64_t(ctx.plan.columns) * 4;
-  // Bits per kept coefficient of each part of the sparse matrix (issue 7).
+  // Bits per kept coefficient of each part of the sparse matrix: where the
+  // bytes go, values against positions (docs/RESULTS.md chart 5).
   const double nnz = static_cast<double>(ReadNnz(store));
   const auto per = [&](const char* name) {
     return nnz > 0 ? 8.0 * arrays[name].get<double>() / nnz : 0.0;

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/column_coding.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
-#include "worker/column_coding.h"
 #include "worker/group_result.h"
 
 namespace wavebake {

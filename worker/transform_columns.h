@@ -2,9 +2,9 @@
 // TRANSFORM_COLUMNS, the reduce half of the blocked transpose (DESIGN.md §2):
 // one group of light columns, read from the staging chunk of every tile,
 // assembled into W×H column images, transformed to their depth and selected
-// (worker/column_coding.h), and written back to staging as the group's
+// (core/column_coding.h), and written back to staging as the group's
 // GroupResult (worker/group_result.h) for FINALIZE. Free of scheduling: the
-// local driver and remote workers call it alike, in any order, any number of
+// embedded bake's workers and remote ones call it alike, in any order, any number of
 // times (a retry rewrites the same bytes).
 #include <cstdint>
 #include <filesystem>

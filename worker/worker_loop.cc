@@ -30,11 +30,18 @@ absl::Status FromGrpc(const grpc::Status& s, const char* rpc) {
                       absl::StrCat(rpc, ": ", s.error_message()));
 }
 
-// NOT_FOUND names what was not found; only an unknown worker id is cured by
-// registering again.
+// Only an unknown worker id is cured by registering again; the coordinator
+// says so by the WorkerError in the status details (proto/wavebake.proto),
+// whatever else was not found and however the message is worded.
 bool UnknownWorker(const grpc::Status& s) {
-  return s.error_code() == grpc::StatusCode::NOT_FOUND &&
-         absl::StartsWith(s.error_message(), "worker_id:");
+  if (s.error_code() != grpc::StatusCode::NOT_FOUND) return false;
+  v1::StatusDetails details;
+  if (!details.ParseFromString(s.error_details())) return false;
+  for (const google::protobuf::Any& any : details.details()) {
+    v1::WorkerError error;
+    if (any.UnpackTo(&error) && error.reason() == v1::WorkerError::UNKNOWN_WORKER) return true;
+  }
+  return false;
 }
 
 int64_t NowUnixMs() {

@@ -1,11 +1,10 @@
-// Failure case of issue 7: a light resolution too low for a small, bright
-// sun. T's columns are cube texels; the bake traces each texel's light along
-// K jittered directions inside it (DESIGN.md §1), so at N = 8 (texels of
-// ~11°) the 1.5° sun of builtin:sky is replaced by K point lights spread over
-// a texel: its hard shadow becomes several displaced copies. The dense T
-// (no compression, no lighting approximation: runtime/dense_trace.h) is
-// compared with the independent Monte-Carlo reference (runtime/reference.h),
-// so what is measured is the discretization of T alone.
+// A failure case (docs/RESULTS.md "Where methods fail"): a light resolution too low for a small,
+// bright sun. T's columns are cube texels; the bake traces each texel's light along K jittered
+// directions inside it (DESIGN.md §1), so at N = 8 (texels of ~11°) the 1.5° sun of builtin:sky is
+// replaced by K point lights spread over a texel: its hard shadow becomes several displaced copies.
+// The dense T (no compression, no lighting approximation: runtime/dense_trace.h) is compared with
+// the independent Monte-Carlo reference (runtime/reference.h), so what is measured is the
+// discretization of T alone.
 #include <gtest/gtest.h>
 
 #include <algorithm>

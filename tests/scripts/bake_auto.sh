@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `wavebake bake --auto --target-error E --env ENV` (issue 7): a scene that
+# `wavebake bake --auto --target-error E --env ENV`: a scene that
 # needs little (a disk over a plane under constant light: soft, broad
 # occlusion) comes out at the coarsest cubemap, a scene with a sharp sun
 # shadow (sphere-plane under builtin:sky) gets a finer one; both stores meet

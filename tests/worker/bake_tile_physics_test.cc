@@ -46,7 +46,7 @@ void BakeAllTiles(const BakeContext& ctx, const std::filesystem::path& store,
 // White furnace (DESIGN.md §1): nothing occludes the flat ground, so every
 // sample's row sums to ∫ cos/π dω = 1 — also at the plane's edge, where the
 // whole upper hemisphere is still open. At N=16 K=4 the jittered quadrature's
-// error has σ ≤ 0.05 % (tests/worker/transport_row_test.cc), far inside 0.5 %.
+// error has σ ≤ 0.05 % (tests/core/transport_row_test.cc), far inside 0.5 %.
 // column_group 100 leaves the last of 16 groups 36 columns and 64 padding rows.
 TEST(BakeTilePhysicsTest, WhiteFurnaceFromStagedRows) {
   BakeParams p;

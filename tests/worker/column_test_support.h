@@ -1,6 +1,7 @@
 #pragma once
 // Helpers of the column-stage tests: scratch directories, a bake context for
-// a small job, synthetic staging written directly in the staging format
+// a small job, the synthetic matrix of tests/testing/synthetic_columns.h
+// as staging written directly in the staging format
 // (storage/store_layout.h, core/job_plan.h) with ZarrArray, and the
 // independent python reader.
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "core/bake_params.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
+#include "tests/testing/synthetic_columns.h"
 #include "worker/bake_context.h"
 
 namespace wavebake::column_testing {
@@ -24,15 +26,10 @@ using test_support::ScratchDir;
 std::unique_ptr<BakeContext> MakeContext(const BakeParams& params,
                                          const std::string& layout = "camera:32x32");
 
-// Value of cell (x, y) of light column m in a synthetic W×H matrix.
-using ColumnImage = std::function<float(int column, int x, int y)>;
-
-// What the synthetic column m is (column % 4, with every 16th column empty).
-enum class SyntheticKind { kSmooth, kSpiky, kMixed, kEmpty };
-SyntheticKind KindOf(int column);
-// Smooth lighting, a few isolated spikes, and a smooth field cut by a hard
-// shadow edge plus a spike, over a W×H grid.
-ColumnImage SyntheticMatrix(int width, int height);
+using test_support::ColumnImage;
+using test_support::KindOf;
+using test_support::SyntheticKind;
+using test_support::SyntheticMatrix;
 
 // Writes staging/transport and staging/tile_energy for `plan` exactly as
 // BAKE_TILE does (zero padding rows in the last group, tile-major cells,

@@ -1,4 +1,4 @@
-// Where the compression fails (issue 7, docs/RESULTS.md "Where methods
+// Where the compression fails (docs/RESULTS.md "Where methods
 // fail"), through the real pipeline on a real scene: one trace, then the
 // column stage and FINALIZE rerun per setting on the same staging.
 //   * Full 4D inflation: where column images are rough at every scale — the
@@ -226,11 +226,12 @@ TEST(FailureCompressionTest, TooFewBitsFollowsTheDitherLawAndPassesTheTarget) {
       << "bits auto chose " << chosen;
 }
 
-// Issue 7: bytes, not coefficients, are what users pay for. On cubes-wall
+// Bytes, not coefficients, are what users pay for. On cubes-wall
 // (64×64 samples, N = 16) the adaptive store keeps 3.6× fewer coefficients
 // than 2d, yet with the paper's 2^l level scaling (its values cost ~l more
-// bits each) it is no smaller in bytes: 1.00× here, and 0.99× with main's
-// coding before issue 7 (2d 830 KB, adaptive 834 KB; 1.13× at N = 32). The
+// bits each) it is no smaller in bytes: 1.00× here, and 0.99× with the
+// per-column max coding before the uniform step (2d 830 KB, adaptive 834 KB;
+// 1.13× at N = 32). The
 // uniform, error-budgeted step turns the coefficient win into a byte win at
 // the same target and error budget.
 TEST(FailureCompressionTest, AdaptiveWinsInBytesWithTheUniformStep) {

@@ -1,4 +1,4 @@
-// Where tracing fails (issue 7, docs/RESULTS.md "Where methods fail"):
+// Where tracing fails (docs/RESULTS.md "Where methods fail"):
 //   * the ray offset ε (DESIGN.md §1: rays start at x + ε n). Too large, the
 //     origin jumps past a thin occluder and light leaks through it: under the
 //     disk of disk-over-plane the row sum, analytically 1 − r²/(r²+h²), goes

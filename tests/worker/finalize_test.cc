@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "core/column_coding.h"
 #include "core/quantizer.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
@@ -16,7 +17,6 @@
 #include "storage/store_reader.h"
 #include "storage/zarr_array.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/column_coding.h"
 #include "worker/group_result.h"
 #include "worker/transform_columns.h"
 

@@ -1,0 +1,12 @@
+#pragma once
+// The flags every client of a running coordinator takes (`submit`, `watch`,
+// `status`, `cancel`, `fetch`, `worker`): --coordinator, --token-file, --tls-ca.
+#include <CLI/CLI.hpp>
+
+#include "driver/client.h"
+
+namespace wavebake::cli {
+
+void AddClientFlags(CLI::App& cmd, driver::ClientConfig& config);
+
+}  // namespace wavebake::cli

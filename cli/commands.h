@@ -1,0 +1,21 @@
+#pragma once
+// The subcommands of `wavebake` (DESIGN.md §5), one file each
+// (cli/cmd_<name>.cc): the embedded `bake`; the `coordinator` and `worker`
+// processes; the clients of a running coordinator; and the readers of a
+// finished store, `relight` and `eval`.
+#include <CLI/CLI.hpp>
+
+namespace wavebake::cli {
+
+void AddBakeCommand(CLI::App& app);
+void AddCoordinatorCommand(CLI::App& app);
+void AddWorkerCommand(CLI::App& app);
+void AddSubmitCommand(CLI::App& app);
+void AddWatchCommand(CLI::App& app);
+void AddStatusCommand(CLI::App& app);
+void AddCancelCommand(CLI::App& app);
+void AddFetchCommand(CLI::App& app);
+void AddRelightCommand(CLI::App& app);
+void AddEvalCommand(CLI::App& app);
+
+}  // namespace wavebake::cli

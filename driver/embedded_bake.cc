@@ -1,0 +1,156 @@
+#include "driver/embedded_bake.h"
+
+#include <spdlog/spdlog.h>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "coordinator/coordinator.h"
+#include "coordinator/job_planner.h"
+#include "driver/client.h"
+#include "driver/job_query.h"
+#include "driver/job_submit.h"
+#include "driver/job_watch.h"
+#include "proto/bake_request.h"
+#include "storage/scoped_dir.h"
+#include "worker/publish_store.h"
+#include "worker/worker_loop.h"
+
+namespace wavebake::driver {
+namespace {
+
+// The store's name inside the temporary store root (any valid output_name).
+constexpr char kStoreName[] = "bake.wbk";
+
+// The worker loops, each on its own thread, drained and joined on destruction.
+class Workers {
+ public:
+  Workers(const Coordinator& coordinator, std::shared_ptr<grpc::Channel> channel, int count,
+          const std::map<std::string, std::string>& local_scenes) {
+    const std::filesystem::path store_root = coordinator.options().store_root;
+    // One context and scene cache for the process: a job's BakeContext (scene,
+    // samples, Embree scene) is built once, whatever the number of loops.
+    auto contexts = std::make_shared<ContextCache>(2);
+    auto scenes = std::make_shared<SceneCache>(store_root / ".scene-cache", local_scenes);
+    for (int i = 0; i < count; ++i) {
+      WorkerOptions options;
+      options.store_root = store_root;
+      options.threads = 1;
+      options.name = absl::StrCat("bake-", i);
+      options.contexts = contexts;
+      options.scenes = scenes;
+      loops_.push_back(std::make_unique<WorkerLoop>(channel, std::move(options)));
+    }
+    for (auto& loop : loops_) {
+      threads_.emplace_back([this, loop = loop.get()] {
+        absl::Status s = loop->Run();
+        std::lock_guard lock(mu_);
+        if (!s.ok() && error_.ok()) error_ = s;
+        ++stopped_;
+      });
+    }
+  }
+  ~Workers() {
+    for (auto& loop : loops_) loop->Drain();
+    for (std::thread& t : threads_) t.join();
+  }
+
+  // Every loop has ended before being drained: no task will run any more.
+  bool AllStopped() const {
+    std::lock_guard lock(mu_);
+    return stopped_ == static_cast<int>(loops_.size());
+  }
+  absl::Status error() const {
+    std::lock_guard lock(mu_);
+    return error_;
+  }
+
+ private:
+  std::vector<std::unique_ptr<WorkerLoop>> loops_;
+  std::vector<std::thread> threads_;
+  mutable std::mutex mu_;
+  int stopped_ = 0;
+  absl::Status error_;
+};
+
+// Cancels the job once `interrupted` rises or no worker is left to run it
+// (the watch meanwhile blocks in its stream).
+class Watchdog {
+ public:
+  Watchdog(const Client& client, std::string job_id, const std::atomic<bool>* interrupted,
+           const Workers& workers)
+      : thread_([&client, job_id = std::move(job_id), interrupted, &workers](std::stop_token stop) {
+          while (!stop.stop_requested()) {
+            if ((interrupted && interrupted->load()) || workers.AllStopped()) {
+              (void)CancelJob(client, job_id);
+              return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          }
+        }) {}
+
+ private:
+  std::jthread thread_;
+};
+
+}  // namespace
+
+absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams& params,
+                                     const std::filesystem::path& out,
+                                     const EmbeddedBakeOptions& options) {
+  if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
+  std::map<std::string, std::string> local_scenes;  // sha256 -> the path as given
+  if (!IsBuiltinScene(scene)) {
+    absl::StatusOr<SceneFile> file = ReadSceneFile(scene);
+    if (!file.ok()) return file.status();
+    local_scenes[file->sha256] = scene;
+  }
+  // The coordinator's data directory, beside the output so the store moves
+  // to it by rename.
+  absl::StatusOr<ScopedDir> data = ScopedDir::CreateBeside(out, "bake");
+  if (!data.ok()) return data.status();
+  const std::filesystem::path store_root = data->path() / "store";
+  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
+      {.listen_address = "",  // in-process only
+       .data_dir = data->path(),
+       .store_root = store_root,
+       // One process: excluding one of its loops for failing tasks helps
+       // nobody; max_attempts still fails a job that fails everywhere.
+       .worker_failure_limit = 1 << 30,
+       .wait_ms = 10,         // idle workers ask again soon: a phase's last task is not a wait
+       .hide_paths = false},  // the client is this machine's user
+      MakeJobPlanner(
+          {.data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes}),
+      MakeJobCleanup(store_root));
+  if (!coordinator.ok()) return coordinator.status();
+  const Client client((*coordinator)->InProcessChannel(), "");
+
+  const int workers = options.workers > 0
+                          ? options.workers
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  absl::StatusOr<v1::Job> job;
+  {
+    Workers loops(**coordinator, (*coordinator)->InProcessChannel(), workers, local_scenes);
+    v1::BakeRequest request = ToBakeRequest(params);
+    request.set_output_name(kStoreName);
+    absl::StatusOr<v1::Job> submitted = SubmitScene(client, request, scene);
+    if (!submitted.ok()) return submitted.status();
+    Watchdog watchdog(client, submitted->id(), options.interrupted, loops);
+    job = WatchJob(client, submitted->id(), {.patience_seconds = 60, .on_event = options.on_event});
+    if (job.ok() && job->phase() == v1::PHASE_CANCELLED && loops.AllStopped() &&
+        !loops.error().ok()) {
+      job = loops.error();  // the workers' own failure, not a user's cancel
+    }
+  }  // workers drained: nothing writes any more
+  if (job.ok() && job->phase() == v1::PHASE_DONE) {
+    if (absl::Status s = PublishStore(store_root / job->store_path(), out); !s.ok()) return s;
+  }
+  (*coordinator)->Shutdown();
+  return job;
+}
+
+}  // namespace wavebake::driver

@@ -1,0 +1,36 @@
+#pragma once
+// `wavebake bake` (DESIGN.md §5, "the embedded default"): a coordinator and
+// N workers in this one process, talking through the coordinator's
+// in-process channel with the same services, the same planner and the same
+// worker loop as a cluster — so the cluster code is the code every bake runs.
+// The coordinator's data directory is a temporary one beside the output,
+// removed afterwards; the finished store is moved to the output.
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "core/bake_params.h"
+#include "wavebake.pb.h"
+
+namespace wavebake::driver {
+
+struct EmbeddedBakeOptions {
+  int workers = 0;  // worker loops of one thread each; 0 = one per hardware thread
+  // The job's events as driver/job_watch.h delivers them (progress, failures).
+  std::function<void(const v1::JobEvent&)> on_event = {};
+  // Raised (e.g. by SIGINT): the job is cancelled and the bake returns it CANCELLED.
+  const std::atomic<bool>* interrupted = nullptr;
+};
+
+// The job as it ended: DONE (the store is at `out`; an older store there is
+// replaced), FAILED with its error, or CANCELLED — then nothing is at `out`
+// (an older store stays). Errors: bad input before the job starts (a scene
+// file that cannot be read, an output path that is not a store, a refused
+// request), named by its field.
+absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams& params,
+                                     const std::filesystem::path& out,
+                                     const EmbeddedBakeOptions& options);
+
+}  // namespace wavebake::driver

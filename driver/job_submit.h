@@ -1,0 +1,30 @@
+#pragma once
+// Submitting a bake (DESIGN.md §4 Submit, UploadScene): SCENE is a built-in
+// (`builtin:NAME`) or a scene file, which the coordinator stores once by
+// content hash — a file it already has is not sent again.
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "driver/client.h"
+#include "wavebake.pb.h"
+
+namespace wavebake::driver {
+
+struct SceneFile {
+  std::string bytes;
+  std::string sha256;     // 64 lowercase hex digits
+  std::string file_name;  // the last path component: its extension picks the loader
+};
+
+bool IsBuiltinScene(const std::string& scene);
+
+// The SCENE argument's file; InvalidArgument naming it when unreadable.
+absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path);
+
+// Submits `request` for `scene` (the request's own scene is replaced). A
+// file's hash goes first; only if the coordinator does not know it are the
+// bytes uploaded, then the job is submitted again.
+absl::StatusOr<v1::Job> SubmitScene(const Client& client, v1::BakeRequest request,
+                                    const std::string& scene);
+
+}  // namespace wavebake::driver

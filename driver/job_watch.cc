@@ -1,0 +1,100 @@
+#include "driver/job_watch.h"
+
+#include <chrono>
+#include <optional>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "driver/job_query.h"
+
+namespace wavebake::driver {
+namespace {
+
+bool IsTerminal(v1::Phase p) {
+  return p == v1::PHASE_DONE || p == v1::PHASE_FAILED || p == v1::PHASE_CANCELLED;
+}
+
+// What the streams of one watch have seen.
+struct Seen {
+  int64_t seq = 0;
+  double rays_per_second = -1;
+  double eta_seconds = -1;
+  bool ended = false;
+};
+
+// One Watch stream, to its end; `progressed`: it delivered something new.
+grpc::Status Follow(const Client& client, const std::string& job_id, const WatchOptions& options,
+                    Seen& seen, bool* progressed) {
+  v1::JobId id;
+  id.set_id(job_id);
+  std::unique_ptr<grpc::ClientContext> ctx = client.Call(0);
+  std::unique_ptr<grpc::ClientReader<v1::JobEvent>> reader = client.jobs().Watch(ctx.get(), id);
+  v1::JobEvent event;
+  while (reader->Read(&event)) {
+    if (event.kind() == v1::EVENT_PROGRESS) {
+      seen.rays_per_second = event.rays_per_second();
+      seen.eta_seconds = event.eta_seconds();
+    } else {
+      if (event.seq() <= seen.seq) continue;
+      seen.seq = event.seq();
+      event.set_rays_per_second(seen.rays_per_second);
+      event.set_eta_seconds(seen.eta_seconds);
+    }
+    *progressed = true;
+    if (options.on_event) options.on_event(event);
+    seen.ended = seen.ended || IsTerminal(event.phase());
+  }
+  return reader->Finish();
+}
+
+}  // namespace
+
+std::string NotableEventText(const v1::JobEvent& e) {
+  const char* what = nullptr;
+  switch (e.kind()) {
+    case v1::EVENT_TASK_FAILED:
+      what = "task failed";
+      break;
+    case v1::EVENT_LEASE_EXPIRED:
+      what = "lease expired";
+      break;
+    case v1::EVENT_WORKER_EXCLUDED:
+      what = "worker excluded";
+      break;
+    case v1::EVENT_RESUMED:
+      what = "coordinator restarted; job resumed";
+      break;
+    default:
+      return "";
+  }
+  std::string text = absl::StrCat("job ", e.job_id(), ": ", what);
+  if (e.task_kind() != v1::TASK_KIND_UNSPECIFIED)
+    absl::StrAppend(&text, " (", v1::TaskKind_Name(e.task_kind()), " ", e.task_index(), ")");
+  if (!e.message().empty()) absl::StrAppend(&text, ": ", e.message());
+  return text;
+}
+
+absl::StatusOr<v1::Job> WatchJob(const Client& client, const std::string& job_id,
+                                 const WatchOptions& options) {
+  if (absl::StatusOr<v1::Job> job = GetJob(client, job_id); !job.ok()) return job.status();
+  Seen seen;
+  std::optional<std::chrono::steady_clock::time_point> down_since;
+  while (!seen.ended) {
+    bool progressed = false;
+    const grpc::Status s = Follow(client, job_id, options, seen, &progressed);
+    if (seen.ended) break;
+    // A stream ends early when the coordinator goes away (UNAVAILABLE, or OK
+    // from one shutting down): wait for it to come back.
+    if (!s.ok() && s.error_code() != grpc::StatusCode::UNAVAILABLE) return FromGrpc(s);
+    const auto now = std::chrono::steady_clock::now();
+    if (progressed || !down_since) down_since = now;
+    if (now - *down_since > std::chrono::duration<double>(options.patience_seconds)) {
+      return absl::UnavailableError(absl::StrCat(
+          "coordinator unreachable for ", options.patience_seconds, " s: ", s.error_message()));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  }
+  return GetJob(client, job_id);
+}
+
+}  // namespace wavebake::driver

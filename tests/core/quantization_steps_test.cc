@@ -1,0 +1,92 @@
+// The step choice of FINALIZE (core/quantization_steps.h) on hand-made
+// columns: the uniform rule's budget arithmetic and its int16 fallback.
+#include "core/quantization_steps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/column_coding.h"
+#include "core/quantizer.h"
+
+namespace wavebake {
+namespace {
+
+BakeParams Auto(double target) {
+  BakeParams p;
+  p.target_error = target;
+  return p;  // bits auto, uniform, matrix scope: the defaults
+}
+
+// Three ordinary columns: 100 kept coefficients each (U = 100/12), |v| ≤ 1.
+std::vector<ColumnQuantInput> Ordinary() {
+  return std::vector<ColumnQuantInput>(
+      3, {.max_abs = 1.0, .step_unit = 100.0 / 12, .reference_energy = 50.0});
+}
+
+TEST(QuantizationStepsTest, UniformStepSpendsExactlyTheHalfBudget) {
+  const std::vector<ColumnQuantInput> cols = Ordinary();
+  const StepPlan plan = PlanSteps(cols, Auto(0.01));
+  // (t/2)²·ΣE = 2.5e-5·150 = 3.75e-3 = Δ²·300/12  →  Δ = sqrt(1.5e-4).
+  const double delta = std::sqrt(0.25 * 1e-4 * 150 / (300.0 / 12));
+  EXPECT_NEAR(plan.step, delta, 1e-7 * delta);
+  EXPECT_LE(plan.step, delta);  // rounded down, never over budget
+  for (float s : plan.steps) EXPECT_EQ(s, static_cast<float>(plan.step));
+  EXPECT_EQ(plan.overflow_columns, 0);
+  EXPECT_EQ(plan.max_code, kMaxStoredCode);
+  EXPECT_LE(plan.expected_energy, plan.budget);
+  EXPECT_GT(plan.expected_energy, plan.budget * (1 - 1e-6));
+}
+
+// A column whose max/Δ exceeds int16 takes max/32767 of its own; the others
+// share a Δ solved again for what that column left, so the sum still fits.
+TEST(QuantizationStepsTest, Int16OverflowColumnTakesItsOwnCoarserStep) {
+  std::vector<ColumnQuantInput> cols = Ordinary();
+  const double delta0 = PlanSteps(cols, Auto(0.01)).step;
+  cols.push_back(
+      {.max_abs = 3 * kMaxStoredCode * delta0, .step_unit = 1.0 / 12, .reference_energy = 50.0});
+  const StepPlan plan = PlanSteps(cols, Auto(0.01));
+  EXPECT_EQ(plan.overflow_columns, 1);
+  EXPECT_EQ(plan.steps[3], StepForMax(cols[3].max_abs, kMaxStoredCode));
+  EXPECT_GT(plan.steps[3], plan.step);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(plan.steps[c], static_cast<float>(plan.step));
+  EXPECT_LE(plan.expected_energy, plan.budget * (1 + 1e-9));
+  // Quantizing the overflow column with its step fits int16 and stays within
+  // half a step.
+  const std::vector<float> v = {static_cast<float>(cols[3].max_abs),
+                                static_cast<float>(-cols[3].max_abs), 0.5f};
+  const std::vector<uint32_t> pos = {0, 1, 2};
+  const std::vector<uint8_t> lv = {0, 0, 0};
+  const auto q = Quantize(v, pos, lv, LevelScaling::kUniform, plan.steps[3], kMaxStoredCode, 1, 3);
+  std::vector<float> back(3);
+  Dequantize(q, pos, lv, LevelScaling::kUniform, plan.steps[3], 1, 3, back);
+  for (size_t i = 0; i < v.size(); ++i) {
+    EXPECT_LE(std::abs(q[i]), kMaxStoredCode);
+    EXPECT_LE(std::fabs(double(back[i]) - v[i]),
+              QuantizationBound(plan.steps[3], 0, LevelScaling::kUniform));
+  }
+}
+
+TEST(QuantizationStepsTest, FixedBitsNormalizeEachColumnByItsMax) {
+  std::vector<ColumnQuantInput> cols = Ordinary();
+  cols[1].max_abs = 0.25;
+  BakeParams p = Auto(0.01);
+  p.bits = 8;
+  const StepPlan plan = PlanSteps(cols, p);
+  EXPECT_EQ(plan.bits, 8);
+  EXPECT_EQ(plan.max_code, 127);
+  EXPECT_EQ(plan.steps[0], StepForMax(1.0, 127));
+  EXPECT_EQ(plan.steps[1], StepForMax(0.25, 127));
+}
+
+TEST(QuantizationStepsTest, EmptyColumnsGetNoStep) {
+  std::vector<ColumnQuantInput> cols = Ordinary();
+  cols.push_back({});  // nothing kept
+  const StepPlan plan = PlanSteps(cols, Auto(0.01));
+  EXPECT_EQ(plan.steps[3], 0.0f);
+  EXPECT_GT(plan.steps[0], 0.0f);
+}
+
+}  // namespace
+}  // namespace wavebake
