@@ -138,11 +138,14 @@ absl::Status Coordinator::BuildServer() {
 void Coordinator::ReapLoop(std::stop_token stop) {
   const int64_t period_ms = std::clamp<int64_t>(table_->options().lease_ms / 4, 10, 1000);
   std::unique_lock lock(reap_mu_);
+  absl::Status last_error;
   while (!stop.stop_requested()) {
     reap_cv_.wait_for(lock, stop, std::chrono::milliseconds(period_ms), [] { return false; });
     if (stop.stop_requested()) break;
-    if (absl::Status s = table_->ExpireLeases(); !s.ok()) {
+    // Once per distinct error: a stopped table fails every tick the same way.
+    if (absl::Status s = table_->ExpireLeases(); !s.ok() && s != last_error) {
       spdlog::error("coordinator: {}", s.ToString());
+      last_error = s;
     }
   }
 }

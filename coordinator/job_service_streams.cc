@@ -31,6 +31,8 @@ grpc::Status JobServiceImpl::Watch(grpc::ServerContext* context, const v1::JobId
   for (;;) {
     if (context->IsCancelled()) return {grpc::StatusCode::CANCELLED, "watch cancelled"};
     if (Stopping(deps_)) return {grpc::StatusCode::UNAVAILABLE, "coordinator shutting down"};
+    // A table that cannot persist (a full disk) will not see the job end.
+    if (absl::Status broken = deps_.table->broken(); !broken.ok()) return Reply(broken);
     const uint64_t generation = deps_.table->generation();
     // Read the job before its events: a job seen ended has its last event stored.
     absl::StatusOr<JobInfo> info = deps_.table->Get(*id);

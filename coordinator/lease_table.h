@@ -135,6 +135,9 @@ class LeaseTable {
                                                       int limit) const;
 
   const LeaseTableOptions& options() const { return options_; }
+  // The failed commit that stopped the table (a full disk under SQLite: every
+  // change after it fails with it); OK while the table works.
+  absl::Status broken() const;
 
  private:
   struct LiveLease {

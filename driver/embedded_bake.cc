@@ -58,6 +58,12 @@ class Workers {
     for (auto& loop : loops_) loop->Drain();
     for (std::thread& t : threads_) t.join();
   }
+  // Stops the running tasks too (a job that ended otherwise than DONE, or a
+  // watch that failed): nothing they would still write is wanted, and a task
+  // does not wait for a heartbeat to learn it.
+  void Abort() {
+    for (auto& loop : loops_) loop->Abort();
+  }
 
   // Every loop has ended before being drained: no task will run any more.
   bool AllStopped() const {
@@ -145,6 +151,7 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
         !loops.error().ok()) {
       job = loops.error();  // the workers' own failure, not a user's cancel
     }
+    if (!job.ok() || job->phase() != v1::PHASE_DONE) loops.Abort();
   }  // workers drained: nothing writes any more
   if (job.ok() && job->phase() == v1::PHASE_DONE) {
     if (absl::Status s = PublishStore(store_root / job->store_path(), out); !s.ok()) return s;

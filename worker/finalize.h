@@ -9,6 +9,7 @@
 // Memory: one group's coded columns plus O(M) column arrays, never S×M.
 // Idempotent: a retry rewrites the same bytes, and a retry after staging was
 // dropped finds the finished manifest and succeeds without work.
+#include <atomic>
 #include <filesystem>
 
 #include "absl/status/status.h"
@@ -18,6 +19,9 @@ namespace wavebake {
 
 struct FinalizeOptions {
   bool keep_staging = false;
+  // Raised: stop between two groups with CANCELLED (a cancelled job; a large
+  // store's FINALIZE runs far longer than the bound on ending a bake).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,

@@ -94,7 +94,9 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-    if (absl::Status s = Finalize(ctx, partial, {.keep_staging = ctx.params.keep_staging}); !s.ok())
+    if (absl::Status s = Finalize(
+            ctx, partial, {.keep_staging = ctx.params.keep_staging, .cancel = &progress.cancel});
+        !s.ok())
       return s;
     if (progress.cancel.load()) return Cancelled(task);
     if (absl::Status s = PublishFinishedStore(partial, out); !s.ok()) return s;

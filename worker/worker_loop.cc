@@ -125,6 +125,11 @@ void WorkerLoop::Drain() {
   wake_.notify_all();
 }
 
+bool WorkerLoop::Aborted() const {
+  std::lock_guard lock(mu_);
+  return aborted_;
+}
+
 void WorkerLoop::Abort() {
   std::lock_guard lock(mu_);
   draining_ = aborted_ = true;
@@ -288,8 +293,10 @@ void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>&
       return;
     }
   }
-  const auto give_up = SteadyClock::now() + kReportPatience;
+  const auto start = SteadyClock::now();
   for (int attempt = 0;; ++attempt) {
+    // Aborted (the process is ending): one second of tries, not the patience.
+    const auto give_up = start + (Aborted() ? std::chrono::seconds(1) : kReportPatience);
     const std::string id = worker_id();
     grpc::Status s;
     bool accepted = false;
@@ -312,7 +319,10 @@ void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>&
                              : outcome.status().ToString());
       // INVALID_ARGUMENT is the task's input (scene, parameters) naming its
       // bad field: every worker would fail the same way (DESIGN.md §4).
-      failure.set_permanent(!aborted && absl::IsInvalidArgument(outcome.status()));
+      // RESOURCE_EXHAUSTED is a full disk under the shared store root: a
+      // retry writes to the same disk.
+      failure.set_permanent(!aborted && (absl::IsInvalidArgument(outcome.status()) ||
+                                         absl::IsResourceExhausted(outcome.status())));
       v1::FailReply reply;
       s = stub_->Fail(Context().get(), failure, &reply);
     }

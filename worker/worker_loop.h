@@ -103,6 +103,7 @@ class WorkerLoop {
   std::unique_ptr<grpc::ClientContext> Context() const;
   bool SleepUnlessDraining(int64_t ms);  // false: draining
   void SetFatal(absl::Status status);
+  bool Aborted() const;
 
   WorkerOptions options_;
   std::unique_ptr<v1::WorkerService::Stub> stub_;
