@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -24,6 +25,9 @@ absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
 // or tiled OpenEXR file as float, whatever the stored pixel type. The image
 // may have any size; LoadEnvMap checks layouts.
 absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
+// The same from the file's bytes; `name` names it in errors. The header is
+// checked before OpenEXR reads it (runtime/exr_preflight.h).
+absl::StatusOr<EnvMap> DecodeExr(std::span<const std::byte> file, const std::string& name);
 
 // 8-bit sRGB PNG: linear × 2^exposure_stops, clamped to [0, 1], sRGB OETF.
 // A pixel with any NaN channel (a masked cell) gets `background`, a linear

@@ -159,6 +159,18 @@ absl::StatusOr<std::vector<std::byte>> EncodeRadianceHdr(int width, int height,
 absl::StatusOr<Rgb8Image> DecodePng(std::span<const std::byte> file, const std::string& name) {
   if (file.size() > size_t{1} << 31)
     return absl::InvalidArgumentError(absl::StrCat(name, ": larger than 2 GiB"));
+  // stb allocates the decoded size the header declares before inflating: a
+  // tiny file must not make a huge buffer. Deflate packs at most ~1032 bytes
+  // in one, so no PNG holds more than ~1032 pixels per byte of its own.
+  int w = 0, h = 0, comp = 0;
+  if (stbi_info_from_memory(Bytes(file), static_cast<int>(file.size()), &w, &h, &comp)) {
+    const int64_t limit =
+        std::min(int64_t{1} << 27, std::max(int64_t{1} << 20, 1032 * int64_t(file.size())));
+    if (int64_t{w} * h > limit)
+      return absl::InvalidArgumentError(absl::StrCat(name, ": PNG of ", w, "x", h,
+                                                     " pixels in a file of ", file.size(),
+                                                     " bytes (at most ", limit, ")"));
+  }
   Source source(file);
   Rgb8Image image;
   int channels = 0;

@@ -54,7 +54,8 @@ class Reader {
   absl::Status CheckKeys(const json& obj, const std::string& field,
                          std::initializer_list<const char*> allowed) const {
     if (!obj.is_object()) return Error(field, "expected an object");
-    for (const auto& [key, value] : obj.items()) {
+    for (const auto& item : obj.items()) {
+      const std::string& key = item.key();
       if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }) ==
           allowed.end())
         return Error(field.empty() ? key : absl::StrCat(field, ".", key),

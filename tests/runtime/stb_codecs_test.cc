@@ -110,5 +110,20 @@ TEST(StbCodecsTest, PngRoundTripsAndEveryTruncationIsAnError) {
   }
 }
 
+// A header claiming more pixels than any file this size can hold is refused
+// before stb allocates them (the fuzzer's PNGs made it allocate 2 GB).
+TEST(StbCodecsTest, APngHeaderPromisingMoreThanItsSizeIsRefused) {
+  absl::StatusOr<std::vector<std::byte>> png = EncodePng(2, 2, std::vector<uint8_t>(12, 7));
+  ASSERT_TRUE(png.ok());
+  std::vector<std::byte> big = *png;
+  // IHDR's width and height (big-endian at 16 and 20) → 8000 × 8000.
+  for (int at : {16, 20}) {
+    big[at] = std::byte{0}, big[at + 1] = std::byte{0}, big[at + 2] = std::byte{0x1f},
+    big[at + 3] = std::byte{0x40};
+  }
+  const absl::StatusOr<Rgb8Image> image = DecodePng(big, "big.png");
+  EXPECT_THAT(image.status().message(), HasSubstr("big.png: PNG of 8000x8000 pixels"));
+}
+
 }  // namespace
 }  // namespace wavebake
