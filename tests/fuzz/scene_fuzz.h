@@ -54,8 +54,11 @@ inline int FuzzSceneFile(const uint8_t* data, size_t size, const char* name) {
     CheckScene(*scene);
   } else {
     Require(scene.status().code() == absl::StatusCode::kInvalidArgument, "errors are bad input");
-    Require(scene.status().message().find(ScratchDir().string()) == std::string_view::npos,
-            "an error names a server path");
+    // Quoting the client's own text is no leak: only a path it did not write.
+    const std::string_view input(reinterpret_cast<const char*>(data), size);
+    if (input.find(ScratchDir().string()) == std::string_view::npos)
+      Require(scene.status().message().find(ScratchDir().string()) == std::string_view::npos,
+              "an error names a server path");
   }
   return 0;
 }

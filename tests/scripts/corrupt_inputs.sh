@@ -53,6 +53,12 @@ for f in "$GRACE" "$TMP/env.exr"; do
   ((rc != 124)) || fail "hung on noise in $f"
 done
 
+# A PLY whose header never ends: assimp read on forever (found by the fuzzer).
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_heade[r\n0\n1\n2\n' \
+  >"$TMP/cut.ply"
+expect_refused "cut.ply" "$WB" bake "$TMP/cut.ply" --layout hilbert:4x4 --light-res 8 \
+  --out "$TMP/p.wbk"
+
 # Radiance that would overflow the float relighting (an 8x8 block of RGBE
 # exponent 255, 1.7e38) is refused naming the texel: it used to give rc 0, a
 # black image and "rel_rms": null. At the documented limit (1e30) everywhere,

@@ -1,12 +1,11 @@
 // OpenEXR bytes through DecodeExr (runtime/image_io.h) and the checks
 // LoadEnvMap applies after it: no crash, no endless loop; errors name the file.
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
-
-#include <Imath/half.h>
 
 #include <cstring>
 

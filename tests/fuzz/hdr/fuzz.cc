@@ -12,7 +12,8 @@ std::vector<std::string> Seeds() {
   std::vector<std::string> seeds;
   for (auto [w, h] : {std::pair{4, 2}, {16, 4}, {9, 1}}) {
     std::vector<float> rgb(size_t(w) * h * 3);
-    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::ldexp(1.0f + float(i % 5), int(i % 9) - 4);
+    for (size_t i = 0; i < rgb.size(); ++i)
+      rgb[i] = std::ldexp(1.0f + float(i % 5), int(i % 9) - 4);
     absl::StatusOr<std::vector<std::byte>> hdr = EncodeRadianceHdr(w, h, rgb);
     if (hdr.ok()) seeds.emplace_back(reinterpret_cast<const char*>(hdr->data()), hdr->size());
   }

@@ -60,13 +60,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Require(s.message().find(':') != absl::string_view::npos, "the message names a field");
     return 0;
   }
+  const std::string& out = normal.output_name();
+  Require(out.find('/') == std::string::npos && !out.starts_with("."),
+          "an output name stays inside the store root");
   v1::BakeRequest again = normal;
   Require(NormalizeBakeRequest(again).ok(), "a normal request normalizes");
   Require(again.SerializeAsString() == normal.SerializeAsString(), "normalizing is idempotent");
   absl::StatusOr<BakeParams> params = ToBakeParams(normal);
   Require(params.ok(), "a normal request has params");
   Require(ValidateBakeParams(*params).ok(), "its params are valid");
-  absl::StatusOr<BakeParams> back = ToBakeParams(ToBakeRequest(*params));
+  v1::BakeRequest rebuilt = ToBakeRequest(*params);  // carries no scene
+  *rebuilt.mutable_scene() = normal.scene();
+  absl::StatusOr<BakeParams> back = ToBakeParams(rebuilt);
   Require(back.ok() && ToJson(*back) == ToJson(*params), "params round trip");
   return 0;
 }

@@ -24,22 +24,30 @@ namespace {
 constexpr int kN = 8, kM = 6 * kN * kN, kW = 4, kH = 4;
 
 // The files an input may replace, by selector (first byte, low 7 bits).
-constexpr const char* kFiles[] = {
-    ".zattrs",           ".zgroup",          "transport/indptr/.zarray", "transport/indptr/0",
-    "transport/indices/.zarray", "transport/indices/0", "transport/data/.zarray",
-    "transport/data/0",  "transport/depth/0", "transport/scale/0",         "samples/grid/.zarray",
-    "samples/grid/0.0",  "samples/position/0.0"};
+constexpr const char* kFiles[] = {".zattrs",
+                                  ".zgroup",
+                                  "transport/indptr/.zarray",
+                                  "transport/indptr/0",
+                                  "transport/indices/.zarray",
+                                  "transport/indices/0",
+                                  "transport/data/.zarray",
+                                  "transport/data/0",
+                                  "transport/depth/0",
+                                  "transport/scale/0",
+                                  "samples/grid/.zarray",
+                                  "samples/grid/0.0",
+                                  "samples/position/0.0"};
 constexpr size_t kFileCount = sizeof kFiles / sizeof kFiles[0];
 
 template <class T>
 void Write(const std::filesystem::path& store, const char* name, const std::vector<T>& v,
            int64_t chunk, bool delta = false) {
-  absl::StatusOr<ZarrArray> a = ZarrArray::Create(
-      store::Path(store, name), {.shape = {int64_t(v.size())},
-                                 .chunks = {chunk},
-                                 .dtype = DTypeOf<T>(),
-                                 .delta_filter = delta,
-                                 .shuffle_filter = delta});
+  absl::StatusOr<ZarrArray> a =
+      ZarrArray::Create(store::Path(store, name), {.shape = {int64_t(v.size())},
+                                                   .chunks = {chunk},
+                                                   .dtype = DTypeOf<T>(),
+                                                   .delta_filter = delta,
+                                                   .shuffle_filter = delta});
   Require(a.ok() && a->WriteAll<T>(v).ok(), "template array");
 }
 
