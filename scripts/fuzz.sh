@@ -39,8 +39,10 @@ failed=0
 for bin in "${harnesses[@]}"; do
   name=${bin##*/fuzz_}
   rc=$(cat "$OUT/$name.rc")
-  runs=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$OUT/$name.log" | grep -oE '[0-9]+$' || echo 0)
-  rate=$(grep -oE 'stat::average_exec_per_sec: [0-9]+' "$OUT/$name.log" | grep -oE '[0-9]+$' || echo 0)
+  runs=$(grep -oE 'stat::number_of_executed_units:[[:space:]]+[0-9]+' "$OUT/$name.log" |
+    grep -oE '[0-9]+$' || echo 0)
+  rate=$(grep -oE 'stat::average_exec_per_sec:[[:space:]]+[0-9]+' "$OUT/$name.log" |
+    grep -oE '[0-9]+$' || echo 0)
   printf 'fuzz %-8s %9s runs %7s exec/s  %s\n' "$name" "$runs" "$rate" \
     "$( ((rc == 0)) && echo ok || echo "FINDING (rc $rc)")"
   if ((rc != 0)); then

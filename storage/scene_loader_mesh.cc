@@ -105,6 +105,15 @@ absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
   if (!has_polygon) return error("has no triangles (an empty mesh)");
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
     const aiMesh& m = *scene.mMeshes[i];
+    // assimp's post-processing trusts face indices: an out-of-range one in a
+    // PLY crashed it (tests/fuzz/ply). Its readers do not all check them.
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices == nullptr || face.mIndices[k] >= m.mNumVertices)
+          return error("mesh '", MeshName(scene, i, path), "': face ", f, " refers to vertex ",
+                       face.mIndices ? face.mIndices[k] : 0, " of ", m.mNumVertices);
+    }
     for (unsigned v = 0; v < m.mNumVertices; ++v) {
       const aiVector3D& p = m.mVertices[v];
       if (!IsFinite({p.x, p.y, p.z}))
