@@ -276,6 +276,68 @@ def reference_error(rows, n, ax):
     ax.legend(fontsize=8)
 
 
+LAYOUT_COLORS = {("hilbert", "64"): "tab:gray", ("uv", "128"): "tab:blue",
+                 ("uv", "256"): "tab:green", ("uv", "512"): "tab:red"}
+
+
+def uv_size(rows, out):
+    """Chart 7: transport bytes (and bytes per sample) against matrix error,
+    2d (dashed) and adaptive (solid), hilbert against uv layouts on spot.obj."""
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    for (kind, side), color in LAYOUT_COLORS.items():
+        for mode, style in (("2d", "--"), ("adaptive", "-")):
+            pts = sorted((float(r["matrix_rel_rms"]), float(r["transport_bytes"]),
+                          float(r["bytes_per_sample"])) for r in rows
+                         if r["layout"] == kind and r["side"] == side and r["mode"] == mode)
+            if not pts:
+                continue
+            label = f"{kind}:{side}² {mode}"
+            axes[0].plot([p[0] for p in pts], [p[1] / 1e6 for p in pts], style, color=color,
+                         marker="o", label=label)
+            axes[1].plot([p[0] for p in pts], [p[2] for p in pts], style, color=color, marker="o",
+                         label=label)
+    for ax, ylabel in ((axes[0], "transport bytes on disk (MB)"),
+                       (axes[1], "transport bytes per sample (vertex or covered texel)")):
+        ax.set_xlabel("relative RMS error of T (stats.matrix_rel_rms)")
+        ax.set_ylabel(ylabel)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("spot.obj, N = 32: 2d against adaptive, Hilbert vertices against lightmap texels")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def uv_fill(rows, out):
+    """Chart 7b: what the uncovered texels cost, per fill, at target 0.01."""
+    fills = ["zero", "push-pull", "dilate"]
+    groups = []
+    for r in rows:
+        key = (r["side"], r["mode"])
+        if key not in groups:
+            groups.append(key)
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    width = 0.8 / len(fills)
+    for i, fill in enumerate(fills):
+        ys = []
+        for side, mode in groups:
+            match = [float(r["bytes_per_sample"]) for r in rows
+                     if r["side"] == side and r["mode"] == mode and r["fill"] == fill]
+            ys.append(match[0] if match else 0)
+        xs = [g + (i - 1) * width for g in range(len(groups))]
+        ax.bar(xs, ys, width, label=f"fill={fill}")
+    ax.set_xticks(range(len(groups)))
+    ax.set_xticklabels([f"uv:{side}² {mode}" for side, mode in groups])
+    ax.set_ylabel("transport bytes per covered texel")
+    ax.set_title("spot.obj, N = 32, target 0.01: the uncovered texels' fill before the column "
+                 "transform")
+    ax.legend()
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 CHARTS = {
     "size_error": size_error,
     "bits_error": bits_error,
@@ -283,6 +345,8 @@ CHARTS = {
     "bake_time": bake_time,
     "relight_time": relight_time,
     "rotation_error": rotation_error,
+    "uv_size": uv_size,
+    "uv_fill": uv_fill,
 }
 
 

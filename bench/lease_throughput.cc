@@ -13,8 +13,17 @@
 //                         checkpoints in the background; a lease op costs two
 //   BM_LeaseTableMemory   LeaseTable alone, no database
 //   BM_LeaseTableSqlite   LeaseTable + JobStore (what the coordinator runs)
-//   BM_GrpcLoopback       the real WorkerService over 127.0.0.1
+//   BM_GrpcLoopback       the real WorkerService over 127.0.0.1 (Lease + Complete)
+//   BM_LeaseTableBatch    in-process baseline of the next row: LeaseTable +
+//                         JobStore, each simulated worker calls Exchange
+//                         (its T results + up to T new leases, one commit)
+//   BM_GrpcBatch          the same over gRPC (LeaseBatch), every simulated
+//                         worker on its own connection; vs_in_process is its
+//                         rate over BM_LeaseTableBatch's with the same args
+//   BM_GrpcHeartbeat      Heartbeat calls/s, each renewing T leases
 //
+// Args of the batch rows: {simulated workers, rounds per worker, T = threads
+// per worker}; a round is one call that reports T tasks and leases T more.
 //   build/bench_lease_throughput --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 #include <grpcpp/grpcpp.h>
@@ -24,6 +33,7 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <thread>
 #include <vector>
 
@@ -171,6 +181,46 @@ void BM_JobStoreCommit(benchmark::State& state) {
   }
 }
 
+// Rate of BM_LeaseTableBatch by its args, the baseline of BM_GrpcBatch.
+std::map<std::vector<int64_t>, double>& InProcessRates() {
+  static std::map<std::vector<int64_t>, double> rates;
+  return rates;
+}
+
+std::vector<int64_t> ArgsOf(const benchmark::State& state) {
+  return {state.range(0), state.range(1), state.range(2)};
+}
+
+void BM_LeaseTableBatch(benchmark::State& state) {
+  const int workers = static_cast<int>(state.range(0));
+  const int rounds = static_cast<int>(state.range(1));
+  const int per = static_cast<int>(state.range(2));
+  TempDir dir;
+  auto store = JobStore::Open((dir.path() / "state.sqlite").string());
+  if (!store.ok()) return state.SkipWithError("cannot open store");
+  for (auto _ : state) {
+    auto table = LeaseTable::Create(store->get(), nullptr, {.lease_ms = 60'000}, nullptr);
+    const int64_t job = (*table)->ReserveJobId();
+    PlannedJob plan{.tiles = workers * (rounds + 1) * per + 1,
+                    .groups = 1,
+                    .store_path = "bench" + std::to_string(job)};
+    if (!(*table)->AddJob(job, "", 3, plan).ok()) return state.SkipWithError("AddJob failed");
+    std::vector<int64_t> ids;
+    for (int w = 0; w < workers; ++w) ids.push_back(*(*table)->RegisterWorker("bench", per));
+    std::vector<std::vector<Completion>> held(workers);
+    RunWorkers(state, workers, rounds, [&](int w, Latencies& lat) {
+      const auto t0 = Clock::now();
+      auto r = (*table)->Exchange(ids[w], held[w], per);
+      lat.lease.push_back(Micros(Clock::now() - t0));
+      held[w].clear();
+      if (r.ok())
+        for (const LeaseGrant& g : r->grants) held[w].push_back({g.key, {}});
+    });
+  }
+  state.counters["lease_ops_per_s"] = state.counters["lease_ops_per_s"] * per;
+  InProcessRates()[ArgsOf(state)] = state.counters["lease_ops_per_s"];
+}
+
 std::unique_ptr<grpc::ClientContext> Ctx() {
   auto ctx = std::make_unique<grpc::ClientContext>();
   ctx->set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
@@ -222,6 +272,108 @@ void BM_GrpcLoopback(benchmark::State& state) {
   (*coordinator)->Shutdown();
 }
 
+// A coordinator with one job of `tasks` trivial tiles and `workers`
+// registered workers of `per` threads, each with a connection of its own.
+struct GrpcFarm {
+  TempDir dir;
+  std::unique_ptr<Coordinator> coordinator;
+  std::vector<std::unique_ptr<v1::WorkerService::Stub>> stubs;
+  std::vector<std::string> ids;
+
+  absl::Status Start(int workers, int per, int tasks) {
+    auto plan = [tasks](const v1::BakeRequest&) -> absl::StatusOr<PlannedJob> {
+      return PlannedJob{.tiles = tasks, .groups = 1};
+    };
+    auto c = Coordinator::Start({.data_dir = dir.path(), .lease_seconds = 600}, plan, nullptr);
+    if (!c.ok()) return c.status();
+    coordinator = std::move(*c);
+    for (int w = 0; w < workers; ++w) {
+      grpc::ChannelArguments args;
+      args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);  // a connection per worker
+      auto channel = grpc::CreateCustomChannel(coordinator->address(),
+                                               grpc::InsecureChannelCredentials(), args);
+      stubs.push_back(v1::WorkerService::NewStub(channel));
+    }
+    v1::BakeRequest request;
+    request.mutable_scene()->set_builtin("builtin:furnace");
+    v1::Job job;
+    auto jobs = v1::JobService::NewStub(
+        grpc::CreateChannel(coordinator->address(), grpc::InsecureChannelCredentials()));
+    if (!jobs->Submit(Ctx().get(), request, &job).ok()) return absl::InternalError("Submit");
+    for (auto& stub : stubs) {
+      v1::WorkerInfo info;
+      info.set_threads(per);
+      v1::WorkerId wid;
+      if (!stub->Register(Ctx().get(), info, &wid).ok()) return absl::InternalError("Register");
+      ids.push_back(wid.id());
+    }
+    return absl::OkStatus();
+  }
+};
+
+void BM_GrpcBatch(benchmark::State& state) {
+  const int workers = static_cast<int>(state.range(0));
+  const int rounds = static_cast<int>(state.range(1));
+  const int per = static_cast<int>(state.range(2));
+  for (auto _ : state) {
+    GrpcFarm farm;
+    if (!farm.Start(workers, per, workers * (rounds + 1) * per + 1).ok())
+      return state.SkipWithError("cannot start the farm");
+    std::vector<v1::LeaseBatchRequest> next(workers);
+    int64_t errors = 0;
+    RunWorkers(state, workers, rounds, [&](int w, Latencies& lat) {
+      v1::LeaseBatchRequest& req = next[w];
+      req.set_worker_id(farm.ids[w]);
+      req.set_max_tasks(per);
+      v1::LeaseBatchReply reply;
+      const auto t0 = Clock::now();
+      const grpc::Status s = farm.stubs[w]->LeaseBatch(Ctx().get(), req, &reply);
+      lat.lease.push_back(Micros(Clock::now() - t0));
+      req.clear_completed();
+      if (!s.ok()) return (void)__atomic_add_fetch(&errors, 1, __ATOMIC_RELAXED);
+      for (const v1::Task& t : reply.tasks()) req.add_completed()->set_lease_id(t.lease_id());
+    });
+    if (errors > 0) state.SkipWithError("LeaseBatch failed");
+    farm.coordinator->Shutdown();
+  }
+  const double rate = state.counters["lease_ops_per_s"] * per;
+  state.counters["lease_ops_per_s"] = rate;
+  if (auto it = InProcessRates().find(ArgsOf(state)); it != InProcessRates().end())
+    state.counters["vs_in_process"] = rate / it->second;
+}
+
+// Heartbeats of `workers` workers holding `per` leases each: calls/s.
+void BM_GrpcHeartbeat(benchmark::State& state) {
+  const int workers = static_cast<int>(state.range(0));
+  const int calls = static_cast<int>(state.range(1));
+  const int per = static_cast<int>(state.range(2));
+  for (auto _ : state) {
+    GrpcFarm farm;
+    if (!farm.Start(workers, per, workers * per + 1).ok())
+      return state.SkipWithError("cannot start the farm");
+    std::vector<v1::HeartbeatRequest> beats(workers);
+    for (int w = 0; w < workers; ++w) {
+      v1::LeaseBatchRequest req;
+      req.set_worker_id(farm.ids[w]);
+      req.set_max_tasks(per);
+      v1::LeaseBatchReply reply;
+      if (!farm.stubs[w]->LeaseBatch(Ctx().get(), req, &reply).ok())
+        return state.SkipWithError("LeaseBatch failed");
+      beats[w].set_worker_id(farm.ids[w]);
+      for (const v1::Task& t : reply.tasks()) beats[w].add_leases()->set_lease_id(t.lease_id());
+    }
+    RunWorkers(state, workers, calls, [&](int w, Latencies& lat) {
+      v1::HeartbeatReply reply;
+      const auto t0 = Clock::now();
+      (void)farm.stubs[w]->Heartbeat(Ctx().get(), beats[w], &reply);
+      lat.lease.push_back(Micros(Clock::now() - t0));
+    });
+    farm.coordinator->Shutdown();
+  }
+  state.counters["heartbeats_per_s"] = state.counters["lease_ops_per_s"];
+  state.counters.erase("lease_ops_per_s");
+}
+
 // Args: {worker threads, lease ops per thread}.
 BENCHMARK(BM_SqliteTxn)
     ->Args({1, 20000})
@@ -249,6 +401,24 @@ BENCHMARK(BM_LeaseTableSqlite)
 BENCHMARK(BM_GrpcLoopback)
     ->Args({1, 1000})
     ->Args({8, 500})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+// Args: {simulated workers, rounds per worker, threads per worker}.
+BENCHMARK(BM_LeaseTableBatch)
+    ->Args({256, 40, 1})
+    ->Args({256, 40, 4})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GrpcBatch)
+    ->Args({256, 40, 1})
+    ->Args({256, 40, 4})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GrpcHeartbeat)
+    ->Args({256, 40, 4})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);

@@ -18,6 +18,7 @@ int Run(int argc, char** argv) {
   AddStatusCommand(app);
   AddCancelCommand(app);
   AddFetchCommand(app);
+  AddHealthCommand(app);
   AddRelightCommand(app);
   AddEvalCommand(app);
   try {

@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/bake_params_io.h"
+#include "core/layout.h"
 
 namespace wavebake::cli {
 namespace {
@@ -25,8 +26,17 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
   cmd.add_option("--light-res", p.light_res,
                  "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
-  cmd.add_option("--layout", p.layout, "spatial layout: camera[:WxH] | grid | hilbert:WxH")
+  cmd.add_option("--light-domain", f.light_domain,
+                 "cube | plane:S[:AXIS]: one face of size S (3..10) aligned with a light plane "
+                 "normal to AXIS (default +Y), for --area-light")
       ->capture_default_str();
+  cmd.add_option("--layout", p.layout,
+                 "spatial layout: camera[:WxH] | grid | hilbert:WxH | uv[:WxH] | uv1[:WxH] "
+                 "(lightmap texels of UV channel 0 or 1, default 256x256)")
+      ->capture_default_str();
+  cmd.add_flag("--allow-uv-overlap", f.allow_uv_overlap,
+               "uv layouts: bake an atlas whose charts overlap (each texel then takes its "
+               "nearest triangle)");
   cmd.add_option("--supersample", p.supersample, "jittered directions per texel K")
       ->capture_default_str();
   cmd.add_option("--row-filter", f.row_filter, "row transform: haar | daub4")
@@ -64,11 +74,17 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
 
 absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
   BakeParams p = f.params;
+  if (f.allow_uv_overlap) {
+    absl::StatusOr<std::string> layout = WithUvOverlapAllowed(p.layout);
+    if (!layout.ok()) return layout.status();
+    p.layout = *layout;
+  }
   for (absl::Status s : {Set(ParseWaveletFilter(f.row_filter), p.row_filter, "row_"),
                          Set(ParseColumnMode(f.column_mode), p.column_mode),
                          Set(ParseWaveletFilter(f.column_filter), p.column_filter, "column_"),
                          Set(ParseErrorScope(f.error_scope), p.error_scope),
-                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling)})
+                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling),
+                         Set(ParseLightDomain(f.light_domain), p.light_domain)})
     if (!s.ok()) return s;
   if (f.bits != "auto") {
     const char* end = f.bits.data() + f.bits.size();

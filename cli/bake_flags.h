@@ -13,7 +13,9 @@ namespace wavebake::cli {
 struct BakeFlags {
   BakeParams params;  // the numeric flags, and the defaults of the named ones
   std::string row_filter = "haar", column_mode = "adaptive", column_filter = "haar",
-              error_scope = "matrix", bits = "auto", level_scaling = "uniform";
+              error_scope = "matrix", bits = "auto", level_scaling = "uniform",
+              light_domain = "cube";
+  bool allow_uv_overlap = false;  // uv layouts: the layout's ",allow-overlap"
 };
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f);

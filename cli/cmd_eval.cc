@@ -1,9 +1,11 @@
 // `wavebake eval OUT.wbk --env ENV --reference [--terms n] [--json]`
 // (DESIGN.md §5): the store's relighting error, and the uncompressed T's,
-// against an independently traced Monte-Carlo reference (runtime/eval.h).
+// against an independently traced Monte-Carlo reference (runtime/eval.h);
+// with --area-light, near-field lights over their area (runtime/area_eval.h).
 #include <cmath>
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "runtime/eval.h"
@@ -17,6 +19,8 @@ struct EvalFlags {
   double rotate = 0;
   bool reference = false, json = false, no_dense = false;
   double reference_se = 0.002;
+  int reference_batches = 8;
+  driver::AreaLightCommand area;
 };
 
 void PrintRow(const char* name, const ErrorStats& e) {
@@ -30,6 +34,15 @@ void Run(const EvalFlags& f) {
          "--reference is required: the only ground truth eval knows is the "
          "independently traced one",
          kExitBadInput);
+  if (!f.area.lights.empty()) {
+    driver::AreaLightCommand area = f.area;
+    area.store = f.store;
+    absl::StatusOr<std::string> text =
+        driver::EvaluateWithAreaLights(area, f.reference_batches, f.json);
+    if (!text.ok()) Fail("eval", text.status());
+    return (void)std::printf("%s\n", text->c_str());
+  }
+  if (f.env.empty()) Fail("eval", "--env or --area-light is required", kExitBadInput);
   EvalOptions options;
   options.rotate_degrees = f.rotate;
   options.dense = !f.no_dense;
@@ -54,7 +67,16 @@ void AddEvalCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "eval", "error of a store's relighting against an independently traced reference");
   cmd->add_option("store", flags->store, "the store (OUT.wbk)")->required();
-  cmd->add_option("--env", flags->env, "environment (as for relight)")->required();
+  cmd->add_option("--env", flags->env, "environment (as for relight)");
+  AddAreaLightFlags(*cmd, flags->area);  // the reference: Monte-Carlo over their area
+  cmd->add_option("--reference-out", flags->area.reference_out,
+                  "area lights: also write the reference image (.png, .exr, .ply)");
+  cmd->add_option("--exposure", flags->area.exposure, "--reference-out PNG/PLY exposure, stops");
+  cmd->add_flag("--coupling-table", flags->area.table,
+                "area lights: look the coupling coefficients up (memory-based) instead");
+  cmd->add_option("--reference-batches", flags->reference_batches,
+                  "area lights: batches of 16x16 points per light and sample")
+      ->capture_default_str();
   cmd->add_flag("--reference", flags->reference,
                 "trace the Monte-Carlo reference (importance-sampled environment, Embree)");
   cmd->add_option("--terms", flags->terms, "wavelet lights for the compressed relighting")

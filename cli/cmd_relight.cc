@@ -1,10 +1,13 @@
 // `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] --out
-// IMG.(exr|png)|MESH.ply` (DESIGN.md §5): Eq. 8 relighting of a store under
-// an environment, written as an image (camera layouts) or a vertex-coloured
-// mesh (mesh layouts). With --rotate-sequence, a rotating environment over
+// IMG.(exr|png)|MESH.(ply|gltf|glb)` (DESIGN.md §5): Eq. 8 relighting of a
+// store under an environment, written as an image (camera layouts), a
+// vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
+// (uv layouts). With --rotate-sequence, a rotating environment over
 // many frames (runtime/relight_sequence.h): frames and errors.csv into --out.
+// With --area-light, near-field planar lights instead (driver/area_light_commands.h).
 #include <cstdio>
 
+#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "runtime/relight_sequence.h"
@@ -19,6 +22,7 @@ struct RelightFlags {
   double rotate = 0;
   float exposure = 0;
   std::string rotate_sequence, incremental = "per-band", frame_format = "png";
+  driver::AreaLightCommand area;
 };
 
 // --incremental, already checked to be none, basic or per-band.
@@ -45,7 +49,15 @@ void RunSequence(const RelightFlags& f) {
       frames->size(), f.out.c_str(), sum.mean_rel_rms, sum.max_rel_rms, 1e3 * sum.mean_seconds);
 }
 
-void Run(const RelightFlags& f) {
+void Run(RelightFlags f) {
+  if (!f.area.lights.empty() || !f.area.sequence.empty()) {
+    f.area.store = f.store, f.area.out = f.out, f.area.exposure = f.exposure;
+    f.area.frame_extension = "." + f.frame_format;
+    absl::StatusOr<std::string> done = driver::RelightWithAreaLights(f.area);
+    if (!done.ok()) Fail("relight", done.status());
+    return (void)std::printf("%s\n", done->c_str());
+  }
+  if (f.env.empty()) Fail("relight", "--env or --area-light is required", kExitBadInput);
   if (!f.rotate_sequence.empty()) return RunSequence(f);
   absl::Status s = RelightToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out);
   if (!s.ok()) Fail("relight", s);
@@ -61,8 +73,13 @@ void AddRelightCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--env", flags->env,
                   "environment: EXR or Radiance .hdr (lat-long or vertical cross), "
-                  "builtin:constant or builtin:sky")
-      ->required();
+                  "builtin:constant or builtin:sky");
+  AddAreaLightFlags(*cmd, flags->area);
+  cmd->add_option("--area-light-sequence", flags->area.sequence,
+                  "SEQ.json {frames, from, to}: a light moving and resizing over frames; --out is "
+                  "then a directory of frames and timing.csv");
+  cmd->add_flag("--distant", flags->area.distant,
+                "area lights: treat them as distant (their image at the scene centre)");
   cmd->add_option("--terms", flags->terms, "wavelet lights kept (non-linear approximation)")
       ->capture_default_str();
   cmd->add_option("--rotate", flags->rotate, "rotate the environment about +Y, degrees")
@@ -81,7 +98,8 @@ void AddRelightCommand(CLI::App& app) {
       ->check(CLI::IsMember({"png", "exr", "ply"}))
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
-                  "output: .png or .exr (camera layouts), .ply (mesh layouts); a directory with "
+                  "output: .png or .exr (camera layouts), .ply (mesh layouts), .png/.exr "
+                  "lightmap or .gltf/.glb mesh with it (uv layouts); a directory with "
                   "--rotate-sequence")
       ->required();
   cmd->callback([flags] { Run(*flags); });

@@ -69,7 +69,8 @@ void AddWorkerCommand(CLI::App& app) {
       "worker", "run a worker: lease tasks from a coordinator and run them (until SIGTERM)");
   AddClientFlags(*cmd, f->client);
   cmd->add_option("--store-root", f->store_root,
-                  "the coordinator's store root, on a filesystem both can reach")
+                  "the coordinator's store root, on a filesystem both can reach (checked at start: "
+                  "its .wavebake-store-root marker must be the coordinator's, and it writable)")
       ->required();
   cmd->add_option("--threads", f->threads, "tasks run at once")->capture_default_str();
   cmd->add_option("--scene-cache", f->scene_cache,

@@ -15,6 +15,7 @@ void AddWatchCommand(CLI::App& app);
 void AddStatusCommand(CLI::App& app);
 void AddCancelCommand(CLI::App& app);
 void AddFetchCommand(CLI::App& app);
+void AddHealthCommand(CLI::App& app);
 void AddRelightCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
 

@@ -12,6 +12,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
+#include "storage/store_root_marker.h"
 
 namespace wavebake {
 namespace {
@@ -78,6 +79,9 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
       return absl::InvalidArgumentError(
           absl::StrCat("data_dir: ", dir.string(), ": ", ec.message()));
   }
+  // Workers compare this with the marker at their --store-root at start.
+  absl::StatusOr<std::string> store_root_id = EnsureStoreRootMarker(o.store_root);
+  if (!store_root_id.ok()) return store_root_id.status();
   const Clock* clock = o.clock ? o.clock : SystemClock::Get();
   absl::StatusOr<std::unique_ptr<JobStore>> store =
       JobStore::Open((o.data_dir / "state.sqlite").string());
@@ -97,6 +101,7 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
                    .auth = auth_.get(),
                    .plan = std::move(plan_fn),
                    .store_root = o.store_root,
+                   .store_root_id = *store_root_id,
                    .wait_ms = o.wait_ms,
                    .stopping = &stopping_,
                    .client_paths = {}};

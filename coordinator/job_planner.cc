@@ -15,6 +15,7 @@
 #include "core/layout.h"
 #include "core/sample_layout.h"
 #include "proto/bake_request.h"
+#include "storage/scene_bundle.h"
 #include "storage/scene_files.h"
 #include "storage/scene_loader.h"
 
@@ -39,6 +40,31 @@ absl::StatusOr<std::string> NamedBlob(const v1::SceneRef& ref, const PlannerOpti
   if (ec)
     return absl::InternalError(absl::StrCat("scene link ", link.string(), ": ", ec.message()));
   return link.string();
+}
+
+// A scene uploaded with its files (storage/scene_bundle.h): a directory of
+// links to their blobs under <data dir>/scene-bundles, and a JSON scene may
+// name nothing else.
+absl::StatusOr<std::string> BundledScene(const v1::SceneRef& ref, const PlannerOptions& options) {
+  std::string name = std::filesystem::path(ref.file_name()).filename().string();
+  if (name.empty() || name.front() == '.') name = "scene";
+  std::vector<BundleFile> files;
+  std::vector<std::pair<std::string, std::string>> keyed;
+  for (const v1::SceneFileRef& f : ref.files()) {
+    files.push_back({f.path(), SceneStore::BlobPath(options.data_dir, f.sha256())});
+    keyed.emplace_back(f.path(), f.sha256());
+  }
+  absl::StatusOr<std::filesystem::path> scene =
+      MaterializeBundle(options.data_dir / "scene-bundles", BundleKey(ref.sha256(), keyed), name,
+                        SceneStore::BlobPath(options.data_dir, ref.sha256()), files);
+  if (!scene.ok()) return scene.status();
+  if (scene->extension() == ".json") {
+    if (absl::Status s = CheckJsonSceneInBundle(*scene, files); !s.ok())
+      return absl::InvalidArgumentError(absl::StrCat("scene.uploaded: scene file '", name,
+                                                     "' (sha256 ", ref.sha256().substr(0, 12),
+                                                     "…): ", s.message()));
+  }
+  return scene->string();
 }
 
 absl::Status SceneError(const char* field, const absl::Status& s) {
@@ -84,7 +110,11 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
     for (const std::string& w : report.warnings) spdlog::warn("{}", w);
     return scene;
   }
-  absl::StatusOr<std::string> named = NamedBlob(ref, options);
+  // A JSON scene always loads from its bundle, even an empty one: its mesh
+  // paths then never reach this host's own files.
+  const bool bundle =
+      !ref.files().empty() || std::filesystem::path(ref.file_name()).extension() == ".json";
+  absl::StatusOr<std::string> named = bundle ? BundledScene(ref, options) : NamedBlob(ref, options);
   if (!named.ok()) return named.status();
   // Only what was uploaded: messages name files relative to it, never a
   // path of this machine (storage/scene_files.h).
@@ -103,10 +133,10 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
   return scene;
 }
 
-int64_t EstimateRays(int64_t samples, int light_res, int supersample) {
+int64_t EstimateRays(int64_t samples, int columns, int supersample) {
   // K is rounded up to a square (core/jitter_pattern.h).
   const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
-  return samples * 6 * light_res * light_res * strata * strata / 2;
+  return samples * columns * strata * strata / 2;
 }
 
 PlanFn MakeJobPlanner(PlannerOptions options) {
@@ -123,18 +153,24 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     const auto [width, height] = *grid;
     const JobPlan plan = MakeJobPlan(*params, width, height);
     // Samples that will trace: every vertex for hilbert (the rest of its grid
-    // is masked); every cell otherwise (camera: an upper bound, misses are masked).
+    // is masked); the covered texels for uv, whose rasterization also refuses
+    // an atlas that is no lightmap before any worker starts; every cell
+    // otherwise (camera: an upper bound, misses are masked).
     int64_t samples = int64_t{width} * height;
     if (layout->kind == LayoutKind::kHilbert) {
       samples = 0;
       for (const Mesh& m : scene->meshes) samples += static_cast<int64_t>(m.positions.size());
+    } else if (layout->kind == LayoutKind::kUv) {
+      absl::StatusOr<SampleSet> texels = UvLayout(*scene, *layout);
+      if (!texels.ok()) return texels.status();
+      samples = texels->size();
     }
     if (absl::Status s = ReservePartialStore(options.store_root, request.output_name()); !s.ok())
       return s;
     return PlannedJob{
         .tiles = plan.tiles(),
         .groups = plan.groups,
-        .total_rays_estimate = EstimateRays(samples, params->light_res, params->supersample),
+        .total_rays_estimate = EstimateRays(samples, plan.columns, params->supersample),
         .store_path = {}};  // the request's output_name
   };
 }

@@ -41,8 +41,9 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
                                        const PlannerOptions& options);
 
 // Rays BAKE_TILE will trace, roughly: every sample traces K jittered
-// directions per texel, and about half the texels of a receiver are below
+// directions per texel of the M = `columns` (6N² for the cube, N² for a
+// plane light domain), and about half the texels of a receiver are below
 // its horizon (never traced).
-int64_t EstimateRays(int64_t samples, int light_res, int supersample);
+int64_t EstimateRays(int64_t samples, int columns, int supersample);
 
 }  // namespace wavebake

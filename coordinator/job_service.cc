@@ -1,12 +1,14 @@
 // JobService unary methods; the streaming ones are in job_service_streams.cc.
 #include "coordinator/job_service.h"
 
+#include <set>
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "coordinator/lease_id.h"
 #include "coordinator/proto_convert.h"
 #include "proto/bake_request.h"
+#include "storage/scene_bundle.h"
 
 namespace wavebake {
 
@@ -31,22 +33,50 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Bake
   v1::BakeRequest r = *request;
   if (absl::Status s = NormalizeBakeRequest(r); !s.ok()) return Reply(s);
   if (r.scene().has_uploaded()) {
-    // §4: an unknown file is bad input, named by its field.
-    v1::SceneRef& ref = *r.mutable_scene()->mutable_uploaded();
-    absl::StatusOr<std::optional<SceneRecord>> scene = deps_.scenes->Find(ref.sha256());
-    if (!scene.ok()) return Reply(scene.status());
-    if (!scene->has_value()) {
-      return {grpc::StatusCode::INVALID_ARGUMENT,
-              absl::StrCat("scene.uploaded.sha256: no uploaded scene ", ref.sha256(),
-                           " (UploadScene it first)")};
-    }
-    ref.set_size((*scene)->size);
-    if (ref.file_name().empty()) ref.set_file_name((*scene)->file_name);
+    if (absl::Status s = CheckUploaded(*r.mutable_scene()->mutable_uploaded()); !s.ok())
+      return Reply(s);
   }
   absl::StatusOr<JobInfo> info = PlanAndAdd(std::move(r));
   if (!info.ok()) return Reply(info.status());
   ToClient(*info, reply);
   return grpc::Status::OK;
+}
+
+// §4: an unknown file is bad input, named by its field. Fills in the sizes.
+absl::Status JobServiceImpl::CheckUploaded(v1::SceneRef& ref) const {
+  const auto known = [&](const std::string& sha,
+                         const std::string& field) -> absl::StatusOr<SceneRecord> {
+    if (sha.size() != 64 || sha.find_first_not_of("0123456789abcdef") != sha.npos)
+      return absl::InvalidArgumentError(absl::StrCat(field, ": not 64 lowercase hex digits"));
+    absl::StatusOr<std::optional<SceneRecord>> scene = deps_.scenes->Find(sha);
+    if (!scene.ok()) return scene.status();
+    if (!scene->has_value()) {
+      return absl::InvalidArgumentError(
+          absl::StrCat(field, ": no uploaded scene ", sha, " (UploadScene it first)"));
+    }
+    return **scene;
+  };
+  absl::StatusOr<SceneRecord> scene = known(ref.sha256(), "scene.uploaded.sha256");
+  if (!scene.ok()) return scene.status();
+  ref.set_size(scene->size);
+  if (ref.file_name().empty()) ref.set_file_name(scene->file_name);
+  if (ref.files_size() > kMaxSceneFiles) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("scene.uploaded.files: more than ", kMaxSceneFiles, " files"));
+  }
+  std::set<std::string> paths;
+  for (int i = 0; i < ref.files_size(); ++i) {
+    v1::SceneFileRef& f = *ref.mutable_files(i);
+    const std::string field = absl::StrCat("scene.uploaded.files[", i, "]");
+    if (absl::Status s = CheckBundlePath(f.path(), field + ".path"); !s.ok()) return s;
+    if (!paths.insert(f.path()).second) {
+      return absl::InvalidArgumentError(absl::StrCat(field, ".path: '", f.path(), "' twice"));
+    }
+    absl::StatusOr<SceneRecord> file = known(f.sha256(), field + ".sha256");
+    if (!file.ok()) return file.status();
+    f.set_size(file->size);
+  }
+  return absl::OkStatus();
 }
 
 // The planner may load the scene and take a while: it runs with no lock held,

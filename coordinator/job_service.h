@@ -29,6 +29,9 @@ class JobServiceImpl final : public v1::JobService::Service {
   // What a client receives: messages with the server's paths hidden.
   grpc::Status Reply(const absl::Status& status) const;
   void ToClient(const JobInfo& info, v1::Job* job) const;
+  absl::Status CheckUploaded(v1::SceneRef& ref) const;
+
+  static constexpr int kMaxSceneFiles = 4096;
 
   ServiceDeps deps_;
 };

@@ -284,12 +284,8 @@ JobInfo LeaseTable::InfoLocked(const JobState& js) const {
   JobInfo info{.record = r,
                .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
                .leased_tasks = static_cast<int>(js.leases.size()),
-               .rays_traced = r.rays_traced,
-               .bytes_written = r.bytes_written};
-  for (const auto& [task, lease] : js.leases) {
-    info.rays_traced += lease.rays_traced;
-    info.bytes_written += lease.bytes_written;
-  }
+               .rays_traced = r.rays_traced + js.live_rays,
+               .bytes_written = r.bytes_written + js.live_bytes};
   if (r.started_ms <= 0) return info;
   const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : clock_->NowMs();
   const double elapsed = std::max<int64_t>(end_ms - r.started_ms, 1) / 1000.0;

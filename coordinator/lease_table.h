@@ -91,6 +91,16 @@ struct TaskReport {
   std::string stats_json{};
 };
 
+struct Completion {
+  LeaseKey key;
+  TaskReport report;
+};
+
+struct ExchangeResult {
+  std::vector<bool> accepted;  // per Completion, as Complete would answer
+  std::vector<LeaseGrant> grants;
+};
+
 class LeaseTable {
   struct Key {};
 
@@ -120,6 +130,14 @@ class LeaseTable {
   // true: accepted. A late result of an earlier lease of a task that is not
   // done yet is accepted too: task output is deterministic (§1).
   absl::StatusOr<bool> Complete(int64_t worker_id, const LeaseKey& key, const TaskReport& report);
+  // A worker's report-and-lease (WorkerService.LeaseBatch): Complete each of
+  // `done`, then Lease up to max_tasks, as one transition (one transaction),
+  // so a worker with T idle threads pays one call and one commit, not 2T.
+  // A completion of a lease that was never granted is not accepted (where
+  // Complete would be NOT_FOUND). An excluded worker's completions count; its
+  // leasing is FailedPrecondition, as in Lease.
+  absl::StatusOr<ExchangeResult> Exchange(int64_t worker_id, std::span<const Completion> done,
+                                          int max_tasks);
   // true: counted; false: the lease was stale (expired, superseded, job ended).
   enum class Failure { kTransient, kPermanent };
   absl::StatusOr<bool> Fail(int64_t worker_id, const LeaseKey& key, absl::string_view reason,
@@ -154,6 +172,7 @@ class LeaseTable {
     int tiles_done = 0, groups_done = 0, tasks_done = 0;
     int64_t last_event_seq = 0;
     bool cleanup_scheduled = false;
+    int64_t live_rays = 0, live_bytes = 0;  // sums over `leases` (kept, not recounted per event)
   };
   struct WorkerState {
     WorkerRecord rec;
@@ -175,8 +194,11 @@ class LeaseTable {
   void ChargeTask(JobState& js, int task, EventKind kind, std::string reason, int64_t worker_id,
                   Transition& tx, bool permanent = false);
   void ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups);
-  absl::StatusOr<bool> CompleteLocked(JobState& js, int64_t worker_id, const LeaseKey& key,
-                                      const TaskReport& report);
+  std::optional<LeaseGrant> LeaseOneLocked(int64_t worker_id, int64_t now, Transition& tx);
+  absl::Status RefusedLocked(const WorkerState& w) const;  // OK unless excluded
+  // Complete's transition into tx; NotFound for a lease never granted.
+  absl::StatusOr<bool> CompleteLocked(int64_t worker_id, const LeaseKey& key,
+                                      const TaskReport& report, Transition& tx, Cleanups& cleanups);
   absl::Status CommitLocked(Transition& tx);
   void RunCleanups(const Cleanups& cleanups);
 

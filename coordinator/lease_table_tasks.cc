@@ -20,9 +20,58 @@ absl::StatusOr<int64_t> LeaseTable::RegisterWorker(std::string name, int threads
   return id;
 }
 
+absl::Status LeaseTable::RefusedLocked(const WorkerState& w) const {
+  if (!w.rec.excluded) return absl::OkStatus();
+  return ExcludedWorkerError(w.rec.id, w.rec.consecutive_failures);
+}
+
+// The lowest ready task of the oldest job that has one, or nullopt.
+std::optional<LeaseGrant> LeaseTable::LeaseOneLocked(int64_t worker_id, int64_t now,
+                                                     Transition& tx) {
+  if (runnable_.empty()) return std::nullopt;
+  JobState& js = jobs_.at(*runnable_.begin());  // oldest job with a ready task
+  const int idx = *js.ready.begin();            // its lowest ready task
+  js.ready.erase(js.ready.begin());
+  if (js.ready.empty()) runnable_.erase(js.rec.id);
+  if (js.rec.phase == Phase::kQueued) {
+    js.rec.phase = Phase::kBaking;
+    js.rec.started_ms = now;
+    tx.jobs.push_back(js.rec);
+    AddEvent(js, tx, EventKind::kPhase);
+  }
+  TaskRecord& t = js.tasks[idx];
+  t.state = TaskState::kLeased;
+  t.worker_id = absl::StrCat(worker_id);
+  ++t.attempts;
+  const int64_t deadline = now + options_.lease_ms;
+  js.leases[idx] = {.worker_id = worker_id, .attempt = t.attempts, .deadline_ms = deadline};
+  deadlines_.emplace(deadline, js.rec.id, idx);
+  tx.tasks.push_back(t);
+  AddEvent(js, tx, EventKind::kTaskLeased, &t, {}, worker_id);
+  const LeaseKey key{js.rec.id, idx, t.attempts};
+  return LeaseGrant{.lease_id = FormatLeaseId(key),
+                    .key = key,
+                    .kind = t.kind,
+                    .kind_index = t.kind_index,
+                    .deadline_ms = deadline,
+                    .request = js.rec.request,
+                    .store_path = js.rec.store_path,
+                    .tiles = js.rec.tiles,
+                    .groups = js.rec.groups};
+}
+
 absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
+  absl::StatusOr<ExchangeResult> r = Exchange(worker_id, {}, 1);
+  if (!r.ok()) return r.status();
+  if (r->grants.empty()) return std::nullopt;
+  return std::move(r->grants.front());
+}
+
+absl::StatusOr<ExchangeResult> LeaseTable::Exchange(int64_t worker_id,
+                                                    std::span<const Completion> done,
+                                                    int max_tasks) {
   Cleanups cleanups;
-  std::optional<LeaseGrant> grant;
+  ExchangeResult result;
   absl::Status refused;
   {
     std::lock_guard lock(mu_);
@@ -35,44 +84,21 @@ absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
     Transition tx;
     ExpireLocked(now, tx, cleanups);  // may exclude this worker
     w->second.last_seen_ms = now;
-    if (w->second.rec.excluded) {
-      refused = ExcludedWorkerError(worker_id, w->second.rec.consecutive_failures);
-    } else if (!runnable_.empty()) {
-      JobState& js = jobs_.at(*runnable_.begin());  // oldest job with a ready task
-      const int idx = *js.ready.begin();            // its lowest ready task
-      js.ready.erase(js.ready.begin());
-      if (js.ready.empty()) runnable_.erase(js.rec.id);
-      if (js.rec.phase == Phase::kQueued) {
-        js.rec.phase = Phase::kBaking;
-        js.rec.started_ms = now;
-        tx.jobs.push_back(js.rec);
-        AddEvent(js, tx, EventKind::kPhase);
-      }
-      TaskRecord& t = js.tasks[idx];
-      t.state = TaskState::kLeased;
-      t.worker_id = absl::StrCat(worker_id);
-      ++t.attempts;
-      const int64_t deadline = now + options_.lease_ms;
-      js.leases[idx] = {.worker_id = worker_id, .attempt = t.attempts, .deadline_ms = deadline};
-      deadlines_.emplace(deadline, js.rec.id, idx);
-      tx.tasks.push_back(t);
-      AddEvent(js, tx, EventKind::kTaskLeased, &t, {}, worker_id);
-      const LeaseKey key{js.rec.id, idx, t.attempts};
-      grant = LeaseGrant{.lease_id = FormatLeaseId(key),
-                         .key = key,
-                         .kind = t.kind,
-                         .kind_index = t.kind_index,
-                         .deadline_ms = deadline,
-                         .request = js.rec.request,
-                         .store_path = js.rec.store_path,
-                         .tiles = js.rec.tiles,
-                         .groups = js.rec.groups};
+    for (const Completion& c : done) {
+      absl::StatusOr<bool> accepted = CompleteLocked(worker_id, c.key, c.report, tx, cleanups);
+      result.accepted.push_back(accepted.ok() && *accepted);
+    }
+    refused = RefusedLocked(w->second);
+    while (refused.ok() && static_cast<int>(result.grants.size()) < max_tasks) {
+      std::optional<LeaseGrant> grant = LeaseOneLocked(worker_id, now, tx);
+      if (!grant) break;
+      result.grants.push_back(std::move(*grant));
     }
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
   }
   RunCleanups(cleanups);
   if (!refused.ok()) return refused;
-  return grant;
+  return result;
 }
 
 absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
@@ -115,6 +141,8 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
       deadlines_.erase({lease->deadline_ms, js.rec.id, p.key.task});
       lease->deadline_ms = result.deadline_ms;
       deadlines_.emplace(result.deadline_ms, js.rec.id, p.key.task);
+      js.live_rays += p.rays_traced - lease->rays_traced;
+      js.live_bytes += p.bytes_written - lease->bytes_written;
       lease->rays_traced = p.rays_traced;
       lease->bytes_written = p.bytes_written;
       result.renewed.push_back(p.key);
@@ -128,28 +156,35 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
 absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key,
                                           const TaskReport& report) {
   Cleanups cleanups;
+  absl::StatusOr<bool> accepted;
   {
     std::lock_guard lock(mu_);
     if (!broken_.ok()) return broken_;
     if (!workers_.contains(worker_id)) {
       return UnknownWorkerError(worker_id);
     }
-    auto job = jobs_.find(key.job_id);
-    if (job == jobs_.end()) {
-      return absl::NotFoundError(absl::StrCat("lease_id: job ", key.job_id, " not found"));
-    }
-    JobState& js = job->second;
-    if (!IsTerminal(js.rec.phase)) return CompleteLocked(js, worker_id, key, report);
+    Transition tx;
+    accepted = CompleteLocked(worker_id, key, report, tx, cleanups);
+    if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+  }
+  RunCleanups(cleanups);
+  return accepted;
+}
+
+absl::StatusOr<bool> LeaseTable::CompleteLocked(int64_t worker_id, const LeaseKey& key,
+                                                const TaskReport& report, Transition& tx,
+                                                Cleanups& cleanups) {
+  auto job = jobs_.find(key.job_id);
+  if (job == jobs_.end()) {
+    return absl::NotFoundError(absl::StrCat("lease_id: job ", key.job_id, " not found"));
+  }
+  JobState& js = job->second;
+  if (IsTerminal(js.rec.phase)) {
     auto it = js.leases.find(key.task);  // a cancelled or failed job's straggler
     if (it != js.leases.end() && it->second.attempt == key.attempt) DropLease(js, key.task);
     MaybeCleanup(js, cleanups);
+    return false;
   }
-  RunCleanups(cleanups);
-  return false;
-}
-
-absl::StatusOr<bool> LeaseTable::CompleteLocked(JobState& js, int64_t worker_id,
-                                                const LeaseKey& key, const TaskReport& report) {
   if (key.task >= static_cast<int>(js.tasks.size()) || key.attempt > js.tasks[key.task].attempts) {
     return absl::NotFoundError(
         absl::StrCat("lease_id: lease ", FormatLeaseId(key), " was never granted"));
@@ -171,7 +206,6 @@ absl::StatusOr<bool> LeaseTable::CompleteLocked(JobState& js, int64_t worker_id,
   if (t.kind == TaskKind::kFinalize) js.rec.stats_json = report.stats_json;  // final error stats
   js.rec.rays_traced += report.rays_traced;
   js.rec.bytes_written += report.bytes_written;
-  Transition tx;
   tx.tasks.push_back(t);
   WorkerRecord& w = workers_.at(worker_id).rec;
   if (w.consecutive_failures != 0) {  // a success ends a run of failures
@@ -181,7 +215,6 @@ absl::StatusOr<bool> LeaseTable::CompleteLocked(JobState& js, int64_t worker_id,
   AddEvent(js, tx, EventKind::kTaskDone, &t, {}, worker_id);
   AdvanceStage(js, tx);  // may free js.tasks (job DONE): t is not used below
   tx.jobs.push_back(js.rec);
-  if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
   return true;
 }
 
@@ -252,6 +285,8 @@ void LeaseTable::ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups) {
 void LeaseTable::DropLease(JobState& js, int task) {
   auto it = js.leases.find(task);
   deadlines_.erase({it->second.deadline_ms, js.rec.id, task});
+  js.live_rays -= it->second.rays_traced;
+  js.live_bytes -= it->second.bytes_written;
   js.leases.erase(it);
 }
 

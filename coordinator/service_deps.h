@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "coordinator/auth.h"
 #include "coordinator/client_paths.h"
@@ -19,6 +20,7 @@ struct ServiceDeps {
   const TokenAuth* auth = nullptr;
   PlanFn plan;
   std::filesystem::path store_root;
+  std::string store_root_id;    // of store_root's marker (storage/store_root_marker.h)
   int64_t wait_ms = 500;        // LeaseReply.wait_ms when no task is ready
   int64_t watch_poll_ms = 500;  // Watch: longest wait between checks / progress events
   int chunk_bytes = 1 << 20;    // ReadStore / FetchScene chunk size

@@ -32,6 +32,21 @@ absl::StatusOr<LeaseKey> ParseLease(absl::string_view field, const std::string& 
   return *key;
 }
 
+// A task result as Complete and LeaseBatch take it; errors name `field`.
+absl::StatusOr<Completion> ParseResult(const std::string& field, const v1::TaskResult& r) {
+  absl::StatusOr<LeaseKey> key = ParseLease(field + "lease_id", r.lease_id());
+  if (!key.ok()) return key.status();
+  const auto bad = [&](absl::string_view name, absl::string_view why) {
+    return absl::InvalidArgumentError(absl::StrCat(field, name, ": ", why));
+  };
+  if (r.rays_traced() < 0) return bad("rays_traced", "negative");
+  if (r.bytes_written() < 0) return bad("bytes_written", "negative");
+  if (r.stats_json().size() > kMaxStatsBytes) return bad("stats_json", "longer than 1 MiB");
+  return Completion{*key, {r.rays_traced(), r.bytes_written(), r.stats_json()}};
+}
+
+constexpr int kMaxBatch = 4096;  // = the most threads a worker may register
+
 }  // namespace
 
 grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context,
@@ -44,6 +59,7 @@ grpc::Status WorkerServiceImpl::Register(grpc::ServerContext* context,
   absl::StatusOr<int64_t> id = deps_.table->RegisterWorker(request->name(), request->threads());
   if (!id.ok()) return ToGrpc(id.status());
   reply->set_id(absl::StrCat(*id));
+  reply->set_store_root_id(deps_.store_root_id);
   return grpc::Status::OK;
 }
 
@@ -94,16 +110,51 @@ grpc::Status WorkerServiceImpl::Complete(grpc::ServerContext* context,
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
   if (!worker.ok()) return ToGrpc(worker.status());
-  absl::StatusOr<LeaseKey> key = ParseLease("lease_id", request->lease_id());
-  if (!key.ok()) return ToGrpc(key.status());
-  if (request->rays_traced() < 0) return BadField("rays_traced", "negative");
-  if (request->bytes_written() < 0) return BadField("bytes_written", "negative");
-  if (request->stats_json().size() > kMaxStatsBytes)
-    return BadField("stats_json", "longer than 1 MiB");
-  absl::StatusOr<bool> accepted = deps_.table->Complete(
-      *worker, *key, {request->rays_traced(), request->bytes_written(), request->stats_json()});
+  absl::StatusOr<Completion> done = ParseResult("", *request);
+  if (!done.ok()) return ToGrpc(done.status());
+  absl::StatusOr<bool> accepted = deps_.table->Complete(*worker, done->key, done->report);
   if (!accepted.ok()) return ToGrpc(accepted.status());
   reply->set_accepted(*accepted);
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::LeaseBatch(grpc::ServerContext* context,
+                                           const v1::LeaseBatchRequest* request,
+                                           v1::LeaseBatchReply* reply) {
+  if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
+  absl::StatusOr<int64_t> worker = ParseWorkerId(request->worker_id());
+  if (!worker.ok()) return ToGrpc(worker.status());
+  if (request->max_tasks() < 0 || request->max_tasks() > kMaxBatch) {
+    return BadField("max_tasks", absl::StrCat(request->max_tasks(), " is not in 0..", kMaxBatch));
+  }
+  if (request->completed_size() > kMaxBatch) {
+    return BadField("completed", absl::StrCat("more than ", kMaxBatch, " results"));
+  }
+  std::vector<Completion> done;
+  done.reserve(request->completed_size());
+  for (int i = 0; i < request->completed_size(); ++i) {
+    const v1::TaskResult& r = request->completed(i);
+    const std::string field = absl::StrCat("completed[", i, "].");
+    if (!r.worker_id().empty() && r.worker_id() != request->worker_id()) {
+      return BadField(field + "worker_id", "is not the request's worker_id");
+    }
+    absl::StatusOr<Completion> c = ParseResult(field, r);
+    if (!c.ok()) return ToGrpc(c.status());
+    done.push_back(std::move(*c));
+  }
+  absl::StatusOr<ExchangeResult> result =
+      deps_.table->Exchange(*worker, done, request->max_tasks());
+  if (!result.ok()) return ToGrpc(result.status());
+  for (bool accepted : result->accepted) reply->add_accepted(accepted);
+  for (const LeaseGrant& grant : result->grants) {
+    if (!ToProto(grant, reply->add_tasks())) {
+      return {grpc::StatusCode::DATA_LOSS,
+              absl::StrCat("job ", grant.key.job_id, ": stored request does not parse")};
+    }
+  }
+  if (reply->tasks_size() < request->max_tasks()) {
+    reply->set_wait_ms(static_cast<int32_t>(deps_.wait_ms));
+  }
   return grpc::Status::OK;
 }
 

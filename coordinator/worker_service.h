@@ -20,6 +20,8 @@ class WorkerServiceImpl final : public v1::WorkerService::Service {
                         v1::CompleteReply* reply) override;
   grpc::Status Fail(grpc::ServerContext* context, const v1::TaskFailure* request,
                     v1::FailReply* reply) override;
+  grpc::Status LeaseBatch(grpc::ServerContext* context, const v1::LeaseBatchRequest* request,
+                          v1::LeaseBatchReply* reply) override;
   grpc::Status FetchScene(grpc::ServerContext* context, const v1::SceneRef* request,
                           grpc::ServerWriter<v1::SceneChunk>* writer) override;
 

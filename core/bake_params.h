@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/light_domain.h"
+
 namespace wavebake {
 
 enum class ColumnMode { k2d, kFull, kAdaptive };
@@ -18,6 +20,7 @@ enum class LevelScaling { kUniform, kPaper };
 
 struct BakeParams {
   int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
+  LightDomain light_domain;       // the cube (default) or one expanded plane face
   std::string layout = "camera";  // camera[:WxH] | grid | hilbert:WxH
   int supersample = 4;            // K jittered directions per texel (rounded to a square)
   WaveletFilter row_filter = WaveletFilter::kHaar;  // haar | daub4

@@ -74,6 +74,7 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   };
   if (!IsPowerOfTwo(p.light_res) || p.light_res < 8 || p.light_res > 256)
     return bad("light_res", p.light_res, " is not a power of two in 8..256");
+  if (absl::Status s = ValidateLightDomain(p.light_domain); !s.ok()) return s;
   if (p.supersample < 1 || p.supersample > 256)
     return bad("supersample", p.supersample, " is outside 1..256");
   if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)

@@ -9,6 +9,7 @@
 #include "core/nla.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
+#include "core/filled_depth.h"
 
 namespace wavebake {
 namespace {
@@ -103,7 +104,7 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     return;
   }
   const double budget = p.target_error * p.target_error * out->reference_energy;
-  const DepthChoice choice = ChooseDepth(p, image, budget);
+  const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   out->depth = choice.depth;
   const std::span<const float> w = RankingWeights(p, out->depth);
   Select(p, choice.coefficients, w, budget, out);

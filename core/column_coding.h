@@ -9,6 +9,7 @@
 
 #include "core/bake_params.h"
 #include "core/quantizer.h"
+#include "core/uncovered_fill.h"
 
 namespace wavebake {
 
@@ -22,6 +23,9 @@ struct ColumnCodingParams {
   int column_terms = 0;      // > 0: keep a fixed K per column instead of the target
   double matrix_energy = 0;  // mean column energy of the whole matrix (scope matrix)
   LevelScaling level_scaling = LevelScaling::kUniform;
+  // Fills the uncovered cells before a transform of depth ≥ 1 (core/uncovered_fill.h);
+  // null: they stay 0. Not owned.
+  const CellFiller* filler = nullptr;
 };
 
 ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, int height,

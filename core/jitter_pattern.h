@@ -11,6 +11,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/cubemap.h"
+#include "core/light_domain.h"
 #include "core/vec3.h"
 
 namespace wavebake {
@@ -26,7 +27,7 @@ struct JitterPattern {
   // conic hull of its corners, so n·corner ≤ 0 for all 4 means the whole
   // texel is below the horizon of normal n.
   std::vector<Vec3> corners;
-  // Ω_m (exact, Cubemap::SolidAngle), per texel.
+  // Ω_m (exact, Cubemap::SolidAngle or PlaneFace::SolidAngle), per texel.
   std::vector<float> solid_angle;
 
   int texels() const { return static_cast<int>(solid_angle.size()); }
@@ -42,6 +43,10 @@ struct JitterPattern {
 // direction is jittered uniformly in (s, t) inside it with a generator seeded
 // by hash(seed, texel index) alone. Directions are ordered k = j*k + i.
 absl::StatusOr<JitterPattern> MakeJitterPattern(const Cubemap& cubemap, int supersample,
+                                                uint64_t seed);
+// The same stratification and seeding (by texel index m = y·N + x) over the
+// one expanded face of a plane light domain.
+absl::StatusOr<JitterPattern> MakeJitterPattern(const PlaneFace& face, int supersample,
                                                 uint64_t seed);
 
 }  // namespace wavebake

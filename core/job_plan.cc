@@ -13,7 +13,7 @@ JobPlan MakeJobPlan(const BakeParams& p, int width, int height) {
   plan.tiles_x = width / plan.tile_w;
   plan.tiles_y = height / plan.tile_h;
   plan.light_res = p.light_res;
-  plan.columns = 6 * p.light_res * p.light_res;
+  plan.columns = p.light_domain.Columns(p.light_res);
   plan.group_size = std::min(p.column_group, plan.columns);
   plan.groups = (plan.columns + plan.group_size - 1) / plan.group_size;
   return plan;

@@ -21,7 +21,7 @@ struct JobPlan {
   int tile_w = 0, tile_h = 0;
   int tiles_x = 0, tiles_y = 0;
   int light_res = 0;   // N
-  int columns = 0;     // M = 6 N²
+  int columns = 0;     // M = 6 N² (cube) or N² (plane light domain)
   int group_size = 0;  // columns per TRANSFORM_COLUMNS task
   int groups = 0;
 

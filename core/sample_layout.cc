@@ -24,6 +24,7 @@ absl::StatusOr<std::pair<int, int>> LayoutGridSize(const Scene& scene, const Lay
                        " vertices, more than the ", cells, " cells; use a larger grid"));
     return std::pair{layout.width, layout.height};
   }
+  if (layout.kind != LayoutKind::kGrid) return std::pair{layout.width, layout.height};
   for (const Mesh& m : scene.meshes)
     if (m.grid_width > 0) return std::pair{m.grid_width, m.grid_height};
   return absl::InvalidArgumentError(
@@ -39,6 +40,8 @@ absl::StatusOr<SampleSet> MakeSampleSet(const Scene& scene, const RayCaster& cas
       return GridLayout(scene);
     case LayoutKind::kHilbert:
       return HilbertLayout(scene, layout.width, layout.height);
+    case LayoutKind::kUv:
+      return UvLayout(scene, layout);
   }
   return absl::InvalidArgumentError("layout: unknown kind");
 }

@@ -12,11 +12,22 @@
 
 namespace wavebake {
 
+// A texture coordinate in assimp's (OpenGL) convention: v grows upwards,
+// (0, 0) is the bottom-left corner of the image.
+struct Vec2 {
+  float u = 0, v = 0;
+  constexpr bool operator==(const Vec2&) const = default;
+};
+
 struct Mesh {
   std::string name;
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // per vertex, unit length; same size as positions
   std::vector<std::array<uint32_t, 3>> triangles;
+  // UV channels as the file has them ([channel][vertex], each the size of
+  // positions): the `uv` layout reads channel 0, `uv1` channel 1. Empty when
+  // the file has none; built-in shapes have none.
+  std::vector<std::vector<Vec2>> uv_channels;
   Vec3 albedo{0.8f, 0.8f, 0.8f};  // diffuse RGB reflectance in [0,1]
   // A regular-grid mesh (the `grid` layout): vertex (i, j) = j * grid_width + i.
   int grid_width = 0, grid_height = 0;

@@ -57,6 +57,16 @@ absl::Status CheckVertices(const Mesh& m, const std::string& where) {
   if (!m.normals.empty() && m.normals.size() != m.positions.size())
     return Invalid(
         where, absl::StrCat(m.normals.size(), " normals for ", m.positions.size(), " vertices"));
+  for (size_t c = 0; c < m.uv_channels.size(); ++c) {
+    const std::vector<Vec2>& uv = m.uv_channels[c];
+    if (uv.size() != m.positions.size())
+      return Invalid(where, absl::StrCat("UV channel ", c, " has ", uv.size(), " coordinates for ",
+                                         m.positions.size(), " vertices"));
+    for (size_t i = 0; i < uv.size(); ++i)
+      if (!std::isfinite(uv[i].u) || !std::isfinite(uv[i].v))
+        return Invalid(where, absl::StrCat("UV channel ", c, ": vertex ", i, " has a non-finite (",
+                                           uv[i].u, ", ", uv[i].v, ")"));
+  }
   if (m.grid_width != 0 || m.grid_height != 0) {
     if (m.grid_width <= 0 || m.grid_height <= 0 ||
         int64_t{m.grid_width} * m.grid_height != static_cast<int64_t>(m.positions.size()))

@@ -83,7 +83,7 @@ class Hasher128 {
 
 }  // namespace
 
-std::string SceneHash(const Scene& scene) {
+std::string SceneHash(const Scene& scene, int uv_channel) {
   Hasher128 h;
   // Bump the version tag whenever the serialization changes: old hashes must
   // not silently match new content.
@@ -101,6 +101,19 @@ std::string SceneHash(const Scene& scene) {
     h.V3(m.albedo);
     h.I32(m.grid_width);
     h.I32(m.grid_height);
+  }
+  if (uv_channel >= 0) {  // only then: every other layout's hash stays as it was
+    h.Tag("uv-channel");
+    h.I32(uv_channel);
+    for (const Mesh& m : scene.meshes) {
+      const bool has = static_cast<size_t>(uv_channel) < m.uv_channels.size();
+      h.U32(has ? static_cast<uint32_t>(m.uv_channels[uv_channel].size()) : 0u);
+      if (!has) continue;
+      for (Vec2 t : m.uv_channels[uv_channel]) {
+        h.F32(t.u);
+        h.F32(t.v);
+      }
+    }
   }
   h.Tag(scene.camera ? "camera" : "no-camera");
   if (scene.camera) {

@@ -9,9 +9,13 @@
 
 namespace wavebake {
 
+// uv_channel ≥ 0 also covers that UV channel of every mesh: the hash of a
+// `uv`/`uv1` bake, whose samples the UVs decide (other layouts ignore UVs and
+// keep the hash they always had).
+//
 // 128 bits as 32 lowercase hex digits. Stable across runs, builds and
 // platforms: it hashes a canonical little-endian serialization (floats by
 // their IEEE-754 bits, −0 as +0), never memory layout.
-std::string SceneHash(const Scene& scene);
+std::string SceneHash(const Scene& scene, int uv_channel = -1);
 
 }  // namespace wavebake

@@ -81,16 +81,22 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
 void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats) {
-  CheckOrDie(row.size() == static_cast<size_t>(cubemap.size()), "row size differs from M");
   CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
              "jitter pattern was made for another cubemap");
+  TransportRow(caster, pattern, position, normal, epsilon, row, stats);
+}
+
+void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
+                  float epsilon, std::span<float> row, TransportStats* stats) {
+  CheckOrDie(row.size() == static_cast<size_t>(pattern.texels()), "row size differs from M");
   CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
 
   TransportStats local;
   const Vec3 origin = position + normal * epsilon;  // DESIGN.md §1: rays start at x + ε n
   std::fill(row.begin(), row.end(), 0.0f);
   RayBatch batch;
-  for (int m = 0; m < cubemap.size(); ++m) {
+  const int texels = pattern.texels();
+  for (int m = 0; m < texels; ++m) {
     if (BelowHorizon(pattern, m, normal)) {
       ++local.texels_culled;
       continue;
@@ -102,7 +108,7 @@ void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterP
 
   // Ω_m · (1/K) · f_r with f_r = 1/π (albedo factored out, DESIGN.md §1).
   const float inv_k_pi = static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi));
-  for (int m = 0; m < cubemap.size(); ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
+  for (int m = 0; m < texels; ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
 
   if (stats) {
     stats->rays_traced += local.rays_traced;

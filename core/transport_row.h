@@ -30,5 +30,9 @@ struct TransportStats {
 void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats);
+// The same over whatever light domain the pattern was made for (the cube or
+// a plane face, core/light_domain.h): row has pattern.texels() entries.
+void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
+                  float epsilon, std::span<float> row, TransportStats* stats);
 
 }  // namespace wavebake

@@ -79,7 +79,7 @@ absl::StatusOr<AutoBakeMeasurement> BakeCandidate(const std::string& scene, Bake
     return absl::CancelledError("interrupted; nothing written");
   if (job->phase() != v1::PHASE_DONE) return absl::InternalError(JobOutcome(*job));
   AutoBakeMeasurement m;
-  const int all = 6 * action.light_res * action.light_res;
+  const int all = params.light_domain.Columns(action.light_res);
   const int terms[] = {all, kDefaultRelightTerms};
   absl::StatusOr<std::vector<double>> errors = measurer.StoreErrors(store, terms, &m.bits);
   if (!errors.ok()) return errors.status();
@@ -173,6 +173,11 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
   if (base.bits != 0) return absl::InvalidArgumentError("bits: --auto needs --bits auto");
   if (base.column_mode != ColumnMode::kAdaptive)
     return absl::InvalidArgumentError("column_mode: --auto needs --column-mode adaptive");
+  // Its yardstick is an environment, which a plane face does not span.
+  if (base.light_domain.is_plane())
+    return absl::InvalidArgumentError(
+        "light_domain: --auto measures under an environment and "
+        "needs the cube");
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
   absl::StatusOr<std::unique_ptr<ReferenceMeasure>> measurer = MakeMeasure(scene, base, options);
   if (!measurer.ok()) return measurer.status();

@@ -143,7 +143,7 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
     Workers loops(**coordinator, (*coordinator)->InProcessChannel(), workers, local_scenes);
     v1::BakeRequest request = ToBakeRequest(params);
     request.set_output_name(kStoreName);
-    absl::StatusOr<v1::Job> submitted = SubmitScene(client, request, scene);
+    absl::StatusOr<v1::Job> submitted = SubmitScene(client, request, scene, /*with_files=*/false);
     if (!submitted.ok()) return submitted.status();
     Watchdog watchdog(client, submitted->id(), options.interrupted, loops);
     job = WatchJob(client, submitted->id(), {.patience_seconds = 60, .on_event = options.on_event});

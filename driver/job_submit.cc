@@ -1,11 +1,16 @@
 #include "driver/job_submit.h"
 
 #include <filesystem>
+#include <set>
+#include <utility>
+#include <vector>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "coordinator/scene_store.h"
 #include "driver/client.h"
+#include "storage/scene_bundle.h"
+#include "storage/scene_loader.h"
 
 namespace wavebake::driver {
 namespace {
@@ -41,10 +46,38 @@ absl::StatusOr<v1::Job> Submit(const Client& client, const v1::BakeRequest& requ
   return job;
 }
 
-// Submit's answer for a hash the coordinator has never seen (job_service.cc).
+// Submit's answer for a hash the coordinator has never seen (job_service.cc),
+// the scene's or one of its files'.
 bool SceneUnknown(const absl::Status& s) {
   return absl::IsInvalidArgument(s) &&
-         absl::StartsWith(s.message(), "scene.uploaded.sha256: no uploaded scene");
+         (absl::StartsWith(s.message(), "scene.uploaded.sha256: no uploaded scene") ||
+          (absl::StartsWith(s.message(), "scene.uploaded.files[") &&
+           absl::StrContains(s.message(), "sha256: no uploaded scene")));
+}
+
+// The files a JSON scene names (meshes[i].file), read relative to it: they
+// go up with the scene, so it bakes where none of this machine's paths exist.
+// Absolute paths and ".." are refused here, naming the field, as the
+// coordinator would refuse them.
+absl::StatusOr<std::vector<std::pair<std::string, SceneFile>>> SceneFiles(
+    const std::string& scene) {
+  std::vector<std::pair<std::string, SceneFile>> out;
+  if (std::filesystem::path(scene).extension() != ".json") return out;
+  absl::StatusOr<std::vector<std::string>> names = JsonSceneMeshFiles(scene);
+  if (!names.ok()) return names.status();
+  std::set<std::string> seen;
+  for (size_t i = 0; i < names->size(); ++i) {
+    const std::string& name = (*names)[i];
+    const std::string field = absl::StrCat("SCENE '", scene, "': meshes[", i, "].file");
+    if (absl::Status s = CheckBundlePath(name, field); !s.ok()) return s;
+    if (!seen.insert(name).second) continue;
+    absl::StatusOr<SceneFile> file =
+        ReadSceneFile((std::filesystem::path(scene).parent_path() / name).string());
+    if (!file.ok())
+      return absl::InvalidArgumentError(absl::StrCat(field, ": ", file.status().message()));
+    out.emplace_back(name, *std::move(file));
+  }
+  return out;
 }
 
 }  // namespace
@@ -62,18 +95,31 @@ absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path) {
 }
 
 absl::StatusOr<v1::Job> SubmitScene(const Client& client, v1::BakeRequest request,
-                                    const std::string& scene) {
+                                    const std::string& scene, bool with_files) {
   if (IsBuiltinScene(scene)) {
     request.mutable_scene()->set_builtin(scene);
     return Submit(client, request);
   }
   absl::StatusOr<SceneFile> file = ReadSceneFile(scene);
   if (!file.ok()) return file.status();
+  absl::StatusOr<std::vector<std::pair<std::string, SceneFile>>> files =
+      with_files ? SceneFiles(scene) : std::vector<std::pair<std::string, SceneFile>>{};
+  if (!files.ok()) return files.status();
   v1::SceneRef* ref = request.mutable_scene()->mutable_uploaded();
   ref->set_sha256(file->sha256);
   ref->set_file_name(file->file_name);
+  for (const auto& [path, f] : *files) {
+    v1::SceneFileRef* r = ref->add_files();
+    r->set_path(path);
+    r->set_sha256(f.sha256);
+  }
   absl::StatusOr<v1::Job> job = Submit(client, request);
   if (!SceneUnknown(job.status())) return job;
+  // Uploads are by content: what the coordinator has already costs one pass.
+  for (const auto& [path, f] : *files) {
+    absl::StatusOr<v1::SceneRef> uploaded = Upload(client, f);
+    if (!uploaded.ok()) return uploaded.status();
+  }
   absl::StatusOr<v1::SceneRef> uploaded = Upload(client, *file);
   if (!uploaded.ok()) return uploaded.status();
   return Submit(client, request);

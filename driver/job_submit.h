@@ -23,8 +23,11 @@ absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path);
 
 // Submits `request` for `scene` (the request's own scene is replaced). A
 // file's hash goes first; only if the coordinator does not know it are the
-// bytes uploaded, then the job is submitted again.
+// bytes uploaded, then the job is submitted again. A JSON scene goes with the
+// mesh files it names (each by its own hash, SceneRef.files) unless
+// with_files is false (the embedded bake, whose planner and workers read the
+// user's own paths).
 absl::StatusOr<v1::Job> SubmitScene(const Client& client, v1::BakeRequest request,
-                                    const std::string& scene);
+                                    const std::string& scene, bool with_files = true);
 
 }  // namespace wavebake::driver

@@ -34,6 +34,11 @@ absl::Status CheckChoice(absl::string_view field, std::string& value, absl::stri
   return Bad(field, absl::StrCat("\"", value, "\" is not one of ", absl::StrJoin(choices, ", ")));
 }
 
+absl::Status CheckLightDomain(std::string& domain) {
+  if (domain.empty()) domain = "cube";
+  return ParseLightDomain(domain).status();
+}
+
 absl::Status CheckScene(v1::BakeRequest& r) {
   const v1::SceneSource& scene = r.scene();
   switch (scene.source_case()) {
@@ -123,6 +128,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.column_terms = r.column_terms();
   p.bits = r.bits();
   p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
+  p.light_domain = ParseLightDomain(r.light_domain()).value_or(LightDomain{});
   p.seed = r.seed();
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
@@ -149,7 +155,7 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
-        CheckOutputName(r)}) {
+        CheckLightDomain(*r.mutable_light_domain()), CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
   // The fields one by one are fine; the core's own rules have the last word.
@@ -174,6 +180,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_column_terms(p.column_terms);
   r.set_bits(p.bits);
   r.set_level_scaling(std::string(ToString(p.level_scaling)));
+  if (p.light_domain.is_plane()) r.set_light_domain(ToString(p.light_domain));
   r.set_seed(p.seed);
   r.set_row_filter(std::string(ToString(p.row_filter)));
   r.set_tile_size(p.tile_size);

@@ -11,18 +11,10 @@
 #include "runtime/env_cross.h"
 #include "runtime/env_map.h"
 #include "runtime/image_io.h"
-#include "runtime/stb_codecs.h"
-#include "storage/atomic_file.h"
 
 namespace wavebake {
 
 namespace {
-
-absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path) {
-  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
-  if (!bytes.ok()) return bytes.status();
-  return DecodeRadianceHdr(*bytes, path.string());
-}
 
 // Radiance must be finite and non-negative: one bad texel would poison every
 // relit pixel through T·L. And it must stay below kMaxEnvRadiance (env_map.h),

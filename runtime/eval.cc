@@ -52,6 +52,24 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
   return s;
 }
 
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+  // Checked by content hash: a scene file edited since the bake would make
+  // every comparison meaningless.
+  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
+  if (!scene.ok()) return scene.status();
+  const std::string hash = StoreSceneHash(info, *scene);
+  if (!info.scene_hash.empty() && hash != info.scene_hash) {
+    return absl::FailedPreconditionError(absl::StrCat("scene: ", info.scene_spec,
+                                                      " no longer matches the baked scene (hash ",
+                                                      hash, " vs ", info.scene_hash, ")"));
+  }
+  return RayCaster::Build(*scene);
+}
+
+float BakedEpsilon(const StoreInfo& info, const RayCaster& caster) {
+  return info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster.DefaultEpsilon();
+}
+
 absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
                                     int terms, const EvalOptions& options) {
   if (terms <= 0) {
@@ -59,24 +77,15 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   }
   absl::StatusOr<OpenedStore> opened = OpenStore(store);
   if (!opened.ok()) return opened.status();
+  if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
   if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
 
-  // The scene the store was baked from, checked by content hash: a scene file
-  // edited since the bake would make every comparison meaningless.
   const StoreInfo& info = opened->info;
-  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
-  if (!scene.ok()) return scene.status();
-  if (!info.scene_hash.empty() && SceneHash(*scene) != info.scene_hash) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("scene: ", info.scene_spec, " no longer matches the baked scene (hash ",
-                     SceneHash(*scene), " vs ", info.scene_hash, ")"));
-  }
-  absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
+  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
   if (!caster.ok()) return caster.status();
-  const float eps =
-      info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster->DefaultEpsilon();
+  const float eps = BakedEpsilon(info, *caster);
 
   EvalReport report;
   report.terms = terms;

@@ -12,6 +12,7 @@
 
 #include "absl/status/statusor.h"
 #include "runtime/reference.h"
+#include "storage/store_reader.h"
 
 namespace wavebake {
 
@@ -29,6 +30,12 @@ struct ErrorStats {
   double rel_rms = 0, max_abs = 0, psnr = 0, seconds = 0;
 };
 ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference);
+
+// The scene a store was baked from, rebuilt for ray casting; FailedPrecondition
+// if its file no longer hashes to the baked scene.
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info);
+// The ray offset the bake used (its own, or the scene's default).
+float BakedEpsilon(const StoreInfo& info, const RayCaster& caster);
 
 struct EvalReport {
   int terms = 0;

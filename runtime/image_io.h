@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -28,12 +29,19 @@ absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
 // The same from the file's bytes; `name` names it in errors. The header is
 // checked before OpenEXR reads it (runtime/exr_preflight.h).
 absl::StatusOr<EnvMap> DecodeExr(std::span<const std::byte> file, const std::string& name);
+// Radiance RGBE (.hdr) through stb_image, linear float.
+absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path);
+// An 8-bit PNG through stb_image, sRGB decoded to linear [0, 1].
+absl::StatusOr<EnvMap> ReadPngImage(const std::filesystem::path& path);
 
 // 8-bit sRGB PNG: linear × 2^exposure_stops, clamped to [0, 1], sRGB OETF.
 // A pixel with any NaN channel (a masked cell) gets `background`, a linear
 // colour in [0, 1] encoded the same way but not exposed.
 absl::Status WritePng(const std::filesystem::path& path, int width, int height,
                       std::span<const float> rgb, float exposure_stops, Vec3 background);
+// The same PNG as bytes (for embedding, e.g. in a glTF).
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
+                                                 float exposure_stops, Vec3 background);
 
 // Binary little-endian PLY: vertices with float x, y, z and uchar red, green,
 // blue (tone-mapped as in WritePng, NaN → black), faces as `list uchar int

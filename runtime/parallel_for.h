@@ -22,4 +22,25 @@ void ParallelFor(int count, const Body& body) {
   work();
 }
 
+// body(state, begin, end) over [0, count) in chunks of `chunk`, on `threads`
+// threads (≤ 0: all cores), each with its own state = make_state(). Chunks
+// are handed out round-robin, which balances uneven work; each index is
+// still computed by the same code whichever thread takes it.
+template <typename MakeState, typename Body>
+void ParallelChunks(int count, int chunk, int threads, const MakeState& make_state,
+                    const Body& body) {
+  const int chunks = (count + chunk - 1) / chunk;
+  std::atomic<int> next{0};
+  auto work = [&] {
+    auto state = make_state();
+    for (int c; (c = next.fetch_add(1)) < chunks;)
+      body(state, c * chunk, std::min(count, (c + 1) * chunk));
+  };
+  if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, std::max(chunks, 1));
+  std::vector<std::jthread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+}
+
 }  // namespace wavebake

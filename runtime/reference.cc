@@ -13,6 +13,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "runtime/env_sampler.h"
+#include "runtime/stream_rng.h"
 
 namespace wavebake {
 namespace {
@@ -21,21 +22,9 @@ constexpr int kBatch = 128;     // draws per Embree call, per stratified batch, 
 constexpr int kMinBatches = 8;  // fewer batch means give no usable standard error
 constexpr uint64_t kReferenceDomain = 0x7265662d72617973ull;  // "ref-rays"
 
-uint64_t Mix64(uint64_t z) {  // SplitMix64 output step (Steele, Lea, Flood 2014)
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-class Rng {
+class Rng : public StreamRng {
  public:
-  Rng(uint64_t seed, uint64_t stream) : state_(Mix64(Mix64(seed ^ kReferenceDomain) + stream)) {}
-  double Next01() {
-    return static_cast<double>(Mix64(state_ += 0x9e3779b97f4a7c15ull) >> 11) * 0x1p-53;
-  }
-
- private:
-  uint64_t state_;
+  Rng(uint64_t seed, uint64_t stream) : StreamRng(seed, kReferenceDomain, stream) {}
 };
 
 // One sample's estimate by batch means: each batch of kBatch draws, stratified

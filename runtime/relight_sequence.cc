@@ -61,6 +61,7 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
   if (!env.ok()) return env.status();
   absl::StatusOr<OpenedStore> opened = OpenStore(store);
   if (!opened.ok()) return opened.status();
+  if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;
   Relighter& relighter = opened->relighter;
   std::optional<IncrementalRelighter> incremental;
   if (o.mode != SequenceMode::kNonIncremental) {

@@ -27,9 +27,10 @@ absl::Status CheckColumns(const CompressedColumns& t) {
     return absl::InvalidArgumentError(
         absl::StrCat("transport: grid ", t.width, "x", t.height, " is not a power-of-two size"));
   }
-  if (t.light_res <= 0 || t.columns != 6 * t.light_res * t.light_res) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("transport: columns ", t.columns, " != 6 N² for light_res ", t.light_res));
+  const int face = t.light_res * t.light_res;  // a plane light domain has one face
+  if (t.light_res <= 0 || (t.columns != 6 * face && t.columns != face)) {
+    return absl::InvalidArgumentError(absl::StrCat("transport: columns ", t.columns,
+                                                   " != 6 N² or N² for light_res ", t.light_res));
   }
   if (t.indptr.size() != static_cast<size_t>(t.columns) + 1 || t.indptr.front() != 0) {
     return absl::InvalidArgumentError(absl::StrCat("transport/indptr: ", t.indptr.size(),
@@ -101,10 +102,14 @@ std::vector<float> CellAlbedo(const SampleSet& samples) {
   return out;
 }
 
+absl::Status CheckRelightable(const CompressedColumns& columns, const SampleSet& samples) {
+  if (absl::Status s = CheckColumns(columns); !s.ok()) return s;
+  return CheckSamples(samples, columns);
+}
+
 absl::StatusOr<Relighter> Relighter::Create(const CompressedColumns& columns,
                                             const SampleSet& samples) {
-  if (absl::Status s = CheckColumns(columns); !s.ok()) return s;
-  if (absl::Status s = CheckSamples(samples, columns); !s.ok()) return s;
+  if (absl::Status s = CheckRelightable(columns, samples); !s.ok()) return s;
   if (MaxDepth(columns.width, columns.height) >= kDepthSlots) {
     return absl::InvalidArgumentError(absl::StrCat("transport: grid ", columns.width, "x",
                                                    columns.height, " is too large to relight"));

@@ -30,6 +30,11 @@ namespace wavebake {
 // cells (grid −1) are NaN, so any radiance multiplied by them is NaN too.
 std::vector<float> CellAlbedo(const SampleSet& samples);
 
+// The checks of Relighter::Create (sizes, indptr monotone, positions inside
+// the grid, depths ≤ MaxDepth(W, H), samples on the same grid), for other
+// readers of the same matrix (runtime/cell_rows.h).
+absl::Status CheckRelightable(const CompressedColumns& columns, const SampleSet& samples);
+
 class Relighter {
  public:
   // Checks the matrix (sizes, indptr monotone, positions inside the grid,

@@ -25,15 +25,14 @@ std::string LowerExtension(const std::filesystem::path& p) {
 
 // Per-vertex colours for a mesh layout: sample s colours global vertex
 // samples.vertex[s]; vertices without a sample stay NaN (black in the PLY).
-absl::Status WriteMeshColours(const OpenedStore& store, std::span<const float> rgb,
+absl::Status WriteMeshColours(const StoreInfo& info, const SampleSet& s, std::span<const float> rgb,
                               float exposure_stops, const std::filesystem::path& out) {
-  const SampleSet& s = store.samples;
   if (s.vertex.size() != s.position.size()) {
     return absl::InvalidArgumentError(absl::StrCat(
         "out: ", out.string(), ": a .ply needs a mesh layout (grid|hilbert), the store has ",
-        store.info.params.layout));
+        info.params.layout));
   }
-  absl::StatusOr<Scene> scene = LoadScene(store.info.scene_spec);
+  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
   if (!scene.ok()) return scene.status();
   size_t vertices = 0;
   for (const Mesh& m : scene->meshes) vertices += m.positions.size();
@@ -65,7 +64,15 @@ absl::StatusOr<OpenedStore> OpenStore(const std::filesystem::path& store) {
   return OpenedStore{*std::move(info), *std::move(samples), *std::move(relighter)};
 }
 
+absl::Status RequireCubeDomain(const StoreInfo& info) {
+  if (!info.params.light_domain.is_plane()) return absl::OkStatus();
+  return absl::FailedPreconditionError(absl::StrCat(
+      "store: light domain ", ToString(info.params.light_domain),
+      " covers one face of directions, not an environment; relight it with --area-light"));
+}
+
 absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap& env, int terms) {
+  if (absl::Status s = RequireCubeDomain(store.info); !s.ok()) return s;
   Relighter& r = store.relighter;
   absl::StatusOr<LightingCoefficients> lighting =
       LightingFromEnv(env, r.light_res(), r.row_filter());
@@ -86,11 +93,7 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
   if (!std::isfinite(rotate_degrees)) {
     return absl::InvalidArgumentError(absl::StrCat("rotate: ", rotate_degrees, " is not finite"));
   }
-  const std::string ext = LowerExtension(out);
-  if (ext != ".png" && ext != ".exr" && ext != ".ply") {
-    return absl::InvalidArgumentError(
-        absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
-  }
+  if (absl::Status s = CheckRelitPath(out); !s.ok()) return s;
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
   if (rotate_degrees != 0) *env = Rotated(*env, rotate_degrees);
@@ -101,15 +104,30 @@ absl::Status RelightToFile(const std::filesystem::path& store, std::string_view 
   return WriteRelit(*opened, *rgb, exposure_stops, out);
 }
 
+absl::Status CheckRelitPath(const std::filesystem::path& out) {
+  const std::string ext = LowerExtension(out);
+  if (ext == ".png" || ext == ".exr" || ext == ".ply" || ext == ".gltf" || ext == ".glb")
+    return absl::OkStatus();
+  return absl::InvalidArgumentError(
+      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr, .ply, .gltf, .glb)"));
+}
+
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out) {
+  return WriteRelit(store.info, store.samples, rgb, exposure_stops, out);
+}
+
+absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::span<const float> rgb,
+                        float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
-  const int w = store.samples.width, h = store.samples.height;
+  const int w = samples.width, h = samples.height;
+  if (!samples.uv_charts.empty()) return WriteLightmapOutput(info, samples, rgb, exposure_stops, out);
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
-  if (ext == ".ply") return WriteMeshColours(store, rgb, exposure_stops, out);
+  if (ext == ".ply") return WriteMeshColours(info, samples, rgb, exposure_stops, out);
   return absl::InvalidArgumentError(
-      absl::StrCat("out: ", out.string(), ": unknown extension (.png, .exr or .ply)"));
+      absl::StrCat("out: ", out.string(),
+                   ": unknown extension (.png, .exr or .ply; .gltf/.glb for uv layouts)"));
 }
 
 }  // namespace wavebake

@@ -52,21 +52,25 @@ absl::Status GetBits(const nlohmann::json& j, int* bits) {
 }  // namespace
 
 nlohmann::json ToJson(const BakeParams& p) {
-  return {{"light_res", p.light_res},
-          {"layout", p.layout},
-          {"supersample", p.supersample},
-          {"row_filter", std::string(ToString(p.row_filter))},
-          {"column_mode", std::string(ToString(p.column_mode))},
-          {"column_filter", std::string(ToString(p.column_filter))},
-          {"target_error", p.target_error},
-          {"error_scope", std::string(ToString(p.error_scope))},
-          {"column_terms", p.column_terms},
-          {"bits", p.bits == 0 ? nlohmann::json("auto") : nlohmann::json(p.bits)},
-          {"level_scaling", std::string(ToString(p.level_scaling))},
-          {"seed", p.seed},
-          {"tile_size", p.tile_size},
-          {"column_group", p.column_group},
-          {"ray_epsilon", p.ray_epsilon}};
+  nlohmann::json j = {{"light_res", p.light_res},
+                      {"layout", p.layout},
+                      {"supersample", p.supersample},
+                      {"row_filter", std::string(ToString(p.row_filter))},
+                      {"column_mode", std::string(ToString(p.column_mode))},
+                      {"column_filter", std::string(ToString(p.column_filter))},
+                      {"target_error", p.target_error},
+                      {"error_scope", std::string(ToString(p.error_scope))},
+                      {"column_terms", p.column_terms},
+                      {"bits", p.bits == 0 ? nlohmann::json("auto") : nlohmann::json(p.bits)},
+                      {"level_scaling", std::string(ToString(p.level_scaling))},
+                      {"seed", p.seed},
+                      {"tile_size", p.tile_size},
+                      {"column_group", p.column_group},
+                      {"ray_epsilon", p.ray_epsilon}};
+  // Only a plane light domain is spelled out: a cube store's .zattrs stays
+  // byte-identical to the stores written before the field existed.
+  if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
+  return j;
 }
 
 absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
@@ -94,6 +98,10 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   if (!j.contains("seed") || !j["seed"].is_number_unsigned())
     return Bad("seed", "missing or not an unsigned integer");
   p.seed = j["seed"].get<uint64_t>();
+  if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
+    if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
+      return s;
+  }
   p.target_error = target;
   p.ray_epsilon = static_cast<float>(epsilon);
   if (absl::Status s = ValidateBakeParams(p); !s.ok())

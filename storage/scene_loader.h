@@ -1,6 +1,9 @@
 #pragma once
 // SCENE argument of DESIGN.md §5 → a checked Scene.
+#include <filesystem>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/scene.h"
@@ -24,5 +27,11 @@ namespace wavebake {
 // (core/scene_hash.h).
 absl::StatusOr<Scene> LoadScene(std::string_view spec, SceneReport* report = nullptr,
                                 const SceneFiles* files = nullptr);
+
+// The meshes[i].file strings of a JSON scene file, as written (what a client
+// uploads with the scene, storage/scene_bundle.h). Errors as LoadScene's,
+// naming the file as `files` does (null: LocalSceneFiles).
+absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path,
+                                                            const SceneFiles* files = nullptr);
 
 }  // namespace wavebake

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "nlohmann/json.hpp"
+#include "storage/scene_loader.h"
 #include "storage/scene_loader_parts.h"
 
 namespace wavebake {
@@ -194,13 +196,10 @@ absl::StatusOr<Camera> ReadCamera(const Reader& r, const json& j) {
   return c;
 }
 
-}  // namespace
-
-absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path, const SceneFiles& files,
-                                    std::vector<std::string>& warnings) {
-  const Reader r(path, files);
-  if (!files.Open(path)) return r.Error("", "is outside the scene's files");
-  std::ifstream in(path);
+// The file's top level, with its keys and its meshes array checked.
+absl::StatusOr<json> ParseSceneFile(const Reader& r) {
+  if (!r.files().Open(r.path())) return r.Error("", "is outside the scene's files");
+  std::ifstream in(r.path());
   if (!in) return r.Error("", "cannot open (missing or unreadable)");
   std::stringstream text;
   text << in.rdbuf();
@@ -214,6 +213,35 @@ absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path, const Sce
   const auto meshes = j.find("meshes");
   if (meshes == j.end() || !meshes->is_array() || meshes->empty())
     return r.Error("meshes", "expected a non-empty array of meshes");
+  return j;
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path,
+                                                            const SceneFiles* files) {
+  const std::unique_ptr<SceneFiles> local = files ? nullptr : LocalSceneFiles();
+  const Reader r(path, files ? *files : *local);
+  absl::StatusOr<json> j = ParseSceneFile(r);
+  if (!j.ok()) return j.status();
+  std::vector<std::string> references;
+  for (size_t i = 0; i < (*j)["meshes"].size(); ++i) {
+    const json& m = (*j)["meshes"][i];
+    const std::string field = absl::StrCat("meshes[", i, "].file");
+    if (!m.is_object() || !m.contains("file") || !m["file"].is_string())
+      return r.Error(field, "expected a path string");
+    references.push_back(m["file"].get<std::string>());
+  }
+  return references;
+}
+
+absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path, const SceneFiles& files,
+                                    std::vector<std::string>& warnings) {
+  const Reader r(path, files);
+  absl::StatusOr<json> parsed = ParseSceneFile(r);
+  if (!parsed.ok()) return parsed.status();
+  const json& j = *parsed;
+  const auto meshes = j.find("meshes");
   Scene scene;
   scene.name = path.stem().string();
   for (size_t i = 0; i < meshes->size(); ++i)

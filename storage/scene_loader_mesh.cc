@@ -77,6 +77,14 @@ Mesh Convert(const aiScene& scene, const aiMesh& am, std::string name) {
     for (unsigned i = 0; i < am.mNumVertices; ++i)
       m.normals.push_back({am.mNormals[i].x, am.mNormals[i].y, am.mNormals[i].z});
   }
+  // Channels in order, stopping at the first missing one (assimp keeps them
+  // packed): a 3-component channel keeps its first two.
+  for (unsigned c = 0; c < AI_MAX_NUMBER_OF_TEXTURECOORDS && am.HasTextureCoords(c); ++c) {
+    std::vector<Vec2>& uv = m.uv_channels.emplace_back();
+    uv.reserve(am.mNumVertices);
+    for (unsigned i = 0; i < am.mNumVertices; ++i)
+      uv.push_back({am.mTextureCoords[c][i].x, am.mTextureCoords[c][i].y});
+  }
   // Points and lines survive aiProcess_Triangulate as 1- and 2-index faces;
   // they have no area to shade or occlude.
   for (unsigned f = 0; f < am.mNumFaces; ++f) {

@@ -23,6 +23,10 @@ inline constexpr char kPosition[] = "samples/position";  // float32 [S, 3]
 inline constexpr char kNormal[] = "samples/normal";      // float32 [S, 3]
 inline constexpr char kAlbedo[] = "samples/albedo";      // float32 [S, 3]
 inline constexpr char kVertex[] = "samples/vertex";      // int32 [S] (mesh layouts)
+// uv layouts (core/uv_atlas.h): per mesh, its texel rectangle x, y, width,
+// height (row 0 at the top) and the UV domain u0, v0, u1, v1 that fills it.
+inline constexpr char kUvRects[] = "samples/uv_rects";      // int32 [meshes, 4]
+inline constexpr char kUvDomains[] = "samples/uv_domains";  // float32 [meshes, 4]
 
 // Staging (removed by FINALIZE unless --keep-staging).
 inline constexpr char kStaging[] = "staging";

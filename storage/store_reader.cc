@@ -4,7 +4,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/bake_params_io.h"
+#include "core/layout.h"
 #include "core/quantizer.h"
+#include "core/scene_hash.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
 #include "storage/array_range.h"
@@ -118,6 +120,12 @@ absl::Status CheckIndptr(std::span<const int64_t> indptr, int64_t nnz) {
 
 }  // namespace
 
+std::string StoreSceneHash(const StoreInfo& info, const Scene& scene) {
+  absl::StatusOr<LayoutSpec> layout = ParseLayout(info.params.layout);
+  const bool uv = layout.ok() && layout->kind == LayoutKind::kUv;
+  return SceneHash(scene, uv ? layout->uv_channel : -1);
+}
+
 absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store) {
   if (!std::filesystem::exists(store / ".zgroup"))
     return absl::NotFoundError(absl::StrCat(store.string(), ": not a wavebake store (no .zgroup)"));
@@ -144,7 +152,7 @@ absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store) {
                           std::pair{"N", &info.light_res}, std::pair{"bits", &info.bits}}) {
     if (absl::Status s = GetPositiveInt(store, a, key, out); !s.ok()) return s;
   }
-  info.columns = 6 * info.light_res * info.light_res;
+  info.columns = info.params.light_domain.Columns(info.light_res);
   // Optional (hand-made stores lack them); wrong types are corruption.
   if (a.contains("S")) {
     if (!a["S"].is_number_integer() || a["S"].get<int64_t>() < 0)

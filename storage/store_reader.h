@@ -9,6 +9,7 @@
 #include "core/bake_params.h"
 #include "core/compressed_columns.h"
 #include "core/samples.h"
+#include "core/scene.h"
 
 namespace wavebake {
 
@@ -29,6 +30,9 @@ struct StoreInfo {
 // DataLoss naming it.
 absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store);
 absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store);
+// SceneHash of `scene` as the store's bake computed it (the uv layouts also
+// hash their UV channel), to compare with info.scene_hash.
+std::string StoreSceneHash(const StoreInfo& info, const Scene& scene);
 // The whole matrix, dequantized and unscaled (core/quantizer.h, DESIGN.md §1).
 absl::StatusOr<CompressedColumns> ReadTransport(const std::filesystem::path& store);
 

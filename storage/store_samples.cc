@@ -52,6 +52,47 @@ absl::StatusOr<std::vector<T>> ReadArray(const std::filesystem::path& store, con
   return a->ReadAll<T>();
 }
 
+absl::Status WriteUvCharts(const std::filesystem::path& store, const std::vector<UvChart>& charts) {
+  const int64_t n = static_cast<int64_t>(charts.size());
+  std::vector<int32_t> rects;
+  std::vector<float> domains;
+  for (const UvChart& c : charts) {
+    rects.insert(rects.end(), {c.x, c.y, c.width, c.height});
+    domains.insert(domains.end(), {c.u0, c.v0, c.u1, c.v1});
+  }
+  const ArraySpec spec{.shape = {n, 4}, .chunks = {n, 4}};
+  if (absl::Status s = WriteArray<int32_t>(store, store::kUvRects, spec, rects); !s.ok()) return s;
+  return WriteArray<float>(store, store::kUvDomains, spec, domains);
+}
+
+// Names from the manifest's "uv" entry (worker/store_manifest.cc).
+absl::StatusOr<std::vector<UvChart>> ReadUvCharts(const std::filesystem::path& store,
+                                                  const nlohmann::json& attrs, int width,
+                                                  int height) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kUvRects));
+  if (!a.ok()) return a.status();
+  const int64_t n = a->spec().shape.at(0);
+  absl::StatusOr<std::vector<int32_t>> rects = ReadArray<int32_t>(store, store::kUvRects, {n, 4});
+  if (!rects.ok()) return rects.status();
+  absl::StatusOr<std::vector<float>> domains = ReadArray<float>(store, store::kUvDomains, {n, 4});
+  if (!domains.ok()) return domains.status();
+  std::vector<UvChart> charts(n);
+  for (int64_t i = 0; i < n; ++i) {
+    const int32_t* r = rects->data() + 4 * i;
+    const float* d = domains->data() + 4 * i;
+    charts[i] = {"", r[0], r[1], r[2], r[3], d[0], d[1], d[2], d[3]};
+    if (r[0] < 0 || r[1] < 0 || r[2] <= 0 || r[3] <= 0 || r[0] + r[2] > width ||
+        r[1] + r[3] > height || !(d[0] < d[2]) || !(d[1] < d[3]))
+      return absl::DataLossError(absl::StrCat(store::Path(store, store::kUvRects).string(),
+                                              ": chart ", i, " is outside the ", width, "x", height,
+                                              " lightmap or has an empty UV domain"));
+    const nlohmann::json* meshes = attrs.contains("uv") ? &attrs["uv"]["meshes"] : nullptr;
+    if (meshes != nullptr && meshes->is_array() && i < int64_t(meshes->size()))
+      charts[i].mesh = (*meshes)[i].value("name", "");
+  }
+  return charts;
+}
+
 }  // namespace
 
 absl::Status WriteSamples(const std::filesystem::path& store, const SampleSet& samples) {
@@ -66,6 +107,9 @@ absl::Status WriteSamples(const std::filesystem::path& store, const SampleSet& s
         std::pair{store::kAlbedo, &samples.albedo}}) {
     if (absl::Status s = WriteArray<float>(store, name, Vec3Spec(n), Flatten(*values)); !s.ok())
       return s;
+  }
+  if (!samples.uv_charts.empty()) {
+    if (absl::Status s = WriteUvCharts(store, samples.uv_charts); !s.ok()) return s;
   }
   if (samples.vertex.empty()) return absl::OkStatus();
   const ArraySpec vertex{.shape = {n},
@@ -97,6 +141,12 @@ absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store) {
     absl::StatusOr<std::vector<int32_t>> v = ReadArray<int32_t>(store, store::kVertex, {n});
     if (!v.ok()) return v.status();
     s.vertex = *std::move(v);
+  }
+  if (std::filesystem::exists(store::Path(store, store::kUvRects))) {
+    absl::StatusOr<std::vector<UvChart>> charts =
+        ReadUvCharts(store, info->attrs, s.width, s.height);
+    if (!charts.ok()) return charts.status();
+    s.uv_charts = *std::move(charts);
   }
   for (int32_t id : s.grid) {
     if (id < -1 || id >= n)

@@ -26,14 +26,18 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
   ctx->params = params;
   ctx->layout = *layout;
   ctx->cubemap = Cubemap(params.light_res);
-  ctx->scene_hash = SceneHash(ctx->scene);
+  ctx->scene_hash =
+      SceneHash(ctx->scene, layout->kind == LayoutKind::kUv ? layout->uv_channel : -1);
   absl::StatusOr<SampleSet> samples = MakeSampleSet(ctx->scene, ctx->caster, ctx->layout);
   if (!samples.ok()) return samples.status();
   ctx->samples = *std::move(samples);
   if (ctx->samples.size() == 0)
     return absl::InvalidArgumentError("layout: no sample hits the scene (check the camera)");
   absl::StatusOr<JitterPattern> jitter =
-      MakeJitterPattern(ctx->cubemap, params.supersample, params.seed);
+      params.light_domain.is_plane()
+          ? MakeJitterPattern(PlaneFace(params.light_res, params.light_domain), params.supersample,
+                              params.seed)
+          : MakeJitterPattern(ctx->cubemap, params.supersample, params.seed);
   if (!jitter.ok()) return jitter.status();
   ctx->jitter = *std::move(jitter);
   ctx->plan = MakeJobPlan(params, ctx->samples.width, ctx->samples.height);

@@ -8,13 +8,16 @@
 namespace wavebake {
 namespace {
 
-constexpr int kFaces = 6;
-
 // The row's shape is fixed by the job's BakeParams, so a mismatch is a
-// programming error, not bad input (as in core/transport_row.cc).
-void CheckRowOrDie(int n, std::span<const float> row) {
-  if (n > 0 && (n & (n - 1)) == 0 && row.size() == static_cast<size_t>(kFaces) * n * n) return;
-  std::fprintf(stderr, "RowTransform: row of %zu entries is not 6·n² for n=%d a power of two\n",
+// programming error, not bad input (as in core/transport_row.cc). Returns
+// the number of faces: 6 (cube) or 1 (plane light domain).
+int FacesOrDie(int n, std::span<const float> row) {
+  if (n > 0 && (n & (n - 1)) == 0) {
+    const size_t face = static_cast<size_t>(n) * n;
+    if (row.size() == 6 * face) return 6;
+    if (row.size() == face) return 1;
+  }
+  std::fprintf(stderr, "RowTransform: row of %zu entries is not 6·n² or n² for n=%d a power of 2\n",
                row.size(), n);
   std::abort();
 }
@@ -27,15 +30,15 @@ std::span<float> Face(std::span<float> row, int n, int face) {
 }  // namespace
 
 void RowTransform(WaveletFilter row_filter, int n, std::span<float> row) {
-  CheckRowOrDie(n, row);
+  const int faces = FacesOrDie(n, row);
   const int depth = MaxDepth(n, n);  // full depth: one scaling coefficient per face
-  for (int face = 0; face < kFaces; ++face) Forward2d(row_filter, Face(row, n, face), n, n, depth);
+  for (int face = 0; face < faces; ++face) Forward2d(row_filter, Face(row, n, face), n, n, depth);
 }
 
 void InverseRowTransform(WaveletFilter row_filter, int n, std::span<float> row) {
-  CheckRowOrDie(n, row);
+  const int faces = FacesOrDie(n, row);
   const int depth = MaxDepth(n, n);
-  for (int face = 0; face < kFaces; ++face) Inverse2d(row_filter, Face(row, n, face), n, n, depth);
+  for (int face = 0; face < faces; ++face) Inverse2d(row_filter, Face(row, n, face), n, n, depth);
 }
 
 }  // namespace wavebake

@@ -10,7 +10,8 @@
 
 namespace wavebake {
 
-// row: the M = 6 n² entries of one row, n a power of two. row_filter: haar
+// row: the M = 6 n² entries of one row (n² for a plane light domain: one
+// face), n a power of two. row_filter: haar
 // (the default) or daub4 (BakeParams::row_filter, checked by
 // ValidateBakeParams); any filter of core/wavelet2d.h works.
 void RowTransform(WaveletFilter row_filter, int n, std::span<float> row);

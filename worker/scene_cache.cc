@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "storage/scene_bundle.h"
 #include "storage/sha256.h"
 
 namespace wavebake {
@@ -51,7 +52,34 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
     return SceneSpec{it->second, it->second, nullptr};
   absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
   if (!path.ok()) return path.status();
-  return SceneSpec{path->string(), CachedSceneName(ref), ConfinedSceneFiles(path->parent_path())};
+  const bool json = std::filesystem::path(CachedSceneName(ref)).extension() == ".json";
+  if (ref.files().empty() && !json)
+    return SceneSpec{path->string(), CachedSceneName(ref), ConfinedSceneFiles(path->parent_path())};
+  // Its files, each fetched by its own hash, in a directory of their own
+  // (storage/scene_bundle.h): the scene's references find only them.
+  std::vector<BundleFile> files;
+  std::vector<std::pair<std::string, std::string>> keyed;
+  for (const v1::SceneFileRef& f : ref.files()) {
+    if (absl::Status s = CheckBundlePath(f.path(), "scene.uploaded.files.path"); !s.ok()) return s;
+    v1::SceneRef file;
+    file.set_sha256(f.sha256());
+    file.set_size(f.size());
+    file.set_file_name(std::filesystem::path(f.path()).filename().string());
+    if (!IsHexSha256(file.sha256()))
+      return absl::InvalidArgumentError("scene.uploaded.files.sha256: not 64 lowercase hex digits");
+    absl::StatusOr<std::filesystem::path> blob = Cached(file, fetch);
+    if (!blob.ok()) return blob.status();
+    files.push_back({f.path(), *blob});
+    keyed.emplace_back(f.path(), f.sha256());
+  }
+  const std::string key = BundleKey(ref.sha256(), keyed);
+  absl::StatusOr<std::filesystem::path> scene =
+      MaterializeBundle(dir_ / "bundles", key, CachedSceneName(ref), *path, files);
+  if (!scene.ok()) return scene.status();
+  if (json) {  // the coordinator refused such a scene already; a worker checks too
+    if (absl::Status s = CheckJsonSceneInBundle(*scene, files); !s.ok()) return s;
+  }
+  return SceneSpec{scene->string(), CachedSceneName(ref), ConfinedSceneFiles(scene->parent_path())};
 }
 
 absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref,

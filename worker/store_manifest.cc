@@ -22,32 +22,60 @@ constexpr char kDequantize[] =
     "position at the column's depth (0 = coarsest: the LL block and the details of the last "
     "step; details of step s have l = depth-1-s); scale 0 decodes to 0";
 
+// The uv layout's atlas (core/uv_atlas.h): where each mesh's texels are,
+// beside samples/uv_rects and samples/uv_domains.
+nlohmann::json UvManifest(const BakeContext& ctx) {
+  const SampleSet& s = ctx.samples;
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const UvChart& c : s.uv_charts) {
+    int64_t texels = 0;
+    for (int y = c.y; y < c.y + c.height; ++y)
+      for (int x = c.x; x < c.x + c.width; ++x) texels += s.grid[size_t(y) * s.width + x] >= 0;
+    meshes.push_back({{"name", c.mesh},
+                      {"rect", {c.x, c.y, c.width, c.height}},
+                      {"domain", {c.u0, c.v0, c.u1, c.v1}},
+                      {"texels", texels}});
+  }
+  return {{"channel", ctx.layout.uv_channel},
+          {"fill", std::string(ToString(ctx.layout.fill))},
+          {"allow_overlap", ctx.layout.allow_uv_overlap},
+          {"covered_texels", s.size()},
+          {"coverage", double(s.size()) / double(s.cells())},
+          {"texel_convention",
+           "texel (x, y) of the W×H lightmap covers u in [u0 + (x - rx)/rw·(u1 - u0), ...] of its "
+           "mesh, row 0 at the top (v = v1); uv = (u0 + (x + 0.5 - rx)/rw·(u1 - u0), "
+           "v1 - (y + 0.5 - ry)/rh·(v1 - v0)) at its centre, (rx, ry, rw, rh) the mesh's rect"},
+          {"meshes", meshes}};
+}
+
 }  // namespace
 
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats) {
   const BakeParams& p = ctx.params;
-  return {{"format", store::kFormat},
-          {"scene", ctx.scene_spec},
-          {"scene_hash", ctx.scene_hash},
-          {"params", ToJson(p)},
-          {"layout", ToString(ctx.layout)},
-          {"N", p.light_res},
-          {"W", ctx.plan.width},
-          {"H", ctx.plan.height},
-          {"S", ctx.samples.size()},
-          {"M", ctx.plan.columns},
-          {"filters",
-           {{"row", std::string(ToString(p.row_filter))},
-            {"column", std::string(ToString(p.column_filter))}}},
-          {"bits", bits.bits},
-          {"level_scaling", std::string(ToString(p.level_scaling))},
-          {"bits_auto", p.bits == 0},
-          {"bits_needed", bits.bits_needed},
-          {"max_column_bits", bits.max_column_bits},
-          {"ray_epsilon", ctx.epsilon},
-          {"dither", kDither},
-          {"dequantize", kDequantize},
-          {"stats", std::move(stats)}};
+  nlohmann::json manifest = {{"format", store::kFormat},
+                             {"scene", ctx.scene_spec},
+                             {"scene_hash", ctx.scene_hash},
+                             {"params", ToJson(p)},
+                             {"layout", ToString(ctx.layout)},
+                             {"N", p.light_res},
+                             {"W", ctx.plan.width},
+                             {"H", ctx.plan.height},
+                             {"S", ctx.samples.size()},
+                             {"M", ctx.plan.columns},
+                             {"filters",
+                              {{"row", std::string(ToString(p.row_filter))},
+                               {"column", std::string(ToString(p.column_filter))}}},
+                             {"bits", bits.bits},
+                             {"level_scaling", std::string(ToString(p.level_scaling))},
+                             {"bits_auto", p.bits == 0},
+                             {"bits_needed", bits.bits_needed},
+                             {"max_column_bits", bits.max_column_bits},
+                             {"ray_epsilon", ctx.epsilon},
+                             {"dither", kDither},
+                             {"dequantize", kDequantize},
+                             {"stats", std::move(stats)}};
+  if (ctx.layout.kind == LayoutKind::kUv) manifest["uv"] = UvManifest(ctx);
+  return manifest;
 }
 
 namespace {
@@ -75,8 +103,8 @@ nlohmann::json StoreBytes(const BakeContext& ctx, const std::filesystem::path& s
     arrays[name] = n;
     transport += n;
   }
-  for (const char* name :
-       {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo, store::kVertex}) {
+  for (const char* name : {store::kGrid, store::kPosition, store::kNormal, store::kAlbedo,
+                           store::kVertex, store::kUvRects, store::kUvDomains}) {
     if (std::filesystem::exists(store::Path(store, name)))
       arrays[name] = DirectoryBytes(store::Path(store, name));
   }

@@ -73,11 +73,13 @@ absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext
                      .stats_json = nlohmann::json{{"samples", stats.samples}}.dump()};
 }
 
-// No cancel hook inside: a group is a fraction of a tile's work.
+// Cancel is seen between staging chunks and columns: a large group at a
+// large N takes as long as a tile.
 absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContext& ctx,
-                                          const std::filesystem::path& partial) {
+                                          const std::filesystem::path& partial,
+                                          TaskProgress& progress) {
   GroupStats stats;
-  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats);
+  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel});
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = 0,
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -129,7 +131,7 @@ absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
       break;
     case v1::TRANSFORM_COLUMNS:
       if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-      outcome = TransformTask(task, **ctx, partial);
+      outcome = TransformTask(task, **ctx, partial, progress);
       break;
     case v1::FINALIZE:
       outcome = FinalizeTask(task, **ctx, partial, out, progress);

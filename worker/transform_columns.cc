@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -34,15 +35,25 @@ absl::StatusOr<ZarrArray> OpenStaging(const JobPlan& plan, const std::filesystem
   return a;
 }
 
+bool Stopped(const TaskSignals& signals) {
+  return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
+}
+
+absl::Status Cancelled(int group) {
+  return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+}
+
 // Reads chunk (group, t) of every tile and scatters it into `images`: column
 // c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H).
 absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging, int group,
-                             std::vector<float>& images, GroupStats* stats) {
+                             std::vector<float>& images, GroupStats* stats,
+                             const TaskSignals& signals) {
   const int count = plan.GroupCount(group);
   const size_t cells = size_t(plan.width) * plan.height;
   images.assign(count * cells, 0.0f);
   std::vector<float> chunk(size_t(plan.group_size) * plan.tile_cells());
   for (int t = 0; t < plan.tiles(); ++t) {
+    if (Stopped(signals)) return Cancelled(group);
     const int64_t index[2] = {group, t};
     if (absl::Status s = staging.ReadChunkInto(index, std::as_writable_bytes(std::span(chunk)));
         !s.ok()) {
@@ -97,7 +108,7 @@ absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesyst
 }
 
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                              GroupStats* stats) {
+                              GroupStats* stats, const TaskSignals& signals) {
   const JobPlan& plan = ctx.plan;
   if (group < 0 || group >= plan.groups)
     return absl::InvalidArgumentError(
@@ -109,10 +120,16 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
 
   GroupStats local;
   std::vector<float> images;
-  if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local); !s.ok()) return s;
+  if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local, signals); !s.ok())
+    return s;
 
-  const ColumnCodingParams params =
+  ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  std::optional<CellFiller> filler;  // only the uv layout fills (core/layout.h)
+  if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
+    filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
+    params.filler = &*filler;
+  }
   const size_t cells = size_t(plan.width) * plan.height;
   GroupResult result;
   result.group = group;
@@ -120,6 +137,7 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   result.matrix_energy = *matrix_energy;
   CodedColumn coded;
   for (int c = 0; c < plan.GroupCount(group); ++c) {
+    if (Stopped(signals)) return Cancelled(group);
     CodeColumn(params, std::span(images).subspan(c * cells, cells), &coded);
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);

@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "core/job_plan.h"
 #include "worker/bake_context.h"
+#include "worker/task_signals.h"
 
 namespace wavebake {
 
@@ -26,9 +27,11 @@ struct GroupStats {
 
 // Memory: one group of column images (group_size × W×H floats) plus one
 // staging chunk; never S×M. Errors: `group` out of range (InvalidArgument
-// naming "group"); staging missing or of another plan (FailedPrecondition).
+// naming "group"); staging missing or of another plan (FailedPrecondition);
+// Cancelled once signals.cancel is seen (checked between staging chunks and
+// between columns; nothing is written then).
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                              GroupStats* stats);
+                              GroupStats* stats, const TaskSignals& signals = {});
 
 // E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
 // order in double (the same number on every worker).

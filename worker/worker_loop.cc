@@ -11,6 +11,7 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "storage/store_root_marker.h"
 
 namespace wavebake {
 namespace {
@@ -76,10 +77,6 @@ std::string DefaultName() {
   return absl::StrCat(host[0] ? host : "worker", ":", ::getpid());
 }
 
-// How long Complete and Fail are retried while the coordinator is away: a
-// restarted one still takes the result of a task that is not done (§4).
-constexpr auto kReportPatience = std::chrono::seconds(60);
-
 }  // namespace
 
 WorkerLoop::WorkerLoop(std::shared_ptr<grpc::ChannelInterface> channel, WorkerOptions options)
@@ -105,7 +102,19 @@ absl::Status WorkerLoop::Run() {
     return absl::InvalidArgumentError(
         absl::StrCat("threads: ", options_.threads, " is not in 1..4096"));
   if (options_.store_root.empty()) return absl::InvalidArgumentError("store_root: required");
+  // A wrong --store-root is refused here, not by failed tasks: what can be
+  // seen locally first (a directory, writable), then the marker against the
+  // coordinator's id once it answers (none from coordinators without one).
+  if (absl::Status s = CheckWorkerStoreRoot(options_.store_root, ""); !s.ok()) return s;
   if (absl::Status s = Register(); !s.ok()) return s;
+  {
+    std::lock_guard lock(mu_);
+    if (draining_) return fatal_;
+  }
+  if (!store_root_id_.empty()) {
+    if (absl::Status s = CheckWorkerStoreRoot(options_.store_root, store_root_id_); !s.ok())
+      return s;
+  }
   {
     std::jthread heartbeat([this](std::stop_token stop) { HeartbeatLoop(stop); });
     std::vector<std::jthread> threads;
@@ -182,6 +191,7 @@ absl::Status WorkerLoop::Register() {
       TlsWorks();
       std::lock_guard lock(mu_);
       worker_id_ = id.id();
+      store_root_id_ = id.store_root_id();
       spdlog::info("worker {}: registered as \"{}\" with {} thread(s)", worker_id_, options_.name,
                    options_.threads);
       return absl::OkStatus();
@@ -233,32 +243,7 @@ void WorkerLoop::TlsWorks() {
   tls_error_.clear();
 }
 
-void WorkerLoop::LeaseLoop() {
-  for (int attempt = 0;;) {
-    {
-      std::lock_guard lock(mu_);
-      if (draining_) return;
-    }
-    const std::string id = worker_id();
-    v1::LeaseRequest request;
-    request.set_worker_id(id);
-    v1::LeaseReply reply;
-    const grpc::Status s = stub_->Lease(Context().get(), request, &reply);
-    if (!s.ok()) {
-      if (absl::Status r = Recover(s, id, attempt++); !r.ok()) return SetFatal(r);
-      continue;
-    }
-    if (attempt > 0) TlsWorks();
-    attempt = 0;
-    if (reply.has_task()) {
-      RunLeased(reply.task());
-    } else {
-      SleepUnlessDraining(std::max(1, reply.wait_ms()));
-    }
-  }
-}
-
-void WorkerLoop::RunLeased(const v1::Task& task) {
+std::optional<WorkerLoop::Finished> WorkerLoop::RunLeased(const v1::Task& task) {
   // Renew at a third of the lease: two heartbeats may be lost before it expires.
   const int64_t remaining = task.lease_deadline_ms() - NowUnixMs();
   auto progress = std::make_shared<TaskProgress>();
@@ -280,7 +265,14 @@ void WorkerLoop::RunLeased(const v1::Task& task) {
   spdlog::info("job {} {} {}: {} in {:.2f} s", task.job_id(), v1::TaskKind_Name(task.kind()),
                task.index(), outcome.ok() ? "done" : outcome.status().ToString(),
                std::chrono::duration<double>(SteadyClock::now() - start).count());
+  {
+    std::lock_guard lock(mu_);
+    if (outcome.ok() && batch_leases_ && !aborted_) {
+      return Finished{task, *std::move(outcome), SteadyClock::now()};
+    }
+  }
   Report(task, outcome);
+  return std::nullopt;
 }
 
 void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>& outcome) {

@@ -1,7 +1,10 @@
 #pragma once
 // The worker process (DESIGN.md §4 WorkerService, §5 `wavebake worker`):
-// registers with the coordinator, then `threads` threads each lease one task
-// at a time and run it (worker/task_runner.h), while a heartbeat thread
+// registers with the coordinator, then `threads` threads each run one task at
+// a time (worker/task_runner.h); the threads that are between tasks report
+// their results and lease their next tasks together, in one LeaseBatch call
+// (a whole worker costs the coordinator one call and one commit per round,
+// not two per task), while a heartbeat thread
 // renews the running leases, reports their progress counters and stops the
 // tasks whose leases the coordinator withdrew. Results go back with Complete,
 // errors with Fail and the task's reason.
@@ -19,12 +22,14 @@
 #include <grpcpp/channel.h>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -66,8 +71,10 @@ class WorkerLoop {
   WorkerLoop& operator=(const WorkerLoop&) = delete;
   ~WorkerLoop();
 
-  // Registers and works until Drain() (then OK, once the running tasks have
-  // finished and been reported) or a fatal error (returned).
+  // Checks the store root (storage/store_root_marker.h: missing, foreign or
+  // read-only is FailedPrecondition before any lease), registers and works
+  // until Drain() (then OK, once the running tasks have finished and been
+  // reported) or a fatal error (returned).
   absl::Status Run();
   // Stop leasing; tasks that are running finish and are reported. Safe from
   // any thread, also before Run.
@@ -83,11 +90,32 @@ class WorkerLoop {
     std::string lease_id;
     std::shared_ptr<TaskProgress> progress;
   };
+  // A finished task whose result goes with the thread's next LeaseBatch.
+  struct Finished {
+    v1::Task task;
+    TaskOutcome outcome;
+    std::chrono::steady_clock::time_point since;
+  };
+  // One lease thread's place in a LeaseBatch round (worker_loop_lease.cc):
+  // what it brings (a result) and what it gets (a task, or how long to wait).
+  struct Seat {
+    std::optional<Finished> finished;
+    bool served = false;
+    grpc::Status status;
+    std::string worker_id;  // the id the call was made with
+    std::optional<v1::Task> task;
+    int64_t wait_ms = 0;
+  };
 
   absl::Status Register();
   absl::Status Reregister(const std::string& stale_id);
   void LeaseLoop();
-  void RunLeased(const v1::Task& task);
+  void TakeSeat(Seat& seat);  // joins or leads the next LeaseBatch round
+  void ServeRound(const std::vector<Seat*>& round);
+  void LeaseSingle(Seat& seat);  // Lease, for coordinators without LeaseBatch
+  // Runs a leased task; a success is returned to be reported with the next
+  // LeaseBatch, anything else is reported here.
+  std::optional<Finished> RunLeased(const v1::Task& task);
   void Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>& outcome);
   void HeartbeatLoop(std::stop_token stop);
   void HeartbeatOnce();
@@ -105,6 +133,10 @@ class WorkerLoop {
   void SetFatal(absl::Status status);
   bool Aborted() const;
 
+  // How long a result is retried while the coordinator is away: a restarted
+  // one still takes the result of a task that is not done (§4).
+  static constexpr std::chrono::seconds kReportPatience{60};
+
   WorkerOptions options_;
   std::unique_ptr<v1::WorkerService::Stub> stub_;
   std::shared_ptr<ContextCache> contexts_;
@@ -115,10 +147,15 @@ class WorkerLoop {
   mutable std::mutex mu_;
   std::condition_variable_any wake_;  // drain, abort, a shorter heartbeat period
   std::string worker_id_;
+  std::string store_root_id_;  // the coordinator's, from Register ("" from older ones)
   bool draining_ = false;
   bool aborted_ = false;
   absl::Status fatal_;
   std::map<std::string, Running> running_;  // by lease id
+  std::condition_variable seats_cv_;        // a LeaseBatch round ended
+  std::vector<Seat*> seats_;                // waiting for the next round
+  bool leading_ = false;                    // a round is in flight
+  bool batch_leases_ = true;                // false once the coordinator lacks LeaseBatch
   int64_t heartbeat_ms_ = 1'000;
   int tls_failures_ = 0;   // UNAVAILABLE calls since a TLS handshake failed
   std::string tls_error_;  // that handshake's error; empty when none since the last success

@@ -76,9 +76,9 @@ TEST_F(JobPlannerTest, GridLayoutTakesTheMeshGrid) {
 }
 
 TEST_F(JobPlannerTest, SupersamplingIsRoundedUpToASquare) {
-  EXPECT_EQ(EstimateRays(4, 8, 4), 4 * 384 * 4 / 2);
-  EXPECT_EQ(EstimateRays(4, 8, 5), 4 * 384 * 9 / 2);
-  EXPECT_EQ(EstimateRays(4, 8, 1), 4 * 384 / 2);
+  EXPECT_EQ(EstimateRays(4, 6 * 8 * 8, 4), 4 * 384 * 4 / 2);
+  EXPECT_EQ(EstimateRays(4, 6 * 8 * 8, 5), 4 * 384 * 9 / 2);
+  EXPECT_EQ(EstimateRays(4, 6 * 8 * 8, 1), 4 * 384 / 2);
 }
 
 TEST_F(JobPlannerTest, PlansAnUploadedMeshByItsFileName) {

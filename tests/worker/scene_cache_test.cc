@@ -130,9 +130,21 @@ TEST(SceneCacheTest, UploadedScenesReadOnlyTheirUpload) {
   SceneCache cache(dir.path());
   const std::filesystem::path server_mesh = dir.path() / "server.obj";
   std::ofstream(server_mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  FakeFetch fetch{.bytes = R"({"meshes": [{"file": ")" + server_mesh.string() + R"("}]})"};
+  // A JSON scene naming a file of this host, absolutely or by "..", is
+  // refused before anything is loaded, naming the field.
+  for (const std::string& reference : {server_mesh.string(), std::string("../../server.obj")}) {
+    FakeFetch fetch{.bytes = R"({"meshes": [{"file": ")" + reference + R"("}]})"};
+    absl::StatusOr<SceneSpec> spec =
+        cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "evil.json", 0), fetch.Fn());
+    ASSERT_FALSE(spec.ok()) << reference;
+    EXPECT_EQ(spec.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_THAT(std::string(spec.status().message()), testing::HasSubstr("meshes[0].file"))
+        << spec.status();
+  }
+  // Any other upload loads through files confined to its own directory.
+  FakeFetch fetch{.bytes = "mtllib ../../server.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"};
   absl::StatusOr<SceneSpec> spec =
-      cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "evil.json", 0), fetch.Fn());
+      cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "m.obj", 0), fetch.Fn());
   ASSERT_TRUE(spec.ok()) << spec.status();
   ASSERT_NE(spec->files, nullptr);
   std::string warning;
