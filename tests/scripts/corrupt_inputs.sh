@@ -58,6 +58,10 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_heade[r\n
   >"$TMP/cut.ply"
 expect_refused "cut.ply" "$WB" bake "$TMP/cut.ply" --layout hilbert:4x4 --light-res 8 \
   --out "$TMP/p.wbk"
+# The same behind a magic assimp still takes for PLY ("ply?").
+printf 'ply?\nformat ascii 1.0\nelement vertex 3\nproperty float x\n0\n1\n2\n' >"$TMP/odd.ply"
+expect_refused "odd.ply" "$WB" bake "$TMP/odd.ply" --layout hilbert:4x4 --light-res 8 \
+  --out "$TMP/p.wbk"
 
 # Radiance that would overflow the float relighting (an 8x8 block of RGBE
 # exponent 255, 1.7e38) is refused naming the texel: it used to give rc 0, a
