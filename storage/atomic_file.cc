@@ -4,10 +4,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <random>
 #include <system_error>
 
+#include "absl/strings/ascii.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 
@@ -53,6 +56,17 @@ std::filesystem::path TempName(const std::filesystem::path& dir,
   std::random_device random;
   const uint64_t r = (uint64_t{random()} << 32) | random();
   return dir / absl::StrFormat(".%s.%d.%016x.partial", path.filename().string(), ::getpid(), r);
+}
+
+// The names TempName makes: ".NAME.PID.<16 hex>.partial".
+bool IsTempName(const std::string& name) {
+  constexpr absl::string_view kSuffix = ".partial";
+  if (name.size() < 1 + 1 + 17 + kSuffix.size() || name[0] != '.' || !absl::EndsWith(name, kSuffix))
+    return false;
+  const absl::string_view hex =
+      absl::string_view(name).substr(name.size() - kSuffix.size() - 16, 16);
+  return name[name.size() - kSuffix.size() - 17] == '.' &&
+         std::all_of(hex.begin(), hex.end(), [](char c) { return absl::ascii_isxdigit(c); });
 }
 
 // Errors name the file being written (`path`), not its temporary name.
@@ -145,6 +159,17 @@ absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& pat
         absl::StrFormat("short read of %s: %d of %d bytes", path.string(), done, data.size()));
   }
   return data;
+}
+
+absl::Status RemoveAbandonedTempFiles(const std::filesystem::path& dir) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec) && IsTempName(it->path().filename().string()))
+      std::filesystem::remove(it->path(), ec);
+  }
+  if (ec) return absl::InternalError(absl::StrCat(dir.string(), ": ", ec.message()));
+  return absl::OkStatus();
 }
 
 }  // namespace wavebake

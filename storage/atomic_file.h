@@ -19,6 +19,12 @@ namespace wavebake {
 // ("No space left on device"), as it is for CreateDirectories.
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data);
 
+// Removes, under `dir` and its subdirectories, the temp files of AtomicWriteFile
+// calls whose writer died between write and rename (a worker killed mid-task).
+// Only for when no writer of `dir` is left: FINALIZE, which has a store's last
+// word, so that a published store holds exactly its arrays.
+absl::Status RemoveAbandonedTempFiles(const std::filesystem::path& dir);
+
 // Reads a whole file. A missing file is NotFound (ZarrArray reads a missing
 // chunk as the fill value); other failures are Internal, naming the path.
 absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path);

@@ -11,6 +11,7 @@
 #include "core/subband.h"
 #include "core/wavelet2d.h"
 #include "storage/array_appender.h"
+#include "storage/atomic_file.h"
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
@@ -250,6 +251,8 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
                                 {"overflow_columns", steps.overflow_columns},
                                 {"expected_energy", steps.expected_energy},
                                 {"budget", steps.budget}};
+  // Nothing but the store's own files, even where a killed worker left a temp file.
+  if (absl::Status s = RemoveAbandonedTempFiles(store); !s.ok()) return s;
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
   if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));

@@ -94,5 +94,23 @@ TEST(AtomicFileTest, ConcurrentReplacementsAreNeverTorn) {
   EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
 }
 
+// A writer killed between write and rename leaves ".NAME.PID.HEX.partial";
+// only such names go, at any depth, and a user's look-alikes stay.
+TEST(AtomicFileTest, RemovesOnlyAbandonedTempFiles) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "transport" / "data");
+  const std::vector<std::filesystem::path> abandoned = {
+      dir.path() / "..zgroup.32280.02f48aabfca56c68.partial",
+      dir.path() / "transport" / "data" / ".0.7.ffffffffffffffff.partial"};
+  const std::vector<std::filesystem::path> kept = {
+      dir.path() / ".zgroup", dir.path() / "notes.partial", dir.path() / ".draft.partial",
+      dir.path() / ".x.1.0123456789abcdeg.partial", dir.path() / "transport" / "data" / "0"};
+  for (const auto& p : abandoned) std::ofstream(p) << "torn";
+  for (const auto& p : kept) std::ofstream(p) << "mine";
+  ASSERT_TRUE(RemoveAbandonedTempFiles(dir.path()).ok());
+  for (const auto& p : abandoned) EXPECT_FALSE(std::filesystem::exists(p)) << p;
+  for (const auto& p : kept) EXPECT_EQ(Slurp(p), "mine") << p;
+}
+
 }  // namespace
 }  // namespace wavebake

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "core/column_coding.h"
 #include "core/quantizer.h"
@@ -382,6 +383,20 @@ TEST(FinalizeTest, DropsStagingAndRetriesAreNoOps) {
   const absl::Status s = Finalize(*b->ctx, b->store, {});
   EXPECT_TRUE(s.ok()) << s;
   EXPECT_EQ(ReadTree(b->store), before);
+}
+
+// A worker killed while writing the store's .zgroup (as a tile task does)
+// leaves its temp file; the published store must not carry it.
+TEST(FinalizeTest, PublishedStoreHoldsNoAbandonedTempFile) {
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(SmallJob());
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  std::ofstream(store / "..zgroup.4242.00000000deadbeef.partial") << "{\"zarr_";
+  TransformAll(*ctx, store);
+  const absl::Status s = Finalize(*ctx, store, {});
+  ASSERT_TRUE(s.ok()) << s;
+  EXPECT_FALSE(std::filesystem::exists(store / "..zgroup.4242.00000000deadbeef.partial"));
 }
 
 TEST(FinalizeTest, RefusesMissingGroupsAndMissingStaging) {

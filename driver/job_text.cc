@@ -1,0 +1,49 @@
+#include "driver/job_text.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+
+namespace wavebake::driver {
+
+std::string PhaseName(v1::Phase phase) { return v1::Phase_Name(phase).substr(6); }
+
+std::string JobDetailText(const v1::Job& job) {
+  std::string text = absl::StrFormat(
+      "job        %s\nphase      %s\nstore      %s\n"
+      "tasks      %d/%d done (%d tiles, %d groups, 1 finalize), %d leased\n"
+      "rays       %d of ~%d",
+      job.id(), PhaseName(job.phase()), job.store_path(), job.tasks_done(), job.tasks_total(),
+      job.tiles(), job.groups(), job.leased_tasks(), job.rays_traced(), job.rays_estimate());
+  if (job.rays_per_second() > 0)
+    absl::StrAppendFormat(&text, ", %.2f Mrays/s", job.rays_per_second() / 1e6);
+  if (job.eta_seconds() >= 0) absl::StrAppendFormat(&text, ", ETA %.0f s", job.eta_seconds());
+  absl::StrAppendFormat(&text, "\nwritten    %d bytes\n", job.bytes_written());
+  if (!job.error().empty()) absl::StrAppend(&text, "error      ", job.error(), "\n");
+  if (!job.stats_json().empty()) absl::StrAppend(&text, "stats      ", job.stats_json(), "\n");
+  return text;
+}
+
+std::string JobTableHeader() {
+  return absl::StrFormat("%-6s %-13s %9s %12s %-24s %s\n", "JOB", "PHASE", "TASKS", "RAYS", "STORE",
+                         "ERROR");
+}
+
+std::string JobTableRow(const v1::Job& job) {
+  return absl::StrFormat("%-6s %-13s %9s %12.4g %-24s %s\n", job.id(), PhaseName(job.phase()),
+                         absl::StrCat(job.tasks_done(), "/", job.tasks_total()),
+                         static_cast<double>(job.rays_traced()), job.store_path(), job.error());
+}
+
+std::string JobJson(const v1::Job& job) {
+  std::string json;
+  google::protobuf::util::JsonPrintOptions options;
+  options.always_print_primitive_fields = true;
+  options.preserve_proto_field_names = true;
+  // Serializing a well-formed message cannot fail.
+  (void)google::protobuf::util::MessageToJsonString(job, &json, options);
+  return json;
+}
+
+}  // namespace wavebake::driver

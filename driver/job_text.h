@@ -1,0 +1,24 @@
+#pragma once
+// How a job reads to a person or a script (DESIGN.md §4 Job): the views that
+// `wavebake status` prints and that the web monitor and Python module can show.
+#include <string>
+
+#include "wavebake.pb.h"
+
+namespace wavebake::driver {
+
+// "BAKING", "DONE", ... (the enum name without its PHASE_ prefix).
+std::string PhaseName(v1::Phase phase);
+
+// One field per line: phase, store, tasks, rays (with rate and ETA when the
+// coordinator knows them), bytes written, error and stats when present.
+std::string JobDetailText(const v1::Job& job);
+
+// A table of jobs: the header, then one row per job (each ends in a newline).
+std::string JobTableHeader();
+std::string JobTableRow(const v1::Job& job);
+
+// The Job message as one line of JSON with every field (proto names).
+std::string JobJson(const v1::Job& job);
+
+}  // namespace wavebake::driver

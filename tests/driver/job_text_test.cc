@@ -1,0 +1,74 @@
+// The job views of `wavebake status` (driver/job_text.h): every field a user
+// reads is there, the rate and ETA only when the coordinator knows them, and
+// the JSON line is the whole message under its proto field names.
+#include "driver/job_text.h"
+
+#include <gmock/gmock.h>
+#include <google/protobuf/util/json_util.h>
+#include <google/protobuf/util/message_differencer.h>
+#include <gtest/gtest.h>
+
+namespace wavebake::driver {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+v1::Job BakingJob() {
+  v1::Job job;
+  job.set_id("7");
+  job.set_phase(v1::PHASE_BAKING);
+  job.set_store_path("cubes.wbk");
+  job.set_tasks_done(3);
+  job.set_tasks_total(12);
+  job.set_tiles(10);
+  job.set_groups(1);
+  job.set_leased_tasks(2);
+  job.set_rays_traced(123456789012);
+  job.set_rays_estimate(987654321098);
+  job.set_rays_per_second(-1);
+  job.set_eta_seconds(-1);
+  return job;
+}
+
+TEST(JobTextTest, DetailNamesEveryFieldAndOmitsUnknownRateAndEta) {
+  const std::string text = JobDetailText(BakingJob());
+  EXPECT_THAT(text, HasSubstr("phase      BAKING\n"));
+  EXPECT_THAT(text, HasSubstr("store      cubes.wbk\n"));
+  EXPECT_THAT(text, HasSubstr("3/12 done (10 tiles, 1 groups, 1 finalize), 2 leased"));
+  EXPECT_THAT(text, HasSubstr("rays       123456789012 of ~987654321098\n"));
+  EXPECT_THAT(text, Not(HasSubstr("Mrays/s")));
+  EXPECT_THAT(text, Not(HasSubstr("ETA")));
+  EXPECT_THAT(text, Not(HasSubstr("error")));
+}
+
+TEST(JobTextTest, DetailShowsRateEtaAndError) {
+  v1::Job job = BakingJob();
+  job.set_rays_per_second(2.5e6);
+  job.set_eta_seconds(41.6);
+  job.set_error("tile 3: out of memory");
+  const std::string text = JobDetailText(job);
+  EXPECT_THAT(text, HasSubstr(", 2.50 Mrays/s, ETA 42 s\n"));
+  EXPECT_THAT(text, HasSubstr("error      tile 3: out of memory\n"));
+}
+
+TEST(JobTextTest, TableRowLinesUpUnderTheHeader) {
+  const std::string header = JobTableHeader(), row = JobTableRow(BakingJob());
+  EXPECT_EQ(header.find("PHASE"), row.find("BAKING"));
+  EXPECT_EQ(header.find("STORE"), row.find("cubes.wbk"));
+  EXPECT_EQ(row.back(), '\n');
+}
+
+TEST(JobTextTest, JsonIsTheWholeMessageOnOneLine) {
+  const v1::Job job = BakingJob();
+  const std::string json = JobJson(job);
+  EXPECT_EQ(json.find('\n'), std::string::npos);
+  EXPECT_THAT(json, HasSubstr("\"store_path\":\"cubes.wbk\""));
+  EXPECT_THAT(json, HasSubstr("\"error\":\"\""));  // empty fields printed too
+  v1::Job back;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json, &back).ok());
+  EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(job, back));
+}
+
+}  // namespace
+}  // namespace wavebake::driver
