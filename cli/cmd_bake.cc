@@ -21,6 +21,7 @@
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
+#include "worker/publish_store.h"
 
 namespace wavebake::cli {
 namespace {
@@ -64,8 +65,13 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
   std::printf("%s: written\n", f.out.c_str());
 }
 
-void Run(const BakeCommandFlags& f) {
+void Run(BakeCommandFlags f) {
   LogToStderr(spdlog::level::warn);
+  // A link at --out is where the user keeps the store: bake at its target.
+  absl::StatusOr<std::filesystem::path> out = ResolveOutputPath(f.out);
+  if (!out.ok()) Fail("bake", out.status());
+  const std::string given = f.out;
+  f.out = out->string();
   std::atomic<bool> interrupted{false};
   SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
@@ -85,7 +91,7 @@ void Run(const BakeCommandFlags& f) {
   if (job->phase() != v1::PHASE_DONE) Fail("bake", driver::JobOutcome(*job));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", f.out.c_str(), job->tiles(),
+  std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
   std::fflush(stdout);

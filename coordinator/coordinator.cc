@@ -60,6 +60,10 @@ absl::StatusOr<std::unique_ptr<Coordinator>> Coordinator::Start(CoordinatorOptio
         absl::StrCat("lease_seconds: ", options.lease_seconds, " is not positive"));
   }
   if (options.store_root.empty()) options.store_root = options.data_dir / "store";
+  // Absolute, so every message spells them one way (ClientPaths hides them).
+  std::error_code ec;
+  options.data_dir = std::filesystem::absolute(options.data_dir, ec);
+  options.store_root = std::filesystem::absolute(options.store_root, ec);
   auto c = std::make_unique<Coordinator>(Key{});
   c->options_ = std::move(options);
   if (absl::Status s = c->Init(std::move(plan_fn), std::move(cleanup_fn)); !s.ok()) return s;
@@ -99,7 +103,12 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
                    .store_root = o.store_root,
                    .store_root_id = *store_root_id,
                    .wait_ms = o.wait_ms,
-                   .stopping = &stopping_};
+                   .stopping = &stopping_,
+                   .client_paths = {}};
+  if (o.hide_paths) {
+    deps.client_paths.Hide(o.data_dir, "<data dir>");
+    deps.client_paths.Hide(o.store_root, "<store root>");
+  }
   job_service_ = std::make_unique<JobServiceImpl>(deps);
   worker_service_ = std::make_unique<WorkerServiceImpl>(deps);
   if (absl::Status s = BuildServer(); !s.ok()) return s;
@@ -134,11 +143,14 @@ absl::Status Coordinator::BuildServer() {
 void Coordinator::ReapLoop(std::stop_token stop) {
   const int64_t period_ms = std::clamp<int64_t>(table_->options().lease_ms / 4, 10, 1000);
   std::unique_lock lock(reap_mu_);
+  absl::Status last_error;
   while (!stop.stop_requested()) {
     reap_cv_.wait_for(lock, stop, std::chrono::milliseconds(period_ms), [] { return false; });
     if (stop.stop_requested()) break;
-    if (absl::Status s = table_->ExpireLeases(); !s.ok()) {
+    // Once per distinct error: a stopped table fails every tick the same way.
+    if (absl::Status s = table_->ExpireLeases(); !s.ok() && s != last_error) {
       spdlog::error("coordinator: {}", s.ToString());
+      last_error = s;
     }
   }
 }

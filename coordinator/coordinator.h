@@ -39,6 +39,9 @@ struct CoordinatorOptions {
   int worker_failure_limit = 3;      // consecutive failures that exclude a worker
   int64_t wait_ms = 500;             // LeaseReply.wait_ms when no task is ready
   const Clock* clock = nullptr;      // null = system clock
+  // Replace data_dir and store_root in messages to clients (DESIGN.md §4);
+  // off for the embedded bake, whose client is the user of this machine.
+  bool hide_paths = true;
 };
 
 class Coordinator {

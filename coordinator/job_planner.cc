@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <system_error>
 #include <utility>
 
@@ -15,6 +16,7 @@
 #include "core/sample_layout.h"
 #include "proto/bake_request.h"
 #include "storage/scene_bundle.h"
+#include "storage/scene_files.h"
 #include "storage/scene_loader.h"
 
 namespace wavebake {
@@ -58,7 +60,9 @@ absl::StatusOr<std::string> BundledScene(const v1::SceneRef& ref, const PlannerO
   if (!scene.ok()) return scene.status();
   if (scene->extension() == ".json") {
     if (absl::Status s = CheckJsonSceneInBundle(*scene, files); !s.ok())
-      return absl::InvalidArgumentError(absl::StrCat("scene.uploaded: ", s.message()));
+      return absl::InvalidArgumentError(absl::StrCat("scene.uploaded: scene file '", name,
+                                                     "' (sha256 ", ref.sha256().substr(0, 12),
+                                                     "…): ", s.message()));
   }
   return scene->string();
 }
@@ -100,8 +104,10 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
   const v1::SceneRef& ref = request.scene().uploaded();
   auto local = options.local_scenes.find(ref.sha256());
   if (local != options.local_scenes.end()) {  // the user's own path: its errors name it
-    absl::StatusOr<Scene> scene = LoadScene(local->second);
+    SceneReport report;
+    absl::StatusOr<Scene> scene = LoadScene(local->second, &report);
     if (!scene.ok()) return SceneError("scene.uploaded", scene.status());
+    for (const std::string& w : report.warnings) spdlog::warn("{}", w);
     return scene;
   }
   // A JSON scene always loads from its bundle, even an empty one: its mesh
@@ -110,13 +116,17 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
       !ref.files().empty() || std::filesystem::path(ref.file_name()).extension() == ".json";
   absl::StatusOr<std::string> named = bundle ? BundledScene(ref, options) : NamedBlob(ref, options);
   if (!named.ok()) return named.status();
-  absl::StatusOr<Scene> scene = LoadScene(*named);
+  // Only what was uploaded: messages name files relative to it, never a
+  // path of this machine (storage/scene_files.h).
+  const std::unique_ptr<SceneFiles> files =
+      ConfinedSceneFiles(std::filesystem::path(*named).parent_path());
+  absl::StatusOr<Scene> scene = LoadScene(*named, nullptr, files.get());
   if (!scene.ok()) {
-    // The loader names the link under the data dir; the client knows the file.
     std::string message(scene.status().message());
+    const std::string name = files->Name(*named);
     const std::string file =
-        absl::StrCat("'", ref.file_name(), "' (sha256 ", ref.sha256().substr(0, 12), "…)");
-    if (absl::StrReplaceAll({{absl::StrCat("'", *named, "'"), file}}, &message) == 0)
+        absl::StrCat("'", name, "' (sha256 ", ref.sha256().substr(0, 12), "…)");
+    if (absl::StrReplaceAll({{absl::StrCat("'", name, "'"), file}}, &message) == 0)
       message = absl::StrCat(file, ": ", message);
     return absl::InvalidArgumentError(absl::StrCat("scene.uploaded: ", message));
   }

@@ -18,18 +18,27 @@ absl::StatusOr<int64_t> ParseJobId(const v1::JobId& id) {
   return *v;
 }
 
+grpc::Status JobServiceImpl::Reply(const absl::Status& status) const {
+  return ToGrpc(absl::Status(status.code(), deps_.client_paths(std::string(status.message()))));
+}
+
+void JobServiceImpl::ToClient(const JobInfo& info, v1::Job* job) const {
+  ToProto(info, job);
+  job->set_error(deps_.client_paths(job->error()));
+}
+
 grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::BakeRequest* request,
                                     v1::Job* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   v1::BakeRequest r = *request;
-  if (absl::Status s = NormalizeBakeRequest(r); !s.ok()) return ToGrpc(s);
+  if (absl::Status s = NormalizeBakeRequest(r); !s.ok()) return Reply(s);
   if (r.scene().has_uploaded()) {
     if (absl::Status s = CheckUploaded(*r.mutable_scene()->mutable_uploaded()); !s.ok())
-      return ToGrpc(s);
+      return Reply(s);
   }
   absl::StatusOr<JobInfo> info = PlanAndAdd(std::move(r));
-  if (!info.ok()) return ToGrpc(info.status());
-  ToProto(*info, reply);
+  if (!info.ok()) return Reply(info.status());
+  ToClient(*info, reply);
   return grpc::Status::OK;
 }
 
@@ -94,10 +103,10 @@ grpc::Status JobServiceImpl::Get(grpc::ServerContext* context, const v1::JobId* 
                                  v1::Job* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> id = ParseJobId(*request);
-  if (!id.ok()) return ToGrpc(id.status());
+  if (!id.ok()) return Reply(id.status());
   absl::StatusOr<JobInfo> info = deps_.table->Get(*id);
-  if (!info.ok()) return ToGrpc(info.status());
-  ToProto(*info, reply);
+  if (!info.ok()) return Reply(info.status());
+  ToClient(*info, reply);
   return grpc::Status::OK;
 }
 
@@ -110,7 +119,7 @@ grpc::Status JobServiceImpl::List(grpc::ServerContext* context, const v1::ListRe
   }
   const int limit = request->limit() == 0 ? 100 : request->limit();
   for (const JobInfo& info : deps_.table->List(limit, request->active_only())) {
-    ToProto(info, reply->add_jobs());
+    ToClient(info, reply->add_jobs());
   }
   return grpc::Status::OK;
 }
@@ -119,10 +128,10 @@ grpc::Status JobServiceImpl::Cancel(grpc::ServerContext* context, const v1::JobI
                                     v1::Job* reply) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> id = ParseJobId(*request);
-  if (!id.ok()) return ToGrpc(id.status());
+  if (!id.ok()) return Reply(id.status());
   absl::StatusOr<JobInfo> info = deps_.table->Cancel(*id);
-  if (!info.ok()) return ToGrpc(info.status());
-  ToProto(*info, reply);
+  if (!info.ok()) return Reply(info.status());
+  ToClient(*info, reply);
   return grpc::Status::OK;
 }
 

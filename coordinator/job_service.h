@@ -26,6 +26,9 @@ class JobServiceImpl final : public v1::JobService::Service {
 
  private:
   absl::StatusOr<JobInfo> PlanAndAdd(v1::BakeRequest request);
+  // What a client receives: messages with the server's paths hidden.
+  grpc::Status Reply(const absl::Status& status) const;
+  void ToClient(const JobInfo& info, v1::Job* job) const;
   absl::Status CheckUploaded(v1::SceneRef& ref) const;
 
   static constexpr int kMaxSceneFiles = 4096;

@@ -24,22 +24,25 @@ grpc::Status JobServiceImpl::Watch(grpc::ServerContext* context, const v1::JobId
                                    grpc::ServerWriter<v1::JobEvent>* writer) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> id = ParseJobId(*request);
-  if (!id.ok()) return ToGrpc(id.status());
+  if (!id.ok()) return Reply(id.status());
   int64_t seq = 0, last_progress_ms = 0;
   int64_t sent_rays = -1, sent_bytes = -1, sent_done = -1;
   v1::JobEvent event;
   for (;;) {
     if (context->IsCancelled()) return {grpc::StatusCode::CANCELLED, "watch cancelled"};
     if (Stopping(deps_)) return {grpc::StatusCode::UNAVAILABLE, "coordinator shutting down"};
+    // A table that cannot persist (a full disk) will not see the job end.
+    if (absl::Status broken = deps_.table->broken(); !broken.ok()) return Reply(broken);
     const uint64_t generation = deps_.table->generation();
     // Read the job before its events: a job seen ended has its last event stored.
     absl::StatusOr<JobInfo> info = deps_.table->Get(*id);
-    if (!info.ok()) return ToGrpc(info.status());
+    if (!info.ok()) return Reply(info.status());
     for (;;) {
       absl::StatusOr<std::vector<EventRecord>> events = deps_.table->ReadEvents(*id, seq, 256);
-      if (!events.ok()) return ToGrpc(events.status());
+      if (!events.ok()) return Reply(events.status());
       for (const EventRecord& e : *events) {
         ToProto(e, info->record, &event);
+        event.set_message(deps_.client_paths(event.message()));
         if (!writer->Write(event)) return grpc::Status::OK;  // the client went away
         seq = e.seq;
       }
@@ -72,15 +75,15 @@ grpc::Status JobServiceImpl::UploadScene(grpc::ServerContext* context,
     if (!upload) {
       absl::StatusOr<std::unique_ptr<SceneUpload>> begun =
           deps_.scenes->BeginUpload(chunk.file_name());
-      if (!begun.ok()) return ToGrpc(begun.status());
+      if (!begun.ok()) return Reply(begun.status());
       upload = std::move(*begun);
       expected_sha = chunk.sha256();
     }
-    if (absl::Status s = upload->Append(chunk.data()); !s.ok()) return ToGrpc(s);
+    if (absl::Status s = upload->Append(chunk.data()); !s.ok()) return Reply(s);
   }
   if (!upload) return {grpc::StatusCode::INVALID_ARGUMENT, "data: the upload sent no chunk"};
   absl::StatusOr<SceneRecord> rec = upload->Finish(expected_sha);
-  if (!rec.ok()) return ToGrpc(rec.status());
+  if (!rec.ok()) return Reply(rec.status());
   reply->set_sha256(rec->sha256);
   reply->set_size(rec->size);
   reply->set_file_name(rec->file_name);
@@ -91,9 +94,9 @@ grpc::Status JobServiceImpl::ReadStore(grpc::ServerContext* context, const v1::J
                                        grpc::ServerWriter<v1::FileChunk>* writer) {
   if (grpc::Status s = deps_.auth->Check(*context); !s.ok()) return s;
   absl::StatusOr<int64_t> id = ParseJobId(*request);
-  if (!id.ok()) return ToGrpc(id.status());
+  if (!id.ok()) return Reply(id.status());
   absl::StatusOr<JobInfo> info = deps_.table->Get(*id);
-  if (!info.ok()) return ToGrpc(info.status());
+  if (!info.ok()) return Reply(info.status());
   if (info->record.phase != Phase::kDone) {
     return {grpc::StatusCode::FAILED_PRECONDITION,
             absl::StrCat("job ", *id, " is ", PhaseName(info->record.phase), ", not DONE")};
@@ -106,14 +109,14 @@ grpc::Status JobServiceImpl::ReadStore(grpc::ServerContext* context, const v1::J
     if (it->is_regular_file()) files.push_back(it->path());
   }
   if (ec)
-    return {grpc::StatusCode::INTERNAL, absl::StrCat("store ", dir.string(), ": ", ec.message())};
+    return Reply(absl::InternalError(absl::StrCat("store ", dir.string(), ": ", ec.message())));
   std::sort(files.begin(), files.end());
   std::string buffer(static_cast<size_t>(deps_.chunk_bytes), '\0');
   v1::FileChunk chunk;
   for (const std::filesystem::path& file : files) {
     std::ifstream in(file, std::ios::binary);
     const int64_t size = static_cast<int64_t>(std::filesystem::file_size(file, ec));
-    if (!in || ec) return {grpc::StatusCode::INTERNAL, absl::StrCat("cannot read ", file.string())};
+    if (!in || ec) return Reply(absl::InternalError(absl::StrCat("cannot read ", file.string())));
     chunk.set_path(std::filesystem::relative(file, dir).generic_string());
     chunk.set_file_size(size);
     int64_t offset = 0;

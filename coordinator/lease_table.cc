@@ -404,6 +404,11 @@ absl::Status LeaseTable::CommitLocked(Transition& tx) {
   return broken_;
 }
 
+absl::Status LeaseTable::broken() const {
+  std::lock_guard lock(mu_);
+  return broken_;
+}
+
 uint64_t LeaseTable::generation() const {
   std::lock_guard lock(mu_);
   return generation_;

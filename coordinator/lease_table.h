@@ -155,6 +155,9 @@ class LeaseTable {
                                                       int limit) const;
 
   const LeaseTableOptions& options() const { return options_; }
+  // The failed commit that stopped the table (a full disk under SQLite: every
+  // change after it fails with it); OK while the table works.
+  absl::Status broken() const;
 
   // Counters, jobs by phase, workers alive (seen within lease_ms and not
   // excluded), and the task counts of the newest `job_limit` jobs.

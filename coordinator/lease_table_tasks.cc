@@ -336,7 +336,7 @@ void LeaseTable::ChargeTask(JobState& js, int task, EventKind kind, std::string 
     EndJob(js, Phase::kFailed,
            permanent
                ? absl::StrCat(TaskKindName(t.kind), " ", t.kind_index,
-                              " failed on its input: ", reason)
+                              " failed, not retried (its input, or a full disk): ", reason)
                : absl::StrCat(TaskKindName(t.kind), " ", t.kind_index, " failed ", t.failures,
                               " times (max_attempts ", js.rec.max_attempts, "); last: ", reason),
            tx);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "coordinator/auth.h"
+#include "coordinator/client_paths.h"
 #include "coordinator/job_types.h"
 #include "coordinator/lease_table.h"
 #include "coordinator/scene_store.h"
@@ -24,6 +25,7 @@ struct ServiceDeps {
   int64_t watch_poll_ms = 500;  // Watch: longest wait between checks / progress events
   int chunk_bytes = 1 << 20;    // ReadStore / FetchScene chunk size
   const std::atomic<bool>* stopping = nullptr;  // ends Watch streams at shutdown
+  ClientPaths client_paths;  // applied to every message a JobService client receives
 };
 
 }  // namespace wavebake

@@ -12,7 +12,10 @@
 namespace wavebake {
 
 // W×H of the layout's grid: from the spec for camera/hilbert, from the first
-// grid mesh for grid. No ray is traced.
+// grid mesh for grid. No ray is traced, but the layout must fit the scene, so
+// a planner refuses a job that every BAKE_TILE would fail (INVALID_ARGUMENT
+// naming `layout`): camera needs the scene's camera, grid a regular-grid
+// mesh, hilbert at least as many cells as the scene has vertices.
 absl::StatusOr<std::pair<int, int>> LayoutGridSize(const Scene& scene, const LayoutSpec& layout);
 
 absl::StatusOr<SampleSet> MakeSampleSet(const Scene& scene, const RayCaster& caster,

@@ -58,6 +58,12 @@ class Workers {
     for (auto& loop : loops_) loop->Drain();
     for (std::thread& t : threads_) t.join();
   }
+  // Stops the running tasks too (a job that ended otherwise than DONE, or a
+  // watch that failed): nothing they would still write is wanted, and a task
+  // does not wait for a heartbeat to learn it.
+  void Abort() {
+    for (auto& loop : loops_) loop->Abort();
+  }
 
   // Every loop has ended before being drained: no task will run any more.
   bool AllStopped() const {
@@ -143,7 +149,8 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
        // One process: excluding one of its loops for failing tasks helps
        // nobody; max_attempts still fails a job that fails everywhere.
        .worker_failure_limit = 1 << 30,
-       .wait_ms = 10},  // idle workers ask again soon: a phase's last task is not a wait
+       .wait_ms = 10,         // idle workers ask again soon: a phase's last task is not a wait
+       .hide_paths = false},  // the client is this machine's user
       MakeJobPlanner(planner), MakeJobCleanup(store_root));
   if (!coordinator.ok()) return coordinator.status();
   if (options.on_started) options.on_started(**coordinator, planner);
@@ -167,6 +174,7 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
         !loops.error().ok()) {
       job = loops.error();  // the workers' own failure, not a user's cancel
     }
+    if (!job.ok() || job->phase() != v1::PHASE_DONE) loops.Abort();
   }  // workers drained: nothing writes any more
   ending.Call();
   if (job.ok() && job->phase() == v1::PHASE_DONE) {

@@ -75,7 +75,8 @@ constexpr const char* kKeys[] = {"centre",   "height",  "size",      "rotation_d
 absl::StatusOr<AreaLight> ParseAreaLight(const json& j, const std::string& where,
                                          const std::filesystem::path& dir) {
   if (!j.is_object()) return Bad(where, "light", "expected an object, got ", j.dump());
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();  // a structured binding clang 14 cannot capture
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) ==
         std::end(kKeys))
       return Bad(where, key, "unknown key (allowed: ", absl::StrJoin(kKeys, ", "), ")");

@@ -17,16 +17,22 @@ namespace wavebake {
 namespace {
 
 // Radiance must be finite and non-negative: one bad texel would poison every
-// relit pixel through T·L.
+// relit pixel through T·L. And it must stay below kMaxEnvRadiance (env_map.h),
+// or the relighting's single-precision sums overflow and the image is
+// silently black (an RGBE exponent of 255 is 1.7e38).
 absl::Status CheckRadiance(const std::filesystem::path& path, const EnvMap& image) {
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
       const Vec3 p = image.Pixel(x, y);
       for (int c = 0; c < 3; ++c) {
-        if (std::isfinite(p[c]) && p[c] >= 0) continue;
+        if (std::isfinite(p[c]) && p[c] >= 0 && p[c] <= kMaxEnvRadiance) continue;
+        const bool huge = std::isfinite(p[c]) && p[c] > 0;
         return absl::InvalidArgumentError(absl::StrCat(
             path.string(), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]), " is ",
-            std::to_string(p[c]), "; radiance must be finite and non-negative"));
+            huge ? absl::StrCat(p[c]) : std::to_string(p[c]),
+            huge ? absl::StrCat("; radiance above ", kMaxEnvRadiance,
+                                " overflows the relighting's float sums (scale the map down)")
+                 : "; radiance must be finite and non-negative"));
       }
     }
   }

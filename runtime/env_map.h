@@ -30,8 +30,18 @@ struct EnvMap {
 //   builtin:sky           procedural sky, sun and area light (env_builtin.h)
 // Errors name the file: missing or unreadable file, unknown extension, an
 // aspect ratio that is neither layout, and the first pixel (x, y) whose
-// radiance is NaN, infinite or negative.
+// radiance is NaN, infinite, negative or above kMaxEnvRadiance.
 absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec);
+
+// The brightest radiance an environment may hold. Relighting sums in float
+// (FLT_MAX 3.4e38): a texel is a mean of pixels (≤ max L), an orthonormal
+// coefficient of the 6N² texels is at most ‖L‖₂ ≤ √(6N²)·max L ≤ 627·max L
+// (N ≤ 256), and a relit value Σ T_m L_m over any set of terms is at most
+// ‖T_row‖₂‖L‖₂ ≤ 627·max L (a receiver reflects at most what arrives:
+// ‖T_row‖₂ ≤ Σ|T| ≤ 1). 1e30 leaves five orders of magnitude to FLT_MAX for
+// the sums' intermediate values and the reference's estimates; real probes,
+// an unclipped sun included, stay below 1e10.
+inline constexpr float kMaxEnvRadiance = 1e30f;
 
 // Radiance arriving from direction d (need not be normalized): the value of
 // the pixel whose footprint holds d. A pixel is the mean radiance over its

@@ -6,12 +6,15 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include <algorithm>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "runtime/exr_preflight.h"
 #include "runtime/image_io.h"
 #include "storage/atomic_file.h"
 
@@ -35,6 +38,28 @@ class MemoryOStream : public Imf::OStream {
 
  private:
   std::vector<std::byte> bytes_;
+  uint64_t pos_ = 0;
+};
+
+// The bytes of an EXR file, read by OpenEXR as a stream (so a fuzzer or a
+// caller with bytes in memory needs no file).
+class MemoryIStream : public Imf::IStream {
+ public:
+  MemoryIStream(std::span<const std::byte> bytes, const std::string& name)
+      : Imf::IStream(name.c_str()), bytes_(bytes) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || static_cast<uint64_t>(n) > bytes_.size() - pos_)
+      throw std::runtime_error(absl::StrCat("Early end of file: ", n, " bytes wanted at ", pos_,
+                                            ", ", bytes_.size(), " in the file"));
+    std::memcpy(c, bytes_.data() + pos_, static_cast<size_t>(n));
+    pos_ += static_cast<uint64_t>(n);
+    return pos_ < bytes_.size();
+  }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = std::min<uint64_t>(pos, bytes_.size()); }
+
+ private:
+  std::span<const std::byte> bytes_;
   uint64_t pos_ = 0;
 };
 
@@ -80,34 +105,48 @@ absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     return absl::NotFoundError(absl::StrCat(path.string(), ": no such file"));
   }
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
+  if (!bytes.ok()) return bytes.status();
+  return DecodeExr(*bytes, path.string());
+}
+
+absl::StatusOr<EnvMap> DecodeExr(std::span<const std::byte> file, const std::string& name) {
+  if (absl::Status s = CheckExrHeaders(file, name); !s.ok()) return s;  // before OpenEXR
   try {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i dw = file.header().dataWindow();
-    const Imf::ChannelList& channels = file.header().channels();
+    MemoryIStream stream(file, name);
+    Imf::InputFile in(stream);
+    const Imath::Box2i dw = in.header().dataWindow();
+    const Imf::ChannelList& channels = in.header().channels();
     const bool has_rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     if (!has_rgb && !channels.findChannel("Y")) {
       return absl::InvalidArgumentError(
-          absl::StrCat(path.string(), ": EXR has neither R, G, B nor Y channels"));
+          absl::StrCat(name, ": EXR has neither R, G, B nor Y channels"));
     }
-    EnvMap image{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
+    const int64_t width = int64_t{dw.max.x} - dw.min.x + 1,
+                  height = int64_t{dw.max.y} - dw.min.y + 1;
+    // Also checked before OpenEXR read the header (exr_preflight.h).
+    if (width <= 0 || height <= 0 || width * height > ExrPixelLimit(file.size()))
+      return absl::InvalidArgumentError(
+          absl::StrCat(name, ": EXR data window of ", width, "x", height, " pixels"));
+    EnvMap image{static_cast<int>(width), static_cast<int>(height), {}};
     image.rgb.resize(size_t(image.width) * image.height * 3);
     Imf::FrameBuffer fb;
     const size_t xs = 3 * sizeof(float), ys = xs * image.width;
     for (int c = 0; c < 3; ++c) {
-      const char* name = has_rgb ? (c == 0 ? "R" : (c == 1 ? "G" : "B")) : "Y";
-      fb.insert(name, Imf::Slice::Make(Imf::FLOAT, &image.rgb[c], dw, xs, ys));
+      const char* channel = has_rgb ? (c == 0 ? "R" : (c == 1 ? "G" : "B")) : "Y";
+      fb.insert(channel, Imf::Slice::Make(Imf::FLOAT, &image.rgb[c], dw, xs, ys));
       if (!has_rgb) break;  // Y goes to red, then is copied below.
     }
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
     if (!has_rgb) {
       for (size_t i = 0; i < image.rgb.size(); i += 3)
         image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
     }
     return image;
   } catch (const std::exception& e) {
-    return absl::InvalidArgumentError(absl::StrCat(path.string(), ": unreadable EXR: ", e.what()));
+    return absl::InvalidArgumentError(absl::StrCat(name, ": unreadable EXR: ", e.what()));
   }
 }
 

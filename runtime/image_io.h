@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -25,6 +26,9 @@ absl::Status WriteExr(const std::filesystem::path& path, int width, int height,
 // or tiled OpenEXR file as float, whatever the stored pixel type. The image
 // may have any size; LoadEnvMap checks layouts.
 absl::StatusOr<EnvMap> ReadExrImage(const std::filesystem::path& path);
+// The same from the file's bytes; `name` names it in errors. The header is
+// checked before OpenEXR reads it (runtime/exr_preflight.h).
+absl::StatusOr<EnvMap> DecodeExr(std::span<const std::byte> file, const std::string& name);
 // Radiance RGBE (.hdr) through stb_image, linear float.
 absl::StatusOr<EnvMap> ReadHdrImage(const std::filesystem::path& path);
 // An 8-bit PNG through stb_image, sRGB decoded to linear [0, 1].

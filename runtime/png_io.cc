@@ -1,38 +1,14 @@
 // PNG half of image_io.h.
-#include <stb/stb_image_write.h>
-
 #include <cmath>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "runtime/image_io.h"
+#include "runtime/stb_codecs.h"
 #include "runtime/tonemap.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {
-
-namespace {
-void AppendBytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<std::byte>*>(context);
-  const auto* p = static_cast<const std::byte*>(data);
-  out->insert(out->end(), p, p + size);
-}
-}  // namespace
-
-absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, int channels,
-                                                 std::span<const uint8_t> pixels) {
-  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
-      pixels.size() != size_t(width) * height * channels) {
-    return absl::InvalidArgumentError(absl::StrCat("png: ", width, "x", height, "x", channels,
-                                                   " does not match ", pixels.size(), " bytes"));
-  }
-  std::vector<std::byte> png;
-  if (!stbi_write_png_to_func(AppendBytes, &png, width, height, channels, pixels.data(),
-                              width * channels)) {
-    return absl::InternalError("PNG encoding failed");
-  }
-  return png;
-}
 
 absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
                                                  float exposure_stops, Vec3 background) {

@@ -8,6 +8,7 @@ PKGS=(
   libopenexr-dev libstb-dev libcli11-dev libspdlog-dev libsqlite3-dev
   libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang-14 libclang-rt-14-dev clang
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
   slurmctld slurmd slurm-client munge python3-kubernetes iproute2
   libcpp-httplib-dev pybind11-dev python3-dev python3-pytest

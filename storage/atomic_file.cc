@@ -42,7 +42,10 @@ absl::Status ErrnoError(absl::string_view what, const std::filesystem::path& pat
   // std::error_code's message is thread-safe, unlike strerror.
   std::string msg = absl::StrCat(what, " ", path.string(), ": ",
                                  std::error_code(err, std::generic_category()).message());
-  return err == ENOENT ? absl::NotFoundError(msg) : absl::InternalError(msg);
+  if (err == ENOENT) return absl::NotFoundError(msg);
+  // A full disk or quota: no retry on this filesystem helps (the bake ends).
+  if (err == ENOSPC || err == EDQUOT) return absl::ResourceExhaustedError(msg);
+  return absl::InternalError(msg);
 }
 
 // Temp name for `path`, unique among all writers: the pid separates processes
@@ -66,11 +69,12 @@ bool IsTempName(const std::string& name) {
          std::all_of(hex.begin(), hex.end(), [](char c) { return absl::ascii_isxdigit(c); });
 }
 
-absl::Status WriteAll(int fd, std::span<const std::byte> data, const std::filesystem::path& tmp) {
+// Errors name the file being written (`path`), not its temporary name.
+absl::Status WriteAll(int fd, std::span<const std::byte> data, const std::filesystem::path& path) {
   while (!data.empty()) {
     const ssize_t n = ::write(fd, data.data(), data.size());
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return ErrnoError("cannot write", tmp, errno);
+    if (n < 0) return ErrnoError("cannot write", path, errno);
     data = data.subspan(static_cast<size_t>(n));
   }
   return absl::OkStatus();
@@ -85,11 +89,11 @@ absl::Status SyncDirectory(const std::filesystem::path& dir) {
   return absl::OkStatus();
 }
 
-absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& tmp,
+absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& path,
                            std::span<const std::byte> data) {
-  if (absl::Status s = WriteAll(fd.get(), data, tmp); !s.ok()) return s;
-  if (::fsync(fd.get()) != 0) return ErrnoError("cannot fsync", tmp, errno);
-  if (fd.Close() != 0) return ErrnoError("cannot close", tmp, errno);
+  if (absl::Status s = WriteAll(fd.get(), data, path); !s.ok()) return s;
+  if (::fsync(fd.get()) != 0) return ErrnoError("cannot fsync", path, errno);
+  if (fd.Close() != 0) return ErrnoError("cannot close", path, errno);
   return absl::OkStatus();
 }
 
@@ -105,7 +109,7 @@ absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir
     Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
     if (fd.get() < 0 && errno == EEXIST && attempt < 8) continue;
     if (fd.get() < 0) return ErrnoError("cannot create a temp file for", path, errno);
-    if (absl::Status s = WriteAndClose(fd, tmp, data); !s.ok()) {
+    if (absl::Status s = WriteAndClose(fd, path, data); !s.ok()) {
       ::unlink(tmp.c_str());  // best effort; the write error is the one to report
       return s;
     }
@@ -130,10 +134,7 @@ absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const 
 absl::Status CreateDirectories(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    return absl::InternalError(
-        absl::StrCat("cannot create directory ", dir.string(), ": ", ec.message()));
-  }
+  if (ec) return ErrnoError("cannot create directory", dir, ec.value());
   return absl::OkStatus();
 }
 

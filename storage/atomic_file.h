@@ -15,6 +15,8 @@ namespace wavebake {
 // Writes `data` to a uniquely named temp file beside `path` (".NAME.<random>.partial",
 // which Zarr readers ignore), fsyncs it, renames it over `path` and fsyncs the
 // directory. On any failure the temp file is removed and `path` is untouched.
+// Errors name `path`; a full disk or quota (ENOSPC, EDQUOT) is ResourceExhausted
+// ("No space left on device"), as it is for CreateDirectories.
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data);
 
 // Removes, under `dir` and its subdirectories, the temp files of AtomicWriteFile

@@ -78,7 +78,9 @@ absl::StatusOr<std::filesystem::path> MaterializeBundle(const std::filesystem::p
 
 absl::Status CheckJsonSceneInBundle(const std::filesystem::path& scene,
                                     const std::vector<BundleFile>& files) {
-  absl::StatusOr<std::vector<std::string>> meshes = JsonSceneMeshFiles(scene);
+  // Named relative to the bundle: the client sees no server path.
+  const std::unique_ptr<SceneFiles> bundle = ConfinedSceneFiles(scene.parent_path());
+  absl::StatusOr<std::vector<std::string>> meshes = JsonSceneMeshFiles(scene, bundle.get());
   if (!meshes.ok()) return meshes.status();
   std::set<std::string> listed;
   for (const BundleFile& f : files) listed.insert(f.path);

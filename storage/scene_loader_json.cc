@@ -1,6 +1,7 @@
 // JSON scene files (DESIGN.md §5 SCENE):
 //
 //   {"meshes": [{"file": "bunny.obj",              // required; relative to this file
+//                                                  // (uploaded: no absolute path, no "..")
 //                "albedo": [0.8, 0.7, 0.6],        // optional, overrides the material
 //                "transform": {"scale": 2 | [sx, sy, sz],   // optional, applied in
 //                              "rotate_y_degrees": 30,      // this order: scale,
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -21,6 +23,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "nlohmann/json.hpp"
+#include "storage/scene_loader.h"
 #include "storage/scene_loader_parts.h"
 
 namespace wavebake {
@@ -37,18 +40,24 @@ struct Transform {
 // Names the file in every error.
 class Reader {
  public:
-  explicit Reader(std::filesystem::path path) : path_(std::move(path)) {}
+  Reader(std::filesystem::path path, const SceneFiles& files)
+      : path_(std::move(path)), files_(files) {}
   const std::filesystem::path& path() const { return path_; }
+  const SceneFiles& files() const { return files_; }
 
   absl::Status Error(const std::string& field, const auto&... what) const {
-    return absl::InvalidArgumentError(absl::StrCat("scene file '", path_.string(), "': ", field,
-                                                   field.empty() ? "" : ": ", what...));
+    return absl::InvalidArgumentError(absl::StrCat(Where(field), what...));
+  }
+  std::string Where(const std::string& field) const {
+    return absl::StrCat("scene file '", files_.Name(path_), "': ", field,
+                        field.empty() ? "" : ": ");
   }
 
   absl::Status CheckKeys(const json& obj, const std::string& field,
                          std::initializer_list<const char*> allowed) const {
     if (!obj.is_object()) return Error(field, "expected an object");
-    for (const auto& [key, value] : obj.items()) {
+    for (const auto& item : obj.items()) {
+      const std::string& key = item.key();
       if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }) ==
           allowed.end())
         return Error(field.empty() ? key : absl::StrCat(field, ".", key),
@@ -77,6 +86,7 @@ class Reader {
 
  private:
   std::filesystem::path path_;
+  const SceneFiles& files_;
 };
 
 absl::StatusOr<Transform> ReadTransform(const Reader& r, const json& j, const std::string& field) {
@@ -123,16 +133,21 @@ void Apply(const Transform& t, Mesh& m) {
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
-absl::Status ReadMeshEntry(const Reader& r, const json& j, int index, Scene& scene) {
+absl::Status ReadMeshEntry(const Reader& r, const json& j, int index, Scene& scene,
+                           std::vector<std::string>& warnings) {
   const std::string field = absl::StrCat("meshes[", index, "]");
   if (absl::Status s = r.CheckKeys(j, field, {"file", "albedo", "transform"}); !s.ok()) return s;
   const auto file = j.find("file");
   if (file == j.end() || !file->is_string())
     return r.Error(field + ".file", "expected a path string");
-  std::filesystem::path mesh_path = file->get<std::string>();
-  if (mesh_path.is_relative()) mesh_path = r.path().parent_path() / mesh_path;
-  if (mesh_path.extension() == ".json")
-    return r.Error(field + ".file", "scene files do not nest: '", mesh_path.string(), "'");
+  const std::string reference = file->get<std::string>();
+  std::string warning;
+  absl::StatusOr<std::filesystem::path> mesh_path =
+      r.files().Resolve(r.path(), reference, &warning);
+  if (!mesh_path.ok()) return r.Error(field + ".file", mesh_path.status().message());
+  if (!warning.empty()) warnings.push_back(r.Where(field + ".file") + warning);
+  if (mesh_path->extension() == ".json")
+    return r.Error(field + ".file", "scene files do not nest: '", reference, "'");
   Transform transform;
   if (auto it = j.find("transform"); it != j.end()) {
     absl::StatusOr<Transform> t = ReadTransform(r, *it, field + ".transform");
@@ -147,7 +162,7 @@ absl::Status ReadMeshEntry(const Reader& r, const json& j, int index, Scene& sce
       return r.Error(field + ".albedo", "components must be in [0, 1]");
     albedo = *a;
   }
-  absl::StatusOr<std::vector<Mesh>> meshes = ReadMeshFile(mesh_path);
+  absl::StatusOr<std::vector<Mesh>> meshes = ReadMeshFile(*mesh_path, r.files());
   if (!meshes.ok()) return r.Error(field + ".file", meshes.status().message());
   for (Mesh& m : *meshes) {
     Apply(transform, m);
@@ -183,6 +198,7 @@ absl::StatusOr<Camera> ReadCamera(const Reader& r, const json& j) {
 
 // The file's top level, with its keys and its meshes array checked.
 absl::StatusOr<json> ParseSceneFile(const Reader& r) {
+  if (!r.files().Open(r.path())) return r.Error("", "is outside the scene's files");
   std::ifstream in(r.path());
   if (!in) return r.Error("", "cannot open (missing or unreadable)");
   std::stringstream text;
@@ -202,23 +218,26 @@ absl::StatusOr<json> ParseSceneFile(const Reader& r) {
 
 }  // namespace
 
-absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path) {
-  const Reader r(path);
+absl::StatusOr<std::vector<std::string>> JsonSceneMeshFiles(const std::filesystem::path& path,
+                                                            const SceneFiles* files) {
+  const std::unique_ptr<SceneFiles> local = files ? nullptr : LocalSceneFiles();
+  const Reader r(path, files ? *files : *local);
   absl::StatusOr<json> j = ParseSceneFile(r);
   if (!j.ok()) return j.status();
-  std::vector<std::string> files;
+  std::vector<std::string> references;
   for (size_t i = 0; i < (*j)["meshes"].size(); ++i) {
     const json& m = (*j)["meshes"][i];
     const std::string field = absl::StrCat("meshes[", i, "].file");
     if (!m.is_object() || !m.contains("file") || !m["file"].is_string())
       return r.Error(field, "expected a path string");
-    files.push_back(m["file"].get<std::string>());
+    references.push_back(m["file"].get<std::string>());
   }
-  return files;
+  return references;
 }
 
-absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path) {
-  const Reader r(path);
+absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path, const SceneFiles& files,
+                                    std::vector<std::string>& warnings) {
+  const Reader r(path, files);
   absl::StatusOr<json> parsed = ParseSceneFile(r);
   if (!parsed.ok()) return parsed.status();
   const json& j = *parsed;
@@ -226,7 +245,8 @@ absl::StatusOr<Scene> ReadJsonScene(const std::filesystem::path& path) {
   Scene scene;
   scene.name = path.stem().string();
   for (size_t i = 0; i < meshes->size(); ++i)
-    if (absl::Status s = ReadMeshEntry(r, (*meshes)[i], static_cast<int>(i), scene); !s.ok())
+    if (absl::Status s = ReadMeshEntry(r, (*meshes)[i], static_cast<int>(i), scene, warnings);
+        !s.ok())
       return s;
   if (auto it = j.find("camera"); it != j.end()) {
     absl::StatusOr<Camera> c = ReadCamera(r, *it);

@@ -36,6 +36,8 @@ inline constexpr char kStagingTransport[] = "staging/transport";
 // float32 [tiles] chunked [1]: Σ of squared staged values of each tile (the
 // matrix energy is needed by the "matrix" error scope before any group runs).
 inline constexpr char kStagingTileEnergy[] = "staging/tile_energy";
+// Not Zarr: one <g>.wbg file per TRANSFORM_COLUMNS group (worker/group_result.h).
+inline constexpr char kStagingGroups[] = "staging/groups";
 
 inline std::filesystem::path Path(const std::filesystem::path& store, const char* name) {
   return store / name;

@@ -41,12 +41,15 @@ absl::Status CheckInfo(const std::filesystem::path& store, const StoreInfo& info
     return BadAttr(store, "N", absl::StrCat(info.light_res, " differs from params.light_res"));
   if (info.bits < 2 || info.bits > 16)
     return BadAttr(store, "bits", absl::StrCat(info.bits, " is outside 2..16"));
+  if (info.attrs.contains("M") && info.attrs["M"] != info.columns)
+    return BadAttr(store, "M",
+                   absl::StrCat(info.attrs["M"].dump(), " is not 6·N² = ", info.columns));
   return absl::OkStatus();
 }
 
 absl::StatusOr<ZarrArray> OpenShaped(const std::filesystem::path& store, const char* name,
                                      DType dtype, int64_t length) {
-  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, name));
+  absl::StatusOr<ZarrArray> a = ZarrArray::OpenComplete(store::Path(store, name));
   if (!a.ok()) return a.status();
   if (a->spec().dtype != dtype || a->spec().shape.size() != 1 ||
       (length >= 0 && a->spec().shape[0] != length)) {
@@ -62,13 +65,18 @@ struct TransportArrays {
   int64_t nnz() const { return indices.spec().shape[0]; }
 };
 
-absl::StatusOr<TransportArrays> OpenTransport(const std::filesystem::path& store, int m) {
+absl::StatusOr<TransportArrays> OpenTransport(const std::filesystem::path& store,
+                                              const StoreInfo& info) {
+  const int m = info.columns;
   absl::StatusOr<ZarrArray> indptr = OpenShaped(store, store::kIndptr, DType::kInt64, m + 1);
   absl::StatusOr<ZarrArray> depth = OpenShaped(store, store::kDepth, DType::kUint8, m);
   absl::StatusOr<ZarrArray> scale = OpenShaped(store, store::kScale, DType::kFloat32, m);
   absl::StatusOr<ZarrArray> indices = OpenShaped(store, store::kIndices, DType::kUint32, -1);
   for (const auto* a : {&indptr, &depth, &scale, &indices})
     if (!a->ok()) return a->status();
+  if (info.nnz >= 0 && indices->spec().shape[0] != info.nnz)
+    return absl::DataLossError(absl::StrCat(indices->dir().string(), ": ", indices->spec().shape[0],
+                                            " entries, the manifest's stats.nnz is ", info.nnz));
   absl::StatusOr<ZarrArray> data =
       OpenShaped(store, store::kData, DType::kInt16, indices->spec().shape[0]);
   if (!data.ok()) return data.status();
@@ -145,6 +153,18 @@ absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store) {
     if (absl::Status s = GetPositiveInt(store, a, key, out); !s.ok()) return s;
   }
   info.columns = info.params.light_domain.Columns(info.light_res);
+  // Optional (hand-made stores lack them); wrong types are corruption.
+  if (a.contains("S")) {
+    if (!a["S"].is_number_integer() || a["S"].get<int64_t>() < 0)
+      return BadAttr(store, "S", "not a sample count");
+    info.samples = a["S"].get<int64_t>();
+  }
+  if (a.contains("stats") && a["stats"].is_object() && a["stats"].contains("nnz")) {
+    const nlohmann::json& nnz = a["stats"]["nnz"];
+    if (!nnz.is_number_integer() || nnz.get<int64_t>() < 0)
+      return BadAttr(store, "stats.nnz", "not a coefficient count");
+    info.nnz = nnz.get<int64_t>();
+  }
   if (absl::Status s = CheckInfo(store, info); !s.ok()) return s;
   return info;
 }
@@ -153,7 +173,7 @@ absl::StatusOr<CompressedColumns> ReadTransport(const std::filesystem::path& sto
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
   if (!info.ok()) return info.status();
   const int m = info->columns;
-  absl::StatusOr<TransportArrays> arrays = OpenTransport(store, m);
+  absl::StatusOr<TransportArrays> arrays = OpenTransport(store, *info);
   if (!arrays.ok()) return arrays.status();
   const int64_t nnz = arrays->nnz();
 
@@ -198,8 +218,7 @@ absl::StatusOr<DecodedColumn> ReadColumn(const std::filesystem::path& store, int
   if (column < 0 || column >= info->columns)
     return absl::InvalidArgumentError(
         absl::StrCat("column: ", column, " is outside 0..", info->columns - 1));
-  const int m = info->columns;
-  absl::StatusOr<TransportArrays> arrays = OpenTransport(store, m);
+  absl::StatusOr<TransportArrays> arrays = OpenTransport(store, *info);
   if (!arrays.ok()) return arrays.status();
   const int64_t nnz = arrays->nnz();
 

@@ -19,9 +19,15 @@ struct StoreInfo {
   std::string scene_spec;  // attrs["scene"]: builtin:NAME or the scene file path
   std::string scene_hash;  // attrs["scene_hash"]
   int width = 0, height = 0, light_res = 0, columns = 0, bits = 0;
+  // What FINALIZE recorded of its outputs (attrs "S" and stats.nnz); -1 when
+  // the manifest does not say. The readers hold the arrays to them.
+  int64_t samples = -1, nnz = -1;
 };
 
 // Errors: not a store, or attrs["format"] other than store::kFormat.
+// Every reader below opens the arrays complete (ZarrArray::OpenComplete): a
+// missing chunk, or an array whose length disagrees with the manifest, is
+// DataLoss naming it.
 absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store);
 absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store);
 // SceneHash of `scene` as the store's bake computed it (the uv layouts also

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "storage/zarr_array.h"
@@ -42,10 +43,12 @@ ArraySpec Vec3Spec(int64_t rows) {
 template <class T>
 absl::StatusOr<std::vector<T>> ReadArray(const std::filesystem::path& store, const char* name,
                                          const std::vector<int64_t>& shape) {
-  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, name));
+  absl::StatusOr<ZarrArray> a = ZarrArray::OpenComplete(store::Path(store, name));
   if (!a.ok()) return a.status();
   if (a->spec().shape != shape)
-    return absl::DataLossError(absl::StrCat(a->dir().string(), ": unexpected shape"));
+    return absl::DataLossError(absl::StrCat(a->dir().string(), ": shape [",
+                                            absl::StrJoin(a->spec().shape, ", "), "], expected [",
+                                            absl::StrJoin(shape, ", "), "]"));
   return a->ReadAll<T>();
 }
 
@@ -126,7 +129,7 @@ absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store) {
   s.grid = *std::move(grid);
   absl::StatusOr<ZarrArray> position = ZarrArray::Open(store::Path(store, store::kPosition));
   if (!position.ok()) return position.status();
-  const int64_t n = position->spec().shape.at(0);
+  const int64_t n = info->samples >= 0 ? info->samples : position->spec().shape.at(0);
   for (auto [name, out] :
        {std::pair{store::kPosition, &s.position}, std::pair{store::kNormal, &s.normal},
         std::pair{store::kAlbedo, &s.albedo}}) {

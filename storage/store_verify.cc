@@ -4,20 +4,21 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "storage/store_reader.h"
+#include "storage/store_check.h"
 #include "storage/zarr_array.h"
 
 namespace wavebake {
 
 absl::StatusOr<int> VerifyStore(const std::filesystem::path& store) {
-  absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
-  if (!info.ok()) return info.status();
+  // The final arrays whole and as the manifest says (a missing chunk would
+  // otherwise pass: Zarr reads it as the fill value), then every array's chunks.
+  if (absl::Status s = CheckStoreComplete(store); !s.ok()) return s;
   int arrays = 0;
   std::error_code ec;
   for (auto it = std::filesystem::recursive_directory_iterator(store, ec);
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
     if (it->path().filename() != ".zarray") continue;
-    absl::StatusOr<ZarrArray> array = ZarrArray::Open(it->path().parent_path());
+    absl::StatusOr<ZarrArray> array = ZarrArray::OpenComplete(it->path().parent_path());
     if (!array.ok()) return array.status();
     // Every chunk index, last axis fastest.
     const std::vector<int64_t> grid = array->chunk_grid();

@@ -1,5 +1,6 @@
 #pragma once
-// A whole store reads back (DESIGN.md §3): its manifest and every chunk of
+// A whole store reads back (DESIGN.md §3): its manifest, its final arrays
+// complete and consistent with it (storage/store_check.h), and every chunk of
 // every array under it, each zstd frame with its content checksum — what a
 // client checks before trusting a store it did not write (`wavebake fetch`).
 #include <filesystem>

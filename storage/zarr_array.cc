@@ -44,6 +44,12 @@ absl::StatusOr<ZarrArray> ZarrArray::Open(const std::filesystem::path& dir) {
   return ZarrArray(dir, *std::move(spec));
 }
 
+absl::StatusOr<ZarrArray> ZarrArray::OpenComplete(const std::filesystem::path& dir) {
+  absl::StatusOr<ZarrArray> a = Open(dir);
+  if (a.ok()) a->complete_ = true;
+  return a;
+}
+
 size_t ZarrArray::chunk_bytes() const {
   return static_cast<size_t>(ChunkElementCount(spec_)) * ItemSize(spec_.dtype);
 }
@@ -102,6 +108,10 @@ absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
   const std::filesystem::path path = ChunkPath(chunk_index);
   absl::StatusOr<std::vector<std::byte>> frame = ReadFile(path);
   if (absl::IsNotFound(frame.status())) {
+    if (complete_)
+      return absl::DataLossError(absl::StrCat(path.string(), ": chunk [",
+                                              absl::StrJoin(chunk_index, ", "),
+                                              "] is missing (the array's shape needs it)"));
     FillElements(spec_.dtype, spec_.fill_value, out);
     return absl::OkStatus();
   }

@@ -30,6 +30,10 @@ class ZarrArray {
   // NotFound if `dir` has no .zarray; InvalidArgument naming the file and
   // field if the metadata is not an array this layer can read.
   static absl::StatusOr<ZarrArray> Open(const std::filesystem::path& dir);
+  // Open, for an array that must hold every chunk of its grid (a finished
+  // store's arrays, DESIGN.md §3): reading a missing chunk is DataLoss naming
+  // it, not the fill value (a deleted chunk must not read as zeros).
+  static absl::StatusOr<ZarrArray> OpenComplete(const std::filesystem::path& dir);
 
   const std::filesystem::path& dir() const { return dir_; }
   const ArraySpec& spec() const { return spec_; }
@@ -43,7 +47,8 @@ class ZarrArray {
   // stores deterministic).
   absl::Status WriteChunk(std::span<const int64_t> chunk_index,
                           std::span<const std::byte> data) const;
-  // A chunk that was never written reads as the fill value. Corruption is DataLoss.
+  // A chunk that was never written reads as the fill value (OpenComplete:
+  // DataLoss). Corruption is DataLoss.
   absl::StatusOr<std::vector<std::byte>> ReadChunk(std::span<const int64_t> chunk_index) const;
   absl::Status ReadChunkInto(std::span<const int64_t> chunk_index, std::span<std::byte> out) const;
 
@@ -70,6 +75,7 @@ class ZarrArray {
 
   std::filesystem::path dir_;
   ArraySpec spec_;
+  bool complete_ = false;  // OpenComplete
 };
 
 // ---- template definitions ----

@@ -8,12 +8,13 @@
 namespace wavebake {
 
 absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view scene_spec,
-                                                             const BakeParams& params) {
+                                                             const BakeParams& params,
+                                                             const SceneFiles* files) {
   if (absl::Status s = ValidateBakeParams(params); !s.ok()) return s;
   absl::StatusOr<LayoutSpec> layout = ParseLayout(params.layout);
   if (!layout.ok()) return layout.status();
   SceneReport report;
-  absl::StatusOr<Scene> scene = LoadScene(scene_spec, &report);
+  absl::StatusOr<Scene> scene = LoadScene(scene_spec, &report, files);
   if (!scene.ok()) return scene.status();
   absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
   if (!caster.ok()) return caster.status();

@@ -20,6 +20,7 @@
 #include "core/samples.h"
 #include "core/scene.h"
 #include "core/scene_check.h"
+#include "storage/scene_files.h"
 
 namespace wavebake {
 
@@ -41,9 +42,11 @@ struct BakeContext {
   RayCaster caster;
 };
 
-// Loads and checks the scene, validates params (errors name the field), lays
-// out the samples and builds the ray caster.
+// Loads and checks the scene (reading only what `files` allows, null: a local
+// scene, storage/scene_files.h), validates params (errors name the field),
+// lays out the samples and builds the ray caster.
 absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view scene_spec,
-                                                             const BakeParams& params);
+                                                             const BakeParams& params,
+                                                             const SceneFiles* files = nullptr);
 
 }  // namespace wavebake

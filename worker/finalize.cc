@@ -44,9 +44,16 @@ struct GroupScan {
   std::vector<ColumnQuantInput> columns;
 };
 
-absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store, GroupScan* scan) {
+absl::Status Stopped(const FinalizeOptions& options, int group) {
+  if (options.cancel == nullptr || !options.cancel->load()) return absl::OkStatus();
+  return absl::CancelledError(absl::StrCat("FINALIZE: cancelled at group ", group));
+}
+
+absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
+                        const FinalizeOptions& options, GroupScan* scan) {
   *scan = {};
   for (int g = 0; g < plan.groups; ++g) {
+    if (absl::Status s = Stopped(options, g); !s.ok()) return s;
     absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
     if (absl::IsNotFound(r.status()))
       return absl::FailedPreconditionError(
@@ -141,8 +148,8 @@ QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, floa
 
 // Pass 2: groups in order → the CSC arrays, one group in memory at a time.
 absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store,
-                            const StepPlan& steps, int64_t nnz, StoreStats* stats,
-                            const std::atomic<bool>* cancel) {
+                            const StepPlan& steps, int64_t nnz, const FinalizeOptions& options,
+                            StoreStats* stats) {
   const JobPlan& plan = ctx.plan;
   absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
   if (!arrays.ok()) return arrays.status();
@@ -152,9 +159,7 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
   std::vector<uint8_t> depth(plan.columns, 0);
   std::vector<float> scale(plan.columns, 0.0f);
   for (int g = 0; g < plan.groups; ++g) {
-    if (cancel != nullptr && cancel->load(std::memory_order_relaxed))
-      return absl::CancelledError(
-          absl::StrCat(store.string(), ": finalize cancelled at group ", g));
+    if (absl::Status s = Stopped(options, g); !s.ok()) return s;
     absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
     if (!r.ok()) return r.status();
     if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
@@ -227,13 +232,12 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   }
   const JobPlan& plan = ctx.plan;
   GroupScan scan;
-  if (absl::Status s = ScanGroups(plan, store, &scan); !s.ok()) return s;
+  if (absl::Status s = ScanGroups(plan, store, options, &scan); !s.ok()) return s;
   const int64_t nnz = scan.nnz;
   const StepPlan steps = PlanSteps(scan.columns, ctx.params);
 
   StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));
-  if (absl::Status s = WriteTransport(ctx, store, steps, nnz, &stats, options.cancel); !s.ok())
-    return s;
+  if (absl::Status s = WriteTransport(ctx, store, steps, nnz, options, &stats); !s.ok()) return s;
   if (absl::Status s = WriteSamples(store, ctx.samples); !s.ok()) return s;
   // Uniform auto has no single b: "bits" is the widest column's.
   const ManifestBits bits{.bits = steps.bits != 0 ? steps.bits : std::max(2, stats.max_bits()),

@@ -19,8 +19,8 @@ namespace wavebake {
 
 struct FinalizeOptions {
   bool keep_staging = false;
-  // true: return Cancelled soon (checked between column groups), before the
-  // manifest that marks the store complete is written.
+  // Raised: stop between two groups with CANCELLED (a cancelled job; a large
+  // store's FINALIZE runs far longer than the bound on ending a bake).
   const std::atomic<bool>* cancel = nullptr;
 };
 

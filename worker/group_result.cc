@@ -130,7 +130,7 @@ absl::StatusOr<GroupResult> ParsePayload(std::span<const std::byte> bytes,
 }  // namespace
 
 std::filesystem::path GroupResultDir(const std::filesystem::path& store) {
-  return store::Path(store, store::kStaging) / "groups";
+  return store::Path(store, store::kStagingGroups);
 }
 
 std::filesystem::path GroupResultPath(const std::filesystem::path& store, int group) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "storage/store_check.h"
 #include "storage/store_reader.h"
 
 namespace wavebake {
@@ -26,10 +27,36 @@ absl::Status CheckOutputPath(const std::filesystem::path& out) {
   if (!std::filesystem::is_directory(parent, ec))
     return absl::InvalidArgumentError(
         absl::StrCat("out: directory ", parent.string(), " does not exist"));
-  if (!std::filesystem::exists(std::filesystem::symlink_status(out, ec))) return absl::OkStatus();
-  if (std::filesystem::is_directory(out, ec) && ReadStoreInfo(out).ok()) return absl::OkStatus();
-  return absl::AlreadyExistsError(absl::StrCat(
-      "out: ", out.string(), " exists and is not a wavebake store; refusing to overwrite it"));
+  const std::filesystem::file_status status = std::filesystem::symlink_status(out, ec);
+  if (!std::filesystem::exists(status)) return absl::OkStatus();
+  if (std::filesystem::is_symlink(status))
+    return absl::InvalidArgumentError(absl::StrCat(
+        "out: ", out.string(), " is a symbolic link; give the store's own path (its target)"));
+  if (!std::filesystem::is_directory(out, ec) || !ReadStoreInfo(out).ok())
+    return absl::AlreadyExistsError(absl::StrCat(
+        "out: ", out.string(), " exists and is not a wavebake store; refusing to overwrite it"));
+  if (std::optional<std::filesystem::path> foreign = ForeignStoreEntry(out))
+    return absl::AlreadyExistsError(absl::StrCat(
+        "out: the store ", out.string(), " holds ", foreign->string(),
+        ", which no bake writes; refusing to replace the store (it would be deleted): move it "
+        "out first"));
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::filesystem::path> ResolveOutputPath(const std::filesystem::path& out) {
+  std::filesystem::path path = out;
+  std::error_code ec;
+  for (int hops = 0; std::filesystem::is_symlink(path, ec); ++hops) {
+    if (hops == 40)
+      return absl::InvalidArgumentError(
+          absl::StrCat("out: ", out.string(), ": too many levels of symbolic links"));
+    const std::filesystem::path target = std::filesystem::read_symlink(path, ec);
+    if (ec)
+      return absl::InvalidArgumentError(absl::StrCat("out: ", out.string(), ": ", ec.message()));
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  if (absl::Status s = CheckOutputPath(path); !s.ok()) return s;
+  return path;
 }
 
 absl::Status PublishStore(const std::filesystem::path& partial, const std::filesystem::path& out) {

@@ -6,13 +6,21 @@
 #include <filesystem>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 
 namespace wavebake {
 
-// OK if `out` does not exist or is a wavebake store (which a bake may
-// replace); AlreadyExists naming "out" for anything else; InvalidArgument if
-// its parent directory does not exist.
+// OK if `out` does not exist or is a wavebake store holding only what a bake
+// writes (which a bake may replace); AlreadyExists naming "out" and the entry
+// for anything else, a user's file inside a store included (replacing it
+// would delete that file); InvalidArgument if its parent directory does not
+// exist or `out` is a symbolic link (ResolveOutputPath first).
 absl::Status CheckOutputPath(const std::filesystem::path& out);
+
+// `out` with symbolic links of its last component followed (a link is where
+// the user keeps the store: the store goes to its target), then checked by
+// CheckOutputPath.
+absl::StatusOr<std::filesystem::path> ResolveOutputPath(const std::filesystem::path& out);
 
 // Moves the directory `partial` to `out`. If `out` holds a store, the two are
 // swapped atomically (renameat2 RENAME_EXCHANGE) and the old one deleted;

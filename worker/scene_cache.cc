@@ -42,18 +42,19 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
   if (source.has_builtin()) {
     std::string name = source.builtin();
     if (!name.starts_with("builtin:")) name = "builtin:" + name;
-    return SceneSpec{name, name};
+    return SceneSpec{name, name, nullptr};
   }
   if (!source.has_uploaded()) return absl::InvalidArgumentError("scene: the task names no scene");
   const v1::SceneRef& ref = source.uploaded();
   if (!IsHexSha256(ref.sha256()))
     return absl::InvalidArgumentError("scene.uploaded.sha256: not 64 lowercase hex digits");
   if (auto it = local_.find(ref.sha256()); it != local_.end())
-    return SceneSpec{it->second, it->second};
+    return SceneSpec{it->second, it->second, nullptr};
   absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
   if (!path.ok()) return path.status();
   const bool json = std::filesystem::path(CachedSceneName(ref)).extension() == ".json";
-  if (ref.files().empty() && !json) return SceneSpec{path->string(), CachedSceneName(ref)};
+  if (ref.files().empty() && !json)
+    return SceneSpec{path->string(), CachedSceneName(ref), ConfinedSceneFiles(path->parent_path())};
   // Its files, each fetched by its own hash, in a directory of their own
   // (storage/scene_bundle.h): the scene's references find only them.
   std::vector<BundleFile> files;
@@ -78,7 +79,7 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
   if (json) {  // the coordinator refused such a scene already; a worker checks too
     if (absl::Status s = CheckJsonSceneInBundle(*scene, files); !s.ok()) return s;
   }
-  return SceneSpec{scene->string(), CachedSceneName(ref)};
+  return SceneSpec{scene->string(), CachedSceneName(ref), ConfinedSceneFiles(scene->parent_path())};
 }
 
 absl::StatusOr<std::filesystem::path> SceneCache::Cached(const v1::SceneRef& ref,

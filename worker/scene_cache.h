@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "storage/scene_files.h"
 #include "wavebake.pb.h"
 
 namespace wavebake {
@@ -20,6 +22,9 @@ namespace wavebake {
 struct SceneSpec {
   std::string load;      // what LoadScene reads on this machine
   std::string recorded;  // what the store records as its scene (the same on every worker)
+  // What else LoadScene may read: an uploaded scene only what was uploaded
+  // with it (storage/scene_files.h); null for built-ins and local scenes.
+  std::shared_ptr<const SceneFiles> files;
 };
 
 class SceneCache {

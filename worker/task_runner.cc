@@ -36,7 +36,8 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
     if (!params.ok()) return params.status();
     absl::StatusOr<SceneSpec> scene = env.scenes->Resolve(task.request().scene(), env.fetch);
     if (!scene.ok()) return scene.status();
-    absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(scene->load, *params);
+    absl::StatusOr<std::unique_ptr<BakeContext>> ctx =
+        MakeBakeContext(scene->load, *params, scene->files.get());
     if (ctx.ok()) (*ctx)->scene_spec = scene->recorded;
     return ctx;
   });

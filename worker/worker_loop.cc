@@ -8,6 +8,8 @@
 #include <chrono>
 #include <fstream>
 
+#include "absl/strings/ascii.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "storage/store_root_marker.h"
 
@@ -48,6 +50,22 @@ int64_t NowUnixMs() {
              std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
+
+// A TLS handshake that failed on the certificate (one the worker's --tls-ca
+// does not trust, or that does not name the address dialled): gRPC reports
+// it as UNAVAILABLE like a coordinator that is away, but waiting does not
+// cure it. ("tcp handshaker shutdown" is a connection attempt cut short: not
+// this.)
+bool TlsFailure(const grpc::Status& s) {
+  if (s.error_code() != grpc::StatusCode::UNAVAILABLE) return false;
+  const std::string m = absl::AsciiStrToLower(s.error_message());
+  return absl::StrContains(m, "ssl handshake failed") || absl::StrContains(m, "certificate") ||
+         absl::StrContains(m, "ssl_error");
+}
+
+// TLS failures before the worker gives up (~1.5 s of backoff when they come
+// one after another): a few, in case the coordinator is swapping its certificate.
+constexpr int kTlsTries = 5;
 
 int64_t BackoffMs(int attempt, int64_t cap) {
   return std::min<int64_t>(cap, int64_t{50} << std::min(attempt, 8));
@@ -116,6 +134,11 @@ void WorkerLoop::Drain() {
   wake_.notify_all();
 }
 
+bool WorkerLoop::Aborted() const {
+  std::lock_guard lock(mu_);
+  return aborted_;
+}
+
 void WorkerLoop::Abort() {
   std::lock_guard lock(mu_);
   draining_ = aborted_ = true;
@@ -156,7 +179,7 @@ void WorkerLoop::SetFatal(absl::Status status) {
 }
 
 // Retries while the coordinator is unreachable (it may be starting, or
-// restarting), until Drain.
+// restarting), until Drain; a TLS failure only kTlsTries times.
 absl::Status WorkerLoop::Register() {
   v1::WorkerInfo info;
   info.set_name(options_.name);
@@ -165,6 +188,7 @@ absl::Status WorkerLoop::Register() {
     v1::WorkerId id;
     const grpc::Status s = stub_->Register(Context().get(), info, &id);
     if (s.ok()) {
+      TlsWorks();
       std::lock_guard lock(mu_);
       worker_id_ = id.id();
       store_root_id_ = id.store_root_id();
@@ -173,6 +197,7 @@ absl::Status WorkerLoop::Register() {
       return absl::OkStatus();
     }
     if (IsFatal(s.error_code())) return FromGrpc(s, "Register");
+    if (absl::Status tls = CountTlsFailure(s, "Register"); !tls.ok()) return tls;
     if (attempt % 20 == 0) spdlog::warn("worker: Register: {} (retrying)", s.error_message());
     if (!SleepUnlessDraining(BackoffMs(attempt, options_.max_backoff_ms))) return absl::OkStatus();
   }
@@ -189,10 +214,33 @@ absl::Status WorkerLoop::Recover(const grpc::Status& status, const std::string& 
                                  int attempt) {
   if (UnknownWorker(status)) return Reregister(worker_id);
   if (IsFatal(status.error_code())) return FromGrpc(status, "WorkerService");
+  if (absl::Status tls = CountTlsFailure(status, "WorkerService"); !tls.ok()) return tls;
   if (attempt % 20 == 0)
     spdlog::warn("worker {}: {} (retrying)", worker_id, status.error_message());
   SleepUnlessDraining(BackoffMs(attempt, options_.max_backoff_ms));
   return absl::OkStatus();
+}
+
+// After a handshake failed, gRPC backs off reconnecting and later calls fail
+// fast with other UNAVAILABLE messages: until a call gets through, they count
+// too, and the error quotes the handshake's.
+absl::Status WorkerLoop::CountTlsFailure(const grpc::Status& status, const char* rpc) {
+  std::lock_guard lock(mu_);
+  if (TlsFailure(status)) tls_error_ = status.error_message();
+  if (tls_error_.empty() || status.error_code() != grpc::StatusCode::UNAVAILABLE)
+    return absl::OkStatus();
+  if (++tls_failures_ < kTlsTries) return absl::OkStatus();
+  return absl::UnavailableError(absl::StrCat(
+      rpc, ": TLS: no trusted connection to the coordinator after ", kTlsTries,
+      " tries (check --tls-ca and that the coordinator's certificate names the address "
+      "dialled): ",
+      tls_error_));
+}
+
+void WorkerLoop::TlsWorks() {
+  std::lock_guard lock(mu_);
+  tls_failures_ = 0;
+  tls_error_.clear();
 }
 
 std::optional<WorkerLoop::Finished> WorkerLoop::RunLeased(const v1::Task& task) {
@@ -237,8 +285,10 @@ void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>&
       return;
     }
   }
-  const auto give_up = SteadyClock::now() + kReportPatience;
+  const auto start = SteadyClock::now();
   for (int attempt = 0;; ++attempt) {
+    // Aborted (the process is ending): one second of tries, not the patience.
+    const auto give_up = start + (Aborted() ? std::chrono::seconds(1) : kReportPatience);
     const std::string id = worker_id();
     grpc::Status s;
     bool accepted = false;
@@ -261,7 +311,10 @@ void WorkerLoop::Report(const v1::Task& task, const absl::StatusOr<TaskOutcome>&
                              : outcome.status().ToString());
       // INVALID_ARGUMENT is the task's input (scene, parameters) naming its
       // bad field: every worker would fail the same way (DESIGN.md §4).
-      failure.set_permanent(!aborted && absl::IsInvalidArgument(outcome.status()));
+      // RESOURCE_EXHAUSTED is a full disk under the shared store root: a
+      // retry writes to the same disk.
+      failure.set_permanent(!aborted && (absl::IsInvalidArgument(outcome.status()) ||
+                                         absl::IsResourceExhausted(outcome.status())));
       v1::FailReply reply;
       s = stub_->Fail(Context().get(), failure, &reply);
     }

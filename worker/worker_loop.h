@@ -124,9 +124,14 @@ class WorkerLoop {
   // Classifies an RPC error: fatal ones end the loop (returned), NOT_FOUND
   // re-registers, the rest wait with backoff. OK when work may go on.
   absl::Status Recover(const grpc::Status& status, const std::string& worker_id, int attempt);
+  // Counts a failed TLS handshake (reset by any call that got through); the
+  // error that ends the loop once there were too many.
+  absl::Status CountTlsFailure(const grpc::Status& status, const char* rpc);
+  void TlsWorks();
   std::unique_ptr<grpc::ClientContext> Context() const;
   bool SleepUnlessDraining(int64_t ms);  // false: draining
   void SetFatal(absl::Status status);
+  bool Aborted() const;
 
   // How long a result is retried while the coordinator is away: a restarted
   // one still takes the result of a task that is not done (§4).
@@ -152,6 +157,8 @@ class WorkerLoop {
   bool leading_ = false;                    // a round is in flight
   bool batch_leases_ = true;                // false once the coordinator lacks LeaseBatch
   int64_t heartbeat_ms_ = 1'000;
+  int tls_failures_ = 0;   // UNAVAILABLE calls since a TLS handshake failed
+  std::string tls_error_;  // that handshake's error; empty when none since the last success
   WorkerCounters counters_;
 };
 

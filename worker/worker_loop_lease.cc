@@ -39,6 +39,7 @@ void WorkerLoop::LeaseLoop() {
     }
     finished = std::move(seat.finished);
     if (seat.status.ok()) {
+      if (attempt > 0) TlsWorks();
       attempt = 0;
       finished.reset();  // reported
       if (seat.task) {

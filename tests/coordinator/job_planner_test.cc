@@ -8,6 +8,7 @@
 
 #include <fstream>
 
+#include "absl/strings/str_cat.h"
 #include "coordinator/scene_store.h"
 #include "proto/bake_request.h"
 #include "tests/coordinator/test_util.h"
@@ -120,8 +121,25 @@ TEST_F(JobPlannerTest, BadScenesAreInvalidArgumentNamingTheField) {
   EXPECT_EQ(no_grid.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(std::string(no_grid.status().message()), StartsWith("layout: "));
 
+  // Layouts that do not fit the scene are refused here, before any task
+  // runs (they used to fail only inside BAKE_TILE): camera needs a camera, a
+  // hilbert grid a cell per vertex.
+  v1::BakeRequest no_camera = Uploaded("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.obj");
+  no_camera.set_layout("camera:16x16");
+  absl::StatusOr<PlannedJob> camera = plan(Request(no_camera, "e.wbk"));
+  EXPECT_EQ(camera.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(camera.status().message()), StartsWith("layout: camera:16x16 needs"));
+  v1::BakeRequest small = Uploaded("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "tri.obj");
+  small.set_layout("hilbert:1x2");
+  absl::StatusOr<PlannedJob> hilbert = plan(Request(small, "f.wbk"));
+  EXPECT_EQ(hilbert.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(hilbert.status().message()),
+              StartsWith("layout: hilbert:1x2: scene 'tri' has 3 vertices, more than the 2 cells"));
+  small.set_layout("hilbert:2x2");
+  EXPECT_TRUE(plan(Request(small, "g.wbk")).ok());
+
   // Nothing was reserved for the refused jobs.
-  for (const char* name : {"a.wbk", "b.wbk", "c.wbk", "d.wbk"})
+  for (const char* name : {"a.wbk", "b.wbk", "c.wbk", "d.wbk", "e.wbk", "f.wbk"})
     EXPECT_FALSE(std::filesystem::exists(Options().store_root / PartialStorePath(name))) << name;
 }
 
@@ -146,6 +164,32 @@ TEST_F(JobPlannerTest, LocalScenesArePlannedInPlace) {
   absl::StatusOr<PlannedJob> plan = MakeJobPlanner(local)(Request(r, "local.wbk"));
   ASSERT_TRUE(plan.ok()) << plan.status();
   EXPECT_EQ(plan->tiles, 1);
+}
+
+// An uploaded JSON scene reaches no file of the coordinator's disk: a mesh
+// named by an absolute path, or by ".." out of the upload, is refused naming
+// the field (it used to bake, and its vertices could then be fetched), and
+// the message carries no path of the server.
+TEST_F(JobPlannerTest, UploadedJsonScenesReadNoServerFile) {
+  const std::filesystem::path server_mesh = dir_.path() / "server.obj";
+  std::ofstream(server_mesh) << "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 3 2\n";
+  int n = 0;
+  for (const std::string& reference :
+       {server_mesh.string(), std::string("../../server.obj"), std::string("/etc/passwd")}) {
+    v1::BakeRequest r = Uploaded(R"({"meshes": [{"file": ")" + reference + R"("}]})", "evil.json");
+    r.set_layout("hilbert:4x4");
+    r.set_light_res(8);
+    absl::StatusOr<PlannedJob> plan =
+        MakeJobPlanner(Options())(Request(r, absl::StrCat("evil", n++, ".wbk")));
+    ASSERT_FALSE(plan.ok()) << reference;
+    EXPECT_EQ(plan.status().code(), absl::StatusCode::kInvalidArgument);
+    const std::string message(plan.status().message());
+    EXPECT_THAT(message, StartsWith("scene.uploaded: scene file 'evil.json' (sha256 ")) << message;
+    EXPECT_THAT(message, HasSubstr("meshes[0].file")) << message;
+    const std::string data_dir = dir_.path().string();
+    EXPECT_EQ(message.find(data_dir, message.find(reference) + reference.size()), std::string::npos)
+        << "names a server path beyond the reference itself: " << message;
+  }
 }
 
 TEST_F(JobPlannerTest, ReservesThePartialStoreOnceAndCleanupRemovesIt) {

@@ -105,6 +105,11 @@ TEST(RequestValidationTest, ErrorsStartWithTheField) {
       {[](auto& r) { r.set_refine("yes"); }, "refine: "},
       {[](auto& r) { r.set_light_domain("plane:4"), r.set_refine("on"); }, "refine: "},
       {[](auto& r) { r.set_output_name(".hidden"); }, "output_name: "},
+      // No way out of the store root (a hostile client's try).
+      {[](auto& r) { r.set_output_name("../../etc/x.wbk"); }, "output_name: "},
+      {[](auto& r) { r.set_output_name("/etc/x.wbk"); }, "output_name: "},
+      {[](auto& r) { r.set_output_name("a/b.wbk"); }, "output_name: "},
+      {[](auto& r) { r.set_output_name(".."); }, "output_name: "},
       {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256("abc"); },
        "scene.uploaded.sha256: "},
       // The core's rules apply too: what Submit accepts, every worker can bake.

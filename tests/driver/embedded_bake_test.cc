@@ -23,6 +23,7 @@
 #include "tests/testing/scratch_dir.h"
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
+#include "worker/publish_store.h"
 #include "worker/finalize.h"
 #include "worker/staging.h"
 #include "worker/transform_columns.h"
@@ -260,6 +261,58 @@ TEST(EmbeddedBakeTest, ReplacesAnExistingStoreWhole) {
   ASSERT_TRUE(Bake(dir.path() / "fresh.wbk", 1, p).ok());
   EXPECT_TRUE(ReadTree(out) == ReadTree(dir.path() / "fresh.wbk"));
   EXPECT_THAT(Names(dir.path()), ::testing::UnorderedElementsAre("out.wbk", "fresh.wbk"));
+}
+
+// Replacing a store deletes it: a file of the user's inside used to go with
+// it without a word. Now the replacement is refused naming the file, which
+// stays; a store with its kept staging (--keep-staging) is still replaced.
+TEST(EmbeddedBakeTest, RefusesToReplaceAStoreHoldingAUsersFile) {
+  ScratchDir dir;
+  const auto out = dir.path() / "out.wbk";
+  BakeParams keep = SmallJob();
+  keep.keep_staging = true;
+  ASSERT_TRUE(Bake(out, 2, keep).ok());
+  ASSERT_TRUE(std::filesystem::exists(out / "staging" / "groups"));
+  ASSERT_TRUE(Bake(out, 2).ok()) << "kept staging is the bake's own";
+  for (const std::filesystem::path& foreign :
+       {out / "notes.txt", out / "transport" / "data" / "notes.txt", out / "mine" / "x.bin"}) {
+    std::filesystem::create_directories(foreign.parent_path());
+    { std::ofstream(foreign) << "keep me"; }
+    absl::StatusOr<v1::Job> job = Bake(out, 2);
+    EXPECT_EQ(job.status().code(), absl::StatusCode::kAlreadyExists) << job.status();
+    const bool in_own_dir = foreign.parent_path().filename() == "mine";  // not a Zarr node
+    EXPECT_THAT(job.status().message(),
+                HasSubstr((in_own_dir ? foreign.parent_path() : foreign).string() + ","));
+    EXPECT_EQ(ReadTree(dir.path()).at(std::filesystem::relative(foreign, dir.path()).string()),
+              "keep me");
+    EXPECT_THAT(Names(dir.path()), ::testing::ElementsAre("out.wbk"));
+    std::filesystem::remove_all(in_own_dir ? foreign.parent_path() : foreign);
+  }
+}
+
+// --out through a symbolic link: the store goes to the link's target (it used
+// to fail with "INTERNAL: rename … Not a directory"); a link given to the
+// bake itself is refused clearly.
+TEST(EmbeddedBakeTest, ASymlinkedOutputIsResolvedToItsTarget) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / "disk");
+  const auto link = dir.path() / "out.wbk";
+  std::filesystem::create_symlink("disk/real.wbk", link);  // dangling: nothing baked yet
+  absl::StatusOr<std::filesystem::path> resolved = ResolveOutputPath(link);
+  ASSERT_TRUE(resolved.ok()) << resolved.status();
+  EXPECT_EQ(*resolved, dir.path() / "disk/real.wbk");
+  ASSERT_TRUE(Bake(*resolved, 2).ok());
+  ASSERT_TRUE(ReadStoreInfo(link).ok()) << "readable through the link";
+  ASSERT_TRUE(Bake(*ResolveOutputPath(link), 2).ok()) << "replaced through the link";
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_THAT(Names(dir.path() / "disk"), ::testing::ElementsAre("real.wbk"));
+
+  const absl::StatusOr<v1::Job> refused = Bake(link, 1);
+  EXPECT_EQ(refused.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(refused.status().message(), HasSubstr("symbolic link"));
+  std::filesystem::create_symlink("loop", dir.path() / "loop");
+  EXPECT_THAT(ResolveOutputPath(dir.path() / "loop").status().message(),
+              HasSubstr("too many levels"));
 }
 
 // A failure midway (here: the column groups' output cannot be written) fails

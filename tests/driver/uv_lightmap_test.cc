@@ -4,16 +4,17 @@
 // the gutters of the written PNG, which must hold a nearest chart texel's
 // value (what bilinear sampling near a chart border reads).
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <cmath>
 #include <fstream>
 
+#include "driver/embedded_bake.h"
 #include "runtime/env_map.h"
 #include "runtime/lightmap.h"
+#include "runtime/stb_codecs.h"
 #include "runtime/store_relight.h"
+#include "storage/atomic_file.h"
 #include "tests/testing/scratch_dir.h"
-#include "driver/embedded_bake.h"
 
 namespace wavebake {
 namespace {
@@ -42,8 +43,8 @@ class UvLightmapTest : public ::testing::Test {
     p.tile_size = 16;
     p.column_group = 128;
     store_ = dir_->path() / "quad.wbk";
-    const absl::StatusOr<v1::Job> job = driver::EmbeddedBake(
-        WriteQuadObj(dir_->path()).string(), p, store_, {.workers = 2});
+    const absl::StatusOr<v1::Job> job =
+        driver::EmbeddedBake(WriteQuadObj(dir_->path()).string(), p, store_, {.workers = 2});
     ASSERT_TRUE(job.ok()) << job.status();
     ASSERT_EQ(job->phase(), v1::PHASE_DONE) << job->error();
   }
@@ -86,15 +87,17 @@ TEST_F(UvLightmapTest, PngGutterHoldsTheNearestChartTexel) {
   for (int y = 0; y < kSide; ++y)
     for (int x = 0; x < kSide; ++x)
       if (Covered(x, y))
-        for (int c = 0; c < 3; ++c) rgb[3 * (y * kSide + x) + c] = ((x * 7 + y * 3 + c) % 11) / 11.0f;
+        for (int c = 0; c < 3; ++c)
+          rgb[3 * (y * kSide + x) + c] = ((x * 7 + y * 3 + c) % 11) / 11.0f;
   const std::filesystem::path png = dir_->path() / "lightmap.png";
   ASSERT_TRUE(WriteRelit(*store, rgb, 0, png).ok());
-  int w = 0, h = 0, n = 0;
-  unsigned char* pixels = stbi_load(png.c_str(), &w, &h, &n, 3);
-  ASSERT_NE(pixels, nullptr);
-  ASSERT_EQ(w, kSide);
-  ASSERT_EQ(h, kSide);
-  auto at = [&](int x, int y, int c) { return pixels[3 * (y * kSide + x) + c]; };
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(png);
+  ASSERT_TRUE(bytes.ok()) << bytes.status();
+  absl::StatusOr<Rgb8Image> image = DecodePng(*bytes, png.string());
+  ASSERT_TRUE(image.ok()) << image.status();
+  ASSERT_EQ(image->width, kSide);
+  ASSERT_EQ(image->height, kSide);
+  auto at = [&](int x, int y, int c) { return image->rgb[3 * (y * kSide + x) + c]; };
   for (int y = 0; y < kSide; ++y)
     for (int x = 0; x < kSide; ++x) {
       if (Covered(x, y)) continue;
@@ -114,7 +117,6 @@ TEST_F(UvLightmapTest, PngGutterHoldsTheNearestChartTexel) {
         }
       EXPECT_TRUE(matches) << "gutter texel " << x << "," << y << " at distance " << d;
     }
-  stbi_image_free(pixels);
 }
 
 TEST_F(UvLightmapTest, PlyIsRefusedForALightmap) {

@@ -1,6 +1,5 @@
 // LoadEnvMap: formats, layouts and errors that name the file and pixel.
 #include <gtest/gtest.h>
-#include <stb/stb_image_write.h>
 
 #include <cmath>
 #include <fstream>
@@ -9,6 +8,9 @@
 #include "env_test_util.h"
 #include "gmock/gmock.h"
 #include "runtime/image_io.h"
+#include "runtime/lighting.h"
+#include "runtime/stb_codecs.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 namespace {
@@ -34,7 +36,10 @@ TEST(LoadEnvTest, RadianceHdrRoundTripsWithinRgbePrecision) {
   EnvMap image = testing::UniformEnv(16, 8, 0.25f);
   testing::SetPixel(image, 3, 2, {100, 7, 0.5f});
   const auto path = testing::ScratchDir() / "small.hdr";
-  ASSERT_TRUE(stbi_write_hdr(path.c_str(), image.width, image.height, 3, image.rgb.data()));
+  absl::StatusOr<std::vector<std::byte>> hdr =
+      EncodeRadianceHdr(image.width, image.height, image.rgb);
+  ASSERT_TRUE(hdr.ok()) << hdr.status();
+  ASSERT_TRUE(AtomicWriteFile(path, *hdr).ok());
   const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
   ASSERT_TRUE(env.ok()) << env.status();
   ASSERT_EQ(env->rgb.size(), image.rgb.size());
@@ -101,8 +106,46 @@ TEST_P(BadTexelTest, NamesFileAndFirstPixel) {
 INSTANTIATE_TEST_SUITE_P(Values, BadTexelTest,
                          ::testing::Values(BadTexel{"nan", std::numeric_limits<float>::quiet_NaN()},
                                            BadTexel{"inf", std::numeric_limits<float>::infinity()},
-                                           BadTexel{"negative", -0.5f}),
+                                           BadTexel{"negative", -0.5f},
+                                           BadTexel{"overflowing", 3e38f},
+                                           BadTexel{"past_the_limit", 2 * kMaxEnvRadiance}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// An RGBE exponent of 255 decodes to 1.7e38: finite, but a block of it
+// overflowed the float lighting transform and relit silently black.
+TEST(LoadEnvTest, RgbeExponent255IsRefusedNamingTheTexel) {
+  // The flat texels of a hand-made file: (128, 128, 128, 129) is 1.0.
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32 +X 64\n";
+  std::string text = header;
+  for (int i = 0; i < 64 * 32; ++i)
+    text += (i == 5 * 64 + 9) ? "\xff\xff\xff\xff" : "\x80\x80\x80\x81";
+  const auto path = testing::ScratchDir() / "e255.hdr";
+  std::ofstream(path, std::ios::binary) << text;
+  const absl::Status s = LoadEnvMap(path.string()).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(s.message(), HasSubstr("e255.hdr: pixel (9, 5) channel R"));
+  EXPECT_THAT(s.message(), HasSubstr("overflows"));
+}
+
+// At the limit everywhere (the most energy a map may carry) the lighting of
+// the finest cubemap tried here is finite, well inside the bound of
+// env_map.h (every coefficient ≤ √(6N²)·max L).
+TEST(LoadEnvTest, TheBrightestAllowedMapProjectsToFiniteLighting) {
+  const EnvMap image = testing::UniformEnv(64, 32, kMaxEnvRadiance);
+  const auto path = testing::ScratchDir() / "max.exr";
+  ASSERT_TRUE(WriteExr(path, image.width, image.height, image.rgb).ok());
+  const absl::StatusOr<EnvMap> env = LoadEnvMap(path.string());
+  ASSERT_TRUE(env.ok()) << env.status();
+  const int n = 128;
+  for (WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4}) {
+    absl::StatusOr<LightingCoefficients> l = LightingFromEnv(*env, n, f);
+    ASSERT_TRUE(l.ok()) << l.status();
+    for (float c : l->rgb) {
+      ASSERT_TRUE(std::isfinite(c));
+      ASSERT_LE(std::fabs(c), std::sqrt(6.0 * n * n) * kMaxEnvRadiance * 1.001);
+    }
+  }
+}
 
 }  // namespace
 }  // namespace wavebake

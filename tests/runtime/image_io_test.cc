@@ -3,7 +3,6 @@
 #include "runtime/image_io.h"
 
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 
 #include <bit>
 #include <cmath>
@@ -15,6 +14,8 @@
 
 #include "env_test_util.h"
 #include "gmock/gmock.h"
+#include "runtime/stb_codecs.h"
+#include "storage/atomic_file.h"
 
 namespace wavebake {
 namespace {
@@ -53,12 +54,11 @@ struct Png {
 };
 
 Png ReadPng(const std::filesystem::path& path) {
-  Png png;
-  int channels = 0;
-  std::unique_ptr<uint8_t, void (*)(void*)> data(
-      stbi_load(path.c_str(), &png.w, &png.h, &channels, 3), stbi_image_free);
-  if (data) png.rgb.assign(data.get(), data.get() + png.w * png.h * 3);
-  return png;
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
+  if (!bytes.ok()) return {};
+  absl::StatusOr<Rgb8Image> image = DecodePng(*bytes, path.string());
+  if (!image.ok()) return {};
+  return {image->width, image->height, image->rgb};
 }
 
 // sRGB OETF (IEC 61966-2-1): 1.055 c^(1/2.4) − 0.055 above 0.0031308.

@@ -39,6 +39,26 @@ printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$TMP/nan.obj"
 expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/nan.obj" "${AUTH[@]}"
 printf '# no geometry\n' >"$TMP/empty.obj"
 expect_error "INVALID_ARGUMENT: scene.uploaded:" "$WB" submit "$TMP/empty.obj" "${AUTH[@]}"
+# An uploaded JSON scene reaches no server file: absolute paths and ".." are
+# refused naming the field (by the client before it uploads; the coordinator's
+# own refusal of a raw client is cluster_json_scene's), and no answer names a
+# path of the coordinator beyond the reference itself.
+cp "$WB_SHARED_DATA/models/bunny.obj" "$TMP/data/server.obj"
+for ref in "$TMP/data/server.obj" "../../server.obj" "../../../../../../etc/passwd"; do
+  printf '{"meshes": [{"file": "%s"}]}\n' "$ref" >"$TMP/evil.json"
+  expect_error "INVALID_ARGUMENT:" "$WB" submit "$TMP/evil.json" --layout hilbert:64x64 "${AUTH[@]}"
+  grep -qF "meshes[0].file: '$ref'" "$TMP/err.txt" || fail "no field named: $(cat "$TMP/err.txt")"
+  if sed "s|$ref||g" "$TMP/err.txt" | grep -qF "$TMP/data"; then
+    fail "a server path reached the client: $(cat "$TMP/err.txt")"
+  fi
+done
+# A layout that does not fit the scene is refused at submit, before any task.
+expect_error "INVALID_ARGUMENT: layout: camera:32x32 needs the scene's camera" \
+  "$WB" submit "$WB_SHARED_DATA/models/bunny.obj" --layout camera:32x32 "${AUTH[@]}"
+expect_error "INVALID_ARGUMENT: layout: hilbert:32x32: scene 'bunny' has 2503 vertices" \
+  "$WB" submit "$WB_SHARED_DATA/models/bunny.obj" --layout hilbert:32x32 "${AUTH[@]}"
+[[ -z $("$WB" status "${AUTH[@]}" | grep -v '^ *$' | tail -n +2) ]] ||
+  fail "refused submits made jobs: $("$WB" status "${AUTH[@]}")"
 head -c 1500000 /dev/zero | tr '\0' '#' | fold -w 100 >"$TMP/big.obj" # past the upload limit
 expect_error "INVALID_ARGUMENT: data:" "$WB" submit "$TMP/big.obj" "${AUTH[@]}"
 # Refused before sending.

@@ -49,7 +49,7 @@ done
 src=${WB_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 /usr/bin/python3 -m grpc_tools.protoc -I "$src/proto" --python_out="$TMP" \
   --grpc_python_out="$TMP" "$src/proto/wavebake.proto" || fail "protoc for Python"
-/usr/bin/python3 - "$TMP" "$ADDR" "$TMP/bunny.obj" <<'PY' || fail "the coordinator accepted a scene naming files it was not given"
+/usr/bin/python3 - "$TMP" "$ADDR" "$TMP/bunny.obj" "$TMP/data" <<'PY' || fail "the coordinator accepted a scene naming files it was not given"
 import sys
 sys.path.insert(0, sys.argv[1])
 import grpc
@@ -75,6 +75,8 @@ for path, files, field in cases:
     except grpc.RpcError as e:
         assert e.code() == grpc.StatusCode.INVALID_ARGUMENT, (path, e.code())
         assert field in e.details(), (path, e.details())
+        # No path of the coordinator's data directory, beyond what the scene wrote.
+        assert sys.argv[4] not in e.details().replace(path, ""), (path, e.details())
         continue
     raise SystemExit("accepted a scene naming %s" % path)
 PY

@@ -36,4 +36,14 @@ if "$WB" status --coordinator "$ADDR" >/dev/null 2>"$TMP/err.txt"; then
   fail "a plaintext client was served by a TLS coordinator"
 fi
 grep -q UNAVAILABLE "$TMP/err.txt" || fail "plaintext client: $(cat "$TMP/err.txt")"
-echo "PASS: TLS with the right CA; another CA and plaintext refused"
+
+# A worker that does not trust the coordinator's certificate ends, non-zero,
+# naming the certificate problem, after a few tries (it used to retry forever).
+rc=0
+timeout 30 "$WB" worker --coordinator "$ADDR" --store-root "$TMP/data/store" \
+  --tls-ca "$TMP/other.pem" >"$TMP/wrong-ca.log" 2>&1 || rc=$?
+((rc != 124)) || fail "a worker with the wrong CA was still retrying after 30 s"
+((rc != 0)) || fail "a worker with the wrong CA exited 0"
+grep -q "TLS: no trusted connection.*certificate verify failed" "$TMP/wrong-ca.log" ||
+  fail "wrong CA: $(tail -3 "$TMP/wrong-ca.log")"
+echo "PASS: TLS with the right CA; another CA and plaintext refused; a wrong CA ends the worker"

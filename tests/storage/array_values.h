@@ -28,7 +28,9 @@ std::vector<T> TestValues(size_t n, uint64_t seed) {
 
 template <class T>
 bool BitEqual(std::span<const T> a, std::span<const T> b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size_bytes()) == 0;
+  // memcmp of empty spans would pass null pointers (undefined, UBSan says).
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size_bytes()) == 0);
 }
 
 }  // namespace wavebake::testing

@@ -207,6 +207,15 @@ end_header
   for (Vec3 n : s.meshes[0].normals) EXPECT_NEAR(Length(n - Vec3{0, 0, 1}), 0, 1e-6);
 }
 
+// assimp never returned on this (tests/fuzz/ply found it); the time limit is
+// tests/scripts/corrupt_inputs.sh's.
+TEST_F(SceneLoaderTest, PlyWithoutEndHeaderIsAnError) {
+  const std::string ply = Write("cut.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                "property float y\nproperty float z\nend_heade[r\n0 0 0\n");
+  EXPECT_THAT(Msg(LoadError(ply)), HasSubstr("cut.ply': a PLY header without its end_header"));
+}
+
 TEST_F(SceneLoaderTest, DegenerateTrianglesAreDroppedAndCounted) {
   const std::string obj = Write("sloppy.obj",
                                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n"

@@ -11,6 +11,7 @@
 
 #include "core/quantizer.h"
 #include "storage/params_json.h"
+#include "storage/store_check.h"
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/store_verify.h"
@@ -199,6 +200,47 @@ TEST(StoreReaderTest, ErrorsNameTheProblem) {
   EXPECT_EQ(ReadColumn(bad, 0).status().code(), absl::StatusCode::kDataLoss);
 }
 
+// Zarr reads a missing chunk as the fill value; a finished store must not:
+// a deleted data chunk used to relight almost black with rc 0.
+TEST(StoreReaderTest, AMissingChunkIsDataLossNamingIt) {
+  for (const char* name : {store::kData, store::kIndices, store::kIndptr, store::kScale}) {
+    TempDir tmp;
+    const auto store = tmp.path() / "s.wbk";
+    WriteStore(store);
+    const std::filesystem::path chunk = store::Path(store, name) / "0";
+    ASSERT_TRUE(std::filesystem::remove(chunk)) << chunk;
+    for (absl::Status s : {ReadTransport(store).status(), ReadColumn(store, 0).status()}) {
+      EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss) << name << ": " << s;
+      EXPECT_THAT(s.message(), HasSubstr(chunk.string())) << s;
+    }
+  }
+}
+
+TEST(StoreReaderTest, ArraysThatDisagreeWithTheManifestAreDataLoss) {
+  TempDir tmp;
+  const auto store = tmp.path() / "s.wbk";
+  WriteStore(store);
+  size_t nnz = 0;
+  for (const HandColumn& c : Columns()) nnz += c.positions.size();
+  nlohmann::json attrs = Attrs();
+  attrs["stats"] = {{"nnz", nnz}};
+  attrs["M"] = kM;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  ASSERT_TRUE(ReadTransport(store).ok());
+
+  attrs["stats"]["nnz"] = nnz + 5;  // FINALIZE wrote more than is there
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  absl::Status s = ReadTransport(store).status();
+  EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(s.message(), HasSubstr("stats.nnz"));
+  EXPECT_EQ(ReadColumn(store, 0).status().code(), absl::StatusCode::kDataLoss);
+
+  attrs = Attrs();
+  attrs["M"] = kM + 1;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_THAT(ReadStoreInfo(store).status().message(), HasSubstr("M"));
+}
+
 TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
   BakeParams p;
   p.light_res = 64;
@@ -286,6 +328,22 @@ TEST(StoreReaderTest, SamplesRoundTrip) {
   EXPECT_EQ(back->normal, s.normal);
   EXPECT_EQ(back->albedo, s.albedo);
   EXPECT_EQ(back->vertex, s.vertex);
+  ASSERT_TRUE(CheckStoreComplete(store).ok()) << CheckStoreComplete(store);
+
+  // The manifest's sample count holds the arrays to it; a chunk gone is named.
+  nlohmann::json attrs = Attrs();
+  attrs["S"] = 6;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  EXPECT_EQ(ReadSamples(store).status().code(), absl::StatusCode::kDataLoss);
+  attrs["S"] = 5;
+  ASSERT_TRUE(WriteAttrs(store, attrs).ok());
+  ASSERT_TRUE(ReadSamples(store).ok());
+  const std::filesystem::path chunk = store::Path(store, store::kNormal) / "0.0";
+  ASSERT_TRUE(std::filesystem::remove(chunk));
+  const absl::Status missing = ReadSamples(store).status();
+  EXPECT_EQ(missing.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(missing.message(), HasSubstr(chunk.string()));
+  EXPECT_EQ(CheckStoreComplete(store).code(), absl::StatusCode::kDataLoss);
 }
 
 // VerifyStore (storage/store_verify.h) reads every chunk of every array: a
@@ -294,9 +352,16 @@ TEST(StoreVerifyTest, EveryChunkIsRead) {
   TempDir dir;
   const auto store = dir.path() / "s.wbk";
   WriteStore(store);
+  SampleSet samples;  // a finished store has its samples (VerifyStore reads them whole)
+  samples.width = kW;
+  samples.height = kH;
+  samples.grid.assign(kW * kH, -1);
+  samples.grid[0] = 0;
+  samples.position = samples.normal = samples.albedo = {{0, 1, 0}};
+  ASSERT_TRUE(WriteSamples(store, samples).ok());
   absl::StatusOr<int> arrays = VerifyStore(store);
   ASSERT_TRUE(arrays.ok()) << arrays.status();
-  EXPECT_EQ(*arrays, 5);
+  EXPECT_EQ(*arrays, 9);
   // The last chunk of the values: a reader that stopped early would miss it.
   const auto chunk = store / store::kData / "2";
   ASSERT_TRUE(std::filesystem::exists(chunk));
@@ -307,6 +372,11 @@ TEST(StoreVerifyTest, EveryChunkIsRead) {
   arrays = VerifyStore(store);
   EXPECT_EQ(arrays.status().code(), absl::StatusCode::kDataLoss) << arrays.status();
   EXPECT_THAT(arrays.status().message(), ::testing::HasSubstr("data/2"));
+  // A chunk gone: Zarr would read the fill value; a finished store is DATA_LOSS.
+  std::filesystem::remove(chunk);
+  arrays = VerifyStore(store);
+  EXPECT_EQ(arrays.status().code(), absl::StatusCode::kDataLoss) << arrays.status();
+  EXPECT_THAT(arrays.status().message(), ::testing::HasSubstr("data/2: chunk [2] is missing"));
 }
 
 }  // namespace

@@ -413,5 +413,24 @@ TEST(FinalizeTest, RefusesMissingGroupsAndMissingStaging) {
   EXPECT_FALSE(std::filesystem::exists(store / ".zattrs"));
 }
 
+// A cancelled job's FINALIZE stops between groups (a large store's would
+// otherwise outlast the 5 s an interrupted bake may take), writing no
+// manifest; run again without the flag it finishes the same store.
+TEST(FinalizeTest, StopsWhenCancelledAndFinishesWhenRunAgain) {
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(SmallJob());
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, store);
+  const std::atomic<bool> cancel{true};
+  absl::Status s = Finalize(*ctx, store, {.keep_staging = false, .cancel = &cancel});
+  EXPECT_EQ(s.code(), absl::StatusCode::kCancelled) << s;
+  EXPECT_FALSE(std::filesystem::exists(store / ".zattrs"));
+  EXPECT_TRUE(std::filesystem::exists(store / "staging"));
+  s = Finalize(*ctx, store, {});
+  ASSERT_TRUE(s.ok()) << s;
+  EXPECT_EQ(ReadTree(store), ReadTree(Bake(SmallJob())->store));
+}
+
 }  // namespace
 }  // namespace wavebake

@@ -123,6 +123,37 @@ TEST(SceneCacheTest, BytesThatDoNotHashToTheirNameAreRefusedAndNotCached) {
   EXPECT_EQ(fetch.calls, 2);
 }
 
+// A worker loads an uploaded scene as the coordinator planned it: reading
+// only what was uploaded (storage/scene_files.h), not its own disk.
+TEST(SceneCacheTest, UploadedScenesReadOnlyTheirUpload) {
+  ScratchDir dir;
+  SceneCache cache(dir.path());
+  const std::filesystem::path server_mesh = dir.path() / "server.obj";
+  std::ofstream(server_mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  // A JSON scene naming a file of this host, absolutely or by "..", is
+  // refused before anything is loaded, naming the field.
+  for (const std::string& reference : {server_mesh.string(), std::string("../../server.obj")}) {
+    FakeFetch fetch{.bytes = R"({"meshes": [{"file": ")" + reference + R"("}]})"};
+    absl::StatusOr<SceneSpec> spec =
+        cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "evil.json", 0), fetch.Fn());
+    ASSERT_FALSE(spec.ok()) << reference;
+    EXPECT_EQ(spec.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_THAT(std::string(spec.status().message()), testing::HasSubstr("meshes[0].file"))
+        << spec.status();
+  }
+  // Any other upload loads through files confined to its own directory.
+  FakeFetch fetch{.bytes = "mtllib ../../server.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"};
+  absl::StatusOr<SceneSpec> spec =
+      cache.Resolve(Uploaded(Sha256Hex(fetch.bytes), "m.obj", 0), fetch.Fn());
+  ASSERT_TRUE(spec.ok()) << spec.status();
+  ASSERT_NE(spec->files, nullptr);
+  std::string warning;
+  EXPECT_EQ(spec->files->Resolve(spec->load, server_mesh.string(), &warning).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_FALSE(spec->files->Open(server_mesh).has_value());
+  EXPECT_TRUE(spec->files->Open(spec->load).has_value());
+}
+
 TEST(SceneCacheTest, LocalScenesAreUsedInPlace) {
   ScratchDir dir;
   SceneCache cache(dir.path(), {{kSha, "scenes/room.json"}});
