@@ -15,7 +15,6 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "cli/signal_watcher.h"
-#include "cli/stderr_log.h"
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
@@ -62,7 +61,6 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
 }
 
 void Run(const BakeCommandFlags& f) {
-  LogToStderr(spdlog::level::warn);
   std::atomic<bool> interrupted{false};
   SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);

@@ -1,5 +1,7 @@
 // `wavebake coordinator --listen ADDR --data DIR` (DESIGN.md §4, §5): the
 // job service and the work queue, until SIGINT or SIGTERM.
+#include <spdlog/spdlog.h>
+
 #include <future>
 #include <memory>
 #include <mutex>
@@ -9,7 +11,6 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/signal_watcher.h"
-#include "cli/stderr_log.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
 #include "driver/client.h"
@@ -25,7 +26,7 @@ struct CoordinatorFlags {
 };
 
 void Run(CoordinatorFlags f) {
-  LogToStderr(spdlog::level::info);
+  spdlog::set_level(spdlog::level::info);  // its log is its output
   std::promise<void> stop;
   SignalWatcher signals([&, once = std::make_shared<std::once_flag>()](int) {
     std::call_once(*once, [&] { stop.set_value(); });

@@ -2,13 +2,14 @@
 // leases tasks and runs them until SIGTERM or SIGINT, which drains it (no new
 // task; the running ones finish and are reported, then exit 0). A second
 // signal stops the running tasks too (reported as failed).
+#include <spdlog/spdlog.h>
+
 #include <thread>
 
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/signal_watcher.h"
-#include "cli/stderr_log.h"
 #include "worker/worker_loop.h"
 
 namespace wavebake::cli {
@@ -23,7 +24,7 @@ struct WorkerFlags {
 };
 
 void Run(const WorkerFlags& f) {
-  LogToStderr(spdlog::level::info);
+  spdlog::set_level(spdlog::level::info);  // its log is its output
   WorkerLoop* running = nullptr;
   std::mutex mu;
   int signals_seen = 0;

@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include "absl/strings/ascii.h"
+#include "cli/command_error.h"
+#include "driver/job_query.h"
 #include "driver/job_watch.h"
 
 namespace wavebake::cli {
@@ -75,6 +77,17 @@ void ProgressBar::Show(const v1::JobEvent& e) {
 void ProgressBar::Finish() {
   if (drawn_ && tty_) std::fputc('\n', stderr);
   drawn_ = false;
+}
+
+v1::Job FollowJob(const driver::Client& client, const std::string& job_id, const char* command,
+                  double patience_seconds) {
+  ProgressBar display(/*quiet=*/false);
+  absl::StatusOr<v1::Job> job = driver::WatchJob(
+      client, job_id, {.patience_seconds = patience_seconds, .on_event = display.Callback()});
+  display.Finish();
+  if (!job.ok()) Fail(command, job.status());
+  if (job->phase() != v1::PHASE_DONE) Fail(command, driver::JobOutcome(*job));
+  return *job;
 }
 
 }  // namespace wavebake::cli
