@@ -334,6 +334,80 @@ def uv_fill(rows, out):
                  "transform")
     ax.legend()
     ax.grid(True, axis="y", alpha=0.3)
+PHONG_COLORS = {"phong:8": "tab:blue", "phong:32": "tab:green", "phong:128": "tab:red"}
+
+
+def terms_label(t, all_terms):
+    return "all" if t == 0 or t == all_terms else str(t)
+
+
+def glossy_error(rows, out):
+    """Chart 8 (Vollick & Lessig §6): glossy relit error vs lighting terms and BRDF terms."""
+    envs = []
+    for r in rows:
+        if r["env"] not in envs:
+            envs.append(r["env"])
+    fig, axes = plt.subplots(len(envs), 2, figsize=(11, 4.2 * len(envs)), squeeze=False)
+    n = int(rows[0]["light_res"])
+    all_lights = 6 * n * n
+    for row, env in enumerate(envs):
+        for brdf, color in PHONG_COLORS.items():
+            sel = [r for r in rows if r["env"] == env and r["brdf"] == brdf]
+            if not sel:
+                continue
+            dense = float(sel[0]["rel_rms_dense"])
+            # left: lighting terms at 256 BRDF terms; right: BRDF terms at 256 lighting terms
+            for col, (vary, fixed) in enumerate((("light_terms", "brdf_terms"),
+                                                 ("brdf_terms", "light_terms"))):
+                pts = sorted((int(r[vary]) if int(r[vary]) > 0 else 10 ** 9,
+                              float(r["rel_rms_ref"]), float(r["rel_rms_all"]))
+                             for r in sel if int(r[fixed]) == 256)
+                xs = list(range(len(pts)))
+                ax = axes[row][col]
+                ax.plot(xs, [p[1] for p in pts], "-o", color=color, label=f"{brdf} vs reference")
+                ax.plot(xs, [p[2] for p in pts], ":", color=color,
+                        label=f"{brdf} vs every term (NLA alone)")
+                ax.axhline(dense, color=color, ls="--", lw=0.8)
+                ax.set_xticks(xs)
+                ax.set_xticklabels([terms_label(p[0] if p[0] < 10 ** 9 else 0, all_lights)
+                                    for p in pts])
+        for col, what in enumerate(("lighting terms (256 BRDF terms per sample)",
+                                    "BRDF terms per sample (256 lighting terms)")):
+            ax = axes[row][col]
+            ax.set_yscale("log")
+            ax.set_xlabel(what)
+            ax.set_ylabel("relative RMS error")
+            ax.set_title(f"{env}.hdr: dashed = dense visibility path (the N = {n} floor)")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7)
+    r0 = rows[0]
+    fig.suptitle(f"glossy triple product, sphere-plane {r0['width']}x{r0['width']} camera, "
+                 f"N = {n}, visibility store (target 1 %)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def glossy_time(rows, out):
+    """Chart 8, time: one glossy frame vs lighting terms, per BRDF terms (one core)."""
+    fig, axes = plt.subplots(1, len(PHONG_COLORS), figsize=(15, 4.2), squeeze=False)
+    n = int(rows[0]["light_res"])
+    for col, brdf in enumerate(PHONG_COLORS):
+        ax = axes[0][col]
+        sel = [r for r in rows if r["brdf"] == brdf]
+        bts = sorted({int(r["brdf_terms"]) for r in sel}, key=lambda t: t if t > 0 else 10 ** 9)
+        for i, bt in enumerate(bts):
+            pts = sorted((int(r["light_terms"]), float(r["seconds"]))
+                         for r in sel if int(r["brdf_terms"]) == bt)
+            ax.plot([p[0] for p in pts], [p[1] * 1e3 for p in pts], "-o",
+                    color=plt.cm.viridis(i / max(1, len(bts) - 1)),
+                    label=f"{terms_label(bt, 0)} BRDF terms")
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log")
+        ax.set_xlabel("lighting terms")
+        ax.set_ylabel("ms per frame (thread CPU, one core)")
+        ax.set_title(f"{brdf}, grace.hdr, N = {n}")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
@@ -347,6 +421,8 @@ CHARTS = {
     "rotation_error": rotation_error,
     "uv_size": uv_size,
     "uv_fill": uv_fill,
+    "glossy_error": glossy_error,
+    "glossy_time": glossy_time,
 }
 
 

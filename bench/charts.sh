@@ -1,7 +1,7 @@
 #!/bin/bash
 # The charts of docs/RESULTS.md in one command: builds
-# bench_charts_data, bench_charts_runtime and bench_charts_near (the
-# near-field charts, bench/charts_near.py), runs the sweeps into
+# bench_charts_data, bench_charts_runtime, bench_charts_uv, bench_charts_glossy
+# and bench_charts_near (the near-field charts, bench/charts_near.py), runs the sweeps into
 # docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
 #
@@ -23,12 +23,14 @@ done
 out="$here/docs/charts"
 [[ -n "$quick" ]] && out="$build/charts-quick"
 cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime bench_charts_uv \
-  bench_charts_near
+  bench_charts_glossy bench_charts_near
 start=$(date +%s)
 "$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 "$build/bench_charts_runtime" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 # Chart 7 (the lightmap layout; its 512² column stages take most of the time).
 "$build/bench_charts_uv" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+# Chart 8 (glossy relighting; six glossy references take most of its time).
+"$build/bench_charts_glossy" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 # Charts 9, 10 and the grazing loss (near-field area lights).
 "$build/bench_charts_near" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 rm -rf "$out/work"  # the near-field charts' store

@@ -62,6 +62,10 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "uniform: one step per column (auto: one matrix-wide step); paper: values of "
                  "level l times 2^l first (4D paper §4.3)")
       ->capture_default_str();
+  cmd.add_option("--transport", f.transport,
+                 "what a row holds: diffuse (T = V cos/π) or visibility (V alone, for glossy "
+                 "relighting by the triple product; needs --row-filter haar)")
+      ->capture_default_str();
   cmd.add_option("--seed", p.seed, "job seed (jitter and dither)")->capture_default_str();
   cmd.add_flag("--keep-staging", p.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
@@ -84,6 +88,7 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
                          Set(ParseWaveletFilter(f.column_filter), p.column_filter, "column_"),
                          Set(ParseErrorScope(f.error_scope), p.error_scope),
                          Set(ParseLevelScaling(f.level_scaling), p.level_scaling),
+                         Set(ParseTransport(f.transport), p.transport),
                          Set(ParseLightDomain(f.light_domain), p.light_domain)})
     if (!s.ok()) return s;
   if (f.bits != "auto") {

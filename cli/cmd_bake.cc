@@ -3,7 +3,8 @@
 // (driver/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
 // at OUT. With --auto (driver/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
-// of the independent reference under --env.
+// of the independent reference under --env. With --serve the web monitor
+// follows the bake and then relights its store (cli/bake_serve.h).
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "cli/bake_flags.h"
+#include "cli/bake_serve.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -31,6 +33,8 @@ struct BakeCommandFlags {
   bool auto_mode = false;
   std::string env = driver::kDefaultAutoEnv;
   int max_light_res = 128;
+  WebFlags web;
+  std::string token_file;
 };
 
 void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
@@ -67,10 +71,12 @@ void Run(const BakeCommandFlags& f) {
   if (!params.ok()) Fail("bake", params.status());
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
+  BakeMonitor monitor(f.web, f.token_file, f.out);
   ProgressBar display(f.quiet);
-  absl::StatusOr<v1::Job> job = driver::EmbeddedBake(
-      f.scene, *params, f.out,
-      {.workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted});
+  driver::EmbeddedBakeOptions options{
+      .workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted};
+  monitor.Attach(options);
+  absl::StatusOr<v1::Job> job = driver::EmbeddedBake(f.scene, *params, f.out, options);
   display.Finish();
   if (!job.ok()) Fail("bake", job.status());
   if (job->phase() == v1::PHASE_CANCELLED && interrupted)
@@ -81,6 +87,8 @@ void Run(const BakeCommandFlags& f) {
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", f.out.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
+  std::fflush(stdout);
+  monitor.ServeUntil(interrupted);
 }
 
 }  // namespace
@@ -116,6 +124,13 @@ void AddBakeCommand(CLI::App& app) {
       ->needs(auto_flag)
       ->check(CLI::IsMember({8, 16, 32, 64, 128, 256}))
       ->capture_default_str();
+  AddWebFlags(*cmd, f->web, "--serve",
+              "serve the web monitor on host:port while baking, then the finished store's "
+              "relight view until Ctrl-C");
+  cmd->add_option("--token-file", f->token_file,
+                  "--serve: require this bearer token (first line of the file)")
+      ->needs(cmd->get_option("--serve"));
+  cmd->get_option("--serve")->excludes(auto_flag);
   cmd->callback([f] { Run(*f); });
 }
 

@@ -1,7 +1,13 @@
+<<<<<<< HEAD
 // `wavebake coordinator --listen ADDR --data DIR` (DESIGN.md §4, §5): the
 // job service and the work queue, until SIGINT or SIGTERM.
 #include <spdlog/spdlog.h>
 
+=======
+// `wavebake coordinator --listen ADDR --data DIR [--http ADDR]` (DESIGN.md
+// §4, §5): the job service and the work queue, and with --http the web
+// monitor and /metrics, until SIGINT or SIGTERM.
+>>>>>>> main
 #include <future>
 #include <memory>
 #include <mutex>
@@ -11,10 +17,15 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/signal_watcher.h"
+<<<<<<< HEAD
+=======
+#include "cli/web_flags.h"
+>>>>>>> main
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
 #include "driver/client.h"
 #include "storage/atomic_file.h"
+#include "web/coordinator_source.h"
 
 namespace wavebake::cli {
 namespace {
@@ -23,6 +34,7 @@ struct CoordinatorFlags {
   CoordinatorOptions options{.listen_address = "", .wait_ms = 100};
   std::string token_file, address_file;
   int64_t max_upload_mb = 1024;
+  WebFlags web;
 };
 
 void Run(CoordinatorFlags f) {
@@ -39,11 +51,15 @@ void Run(CoordinatorFlags f) {
     if (!token.ok()) Fail("coordinator", token.status());
     options.token = *token;
   }
-  const std::filesystem::path data = options.data_dir, store_root = options.store_root;
-  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
-      options, MakeJobPlanner({.data_dir = data, .store_root = store_root, .local_scenes = {}}),
-      MakeJobCleanup(store_root));
+  const PlannerOptions planner{
+      .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
+  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =
+      Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
   if (!coordinator.ok()) Fail("coordinator", coordinator.status());
+  // The same token and certificate as gRPC (DESIGN.md §4).
+  std::unique_ptr<web::MonitorServer> monitor =
+      StartMonitor("coordinator", f.web, options.token, options.tls_cert_path, options.tls_key_path,
+                   web::CoordinatorSource(**coordinator, planner));
   // "host:port" for scripts that listen on port 0; appears whole (rename).
   const std::string address = (*coordinator)->address() + "\n";
   if (!f.address_file.empty())
@@ -52,6 +68,7 @@ void Run(CoordinatorFlags f) {
       Fail("coordinator", absl::StrCat("--address-file: ", s.message()));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");
+  if (monitor) monitor->Stop();  // it reads the coordinator
   (*coordinator)->Shutdown();
 }
 
@@ -90,6 +107,9 @@ void AddCoordinatorCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--address-file", f->address_file,
                   "write the address it listens on (host:port) to this file once serving");
+  AddWebFlags(*cmd, f->web, "--http",
+              "also serve the web monitor, /metrics and /healthz over HTTP on host:port "
+              "(HTTPS with --tls-cert; the same --token-file)");
   cmd->callback([f] { Run(*f); });
 }
 

@@ -8,6 +8,7 @@
 #include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
+#include "cli/glossy_flags.h"
 #include "runtime/eval.h"
 
 namespace wavebake::cli {
@@ -21,6 +22,7 @@ struct EvalFlags {
   double reference_se = 0.002;
   int reference_batches = 8;
   driver::AreaLightCommand area;
+  GlossyFlags glossy;
 };
 
 void PrintRow(const char* name, const ErrorStats& e) {
@@ -47,6 +49,7 @@ void Run(const EvalFlags& f) {
   options.rotate_degrees = f.rotate;
   options.dense = !f.no_dense;
   options.reference.target_rel_se = f.reference_se;
+  options.glossy = GlossyOf(f.glossy, "eval");
   absl::StatusOr<EvalReport> report = Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   if (f.json) {
@@ -86,7 +89,9 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--reference-se", flags->reference_se,
                   "target relative standard error of the reference")
       ->capture_default_str();
-  cmd->add_flag("--no-dense", flags->no_dense, "skip retracing the uncompressed T");
+  AddGlossyFlags(*cmd, flags->glossy);
+  cmd->add_flag("--no-dense", flags->no_dense,
+                "skip retracing the uncompressed rows (T, or V for a visibility store)");
   cmd->add_flag("--json", flags->json,
                 "print {\"terms\", \"dense\": {rel_rms, max_abs, psnr, seconds}, "
                 "\"compressed\": {...}, \"reference\": {...}}");

@@ -1,8 +1,10 @@
-// `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] --out
+// `wavebake relight OUT.wbk --env ENV [--terms 256] [--rotate DEG] [--brdf B] --out
 // IMG.(exr|png)|MESH.(ply|gltf|glb)` (DESIGN.md §5): Eq. 8 relighting of a
 // store under an environment, written as an image (camera layouts), a
 // vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
-// (uv layouts). With --rotate-sequence, a rotating environment over
+// (uv layouts); a visibility store through the triple product with --brdf
+// (runtime/glossy_store.h), --brdf-sequence editing its material
+// (driver/material_command.h). With --rotate-sequence, a rotating environment over
 // many frames (runtime/relight_sequence.h): frames and errors.csv into --out.
 // With --area-light, near-field planar lights instead (driver/area_light_commands.h).
 #include <cstdio>
@@ -10,6 +12,8 @@
 #include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
+#include "cli/glossy_flags.h"
+#include "driver/material_command.h"
 #include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 
@@ -21,7 +25,8 @@ struct RelightFlags {
   int terms = 256;
   double rotate = 0;
   float exposure = 0;
-  std::string rotate_sequence, incremental = "per-band", frame_format = "png";
+  std::string rotate_sequence, brdf_sequence, incremental, frame_format = "png";
+  GlossyFlags glossy;
   driver::AreaLightCommand area;
 };
 
@@ -58,8 +63,26 @@ void Run(RelightFlags f) {
     return (void)std::printf("%s\n", done->c_str());
   }
   if (f.env.empty()) Fail("relight", "--env or --area-light is required", kExitBadInput);
+  if (!f.brdf_sequence.empty()) {
+    if (!f.rotate_sequence.empty())
+      Fail("relight", "brdf-sequence: give --rotate-sequence or --brdf-sequence, not both",
+           kExitBadInput);
+    driver::MaterialCommand m{f.store,
+                              f.env,
+                              f.out,
+                              f.brdf_sequence,
+                              f.incremental,
+                              f.terms,
+                              GlossyOf(f.glossy, "relight"),
+                              f.exposure,
+                              "." + f.frame_format};
+    absl::StatusOr<std::string> done = driver::RelightMaterialSequence(m);
+    if (!done.ok()) Fail("relight", done.status());
+    return (void)std::printf("%s\n", done->c_str());
+  }
   if (!f.rotate_sequence.empty()) return RunSequence(f);
-  absl::Status s = RelightToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out);
+  absl::Status s = RelightStoreToFile(f.store, f.env, f.terms, f.rotate, f.exposure, f.out,
+                                      GlossyOf(f.glossy, "relight"));
   if (!s.ok()) Fail("relight", s);
   std::printf("wrote %s\n", f.out.c_str());
 }
@@ -86,21 +109,25 @@ void AddRelightCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--exposure", flags->exposure, "PNG/PLY exposure in stops")
       ->capture_default_str();
+  AddGlossyFlags(*cmd, flags->glossy);
+  cmd->add_option("--brdf-sequence", flags->brdf_sequence,
+                  "KIND:FROM:TO:FRAMES[:HOLD]: material editing of a visibility store (phong/blinn "
+                  "exponent, ggx roughness); --out is then a directory of frames and errors.csv");
   cmd->add_option("--rotate-sequence", flags->rotate_sequence,
                   "START:END:FRAMES: relight a rotating environment; --out is then a directory "
                   "of frames and errors.csv (error vs all wavelet lights, per frame)");
   cmd->add_option("--incremental", flags->incremental,
-                  "with --rotate-sequence: per-band (Overbeck §6.2.2), basic (Overbeck ch. 4, "
-                  "never resets: ghosts under fast rotation) or none")
-      ->check(CLI::IsMember({"per-band", "basic", "none"}))
-      ->capture_default_str();
-  cmd->add_option("--frame-format", flags->frame_format, "with --rotate-sequence: png | exr | ply")
+                  "--rotate-sequence: per-band (default, Overbeck §6.2.2), basic (ch. 4, never "
+                  "resets: ghosts under fast rotation) or none; --brdf-sequence: basic (default) "
+                  "or none")
+      ->check(CLI::IsMember({"per-band", "basic", "none"}));
+  cmd->add_option("--frame-format", flags->frame_format, "sequences: png | exr | ply")
       ->check(CLI::IsMember({"png", "exr", "ply"}))
       ->capture_default_str();
   cmd->add_option("--out", flags->out,
                   "output: .png or .exr (camera layouts), .ply (mesh layouts), .png/.exr "
-                  "lightmap or .gltf/.glb mesh with it (uv layouts); a directory with "
-                  "--rotate-sequence")
+                  "lightmap or .gltf/.glb mesh with it (uv layouts); a directory for "
+                  "sequences")
       ->required();
   cmd->callback([flags] { Run(*flags); });
 }

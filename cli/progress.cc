@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "absl/strings/ascii.h"
+#include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
 #include "driver/job_query.h"
 #include "driver/job_watch.h"
@@ -28,11 +30,7 @@ std::string PhaseLabel(v1::Phase p) {
 }  // namespace
 
 ProgressBar::ProgressBar(bool quiet)
-    : quiet_(quiet),
-      tty_(isatty(STDERR_FILENO) != 0),
-      start_(Clock::now()),
-      phase_start_(start_),
-      last_print_(start_) {}
+    : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_print_(start_) {}
 
 void ProgressBar::Show(const v1::JobEvent& e) {
   if (quiet_) return;
@@ -44,7 +42,6 @@ void ProgressBar::Show(const v1::JobEvent& e) {
   if (new_phase) {
     if (drawn_ && tty_) std::fputc('\n', stderr);
     phase_ = e.phase();
-    phase_start_ = now;
   }
   const int64_t done = e.phase_tasks_done(), total = e.phase_tasks_total();
   const bool last = total > 0 && done == total;
@@ -52,23 +49,22 @@ void ProgressBar::Show(const v1::JobEvent& e) {
   if (tty_ && !new_phase && !last && now - last_print_ < std::chrono::milliseconds(100)) return;
   last_print_ = now;
 
-  // The coordinator's rate and ETA when it sent them (>= 0), else our own clock's.
+  // The coordinator's rate when it sent one (>= 0), else our own clock's; its
+  // ETA is the whole job's from measured task times (coordinator/eta_model.h).
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double in_phase = std::chrono::duration<double>(now - phase_start_).count();
   const double frac = total > 0 ? double(done) / double(total) : 0;
-  const double eta = e.eta_seconds() >= 0 ? e.eta_seconds()
-                     : frac > 0           ? in_phase * (1 - frac) / frac
-                                          : 0;
   const double mrays = e.rays_per_second() >= 0 ? e.rays_per_second() / 1e6
                        : elapsed > 0            ? e.rays_traced() / elapsed / 1e6
                                                 : 0;
+  const std::string eta =
+      e.eta_seconds() >= 0 ? absl::StrCat(std::lround(e.eta_seconds()), "s") : "--";
   char bar[31];
   const int filled = static_cast<int>(frac * 30);
   for (int i = 0; i < 30; ++i) bar[i] = i < filled ? '#' : '.';
   bar[30] = 0;
-  std::fprintf(stderr, "%s%-18s [%s] %3d%% %lld/%lld  %.1f Mrays/s  ETA %.0fs%s", tty_ ? "\r" : "",
+  std::fprintf(stderr, "%s%-18s [%s] %3d%% %lld/%lld  %.1f Mrays/s  ETA %s%s", tty_ ? "\r" : "",
                PhaseLabel(e.phase()).c_str(), bar, static_cast<int>(frac * 100),
-               static_cast<long long>(done), static_cast<long long>(total), mrays, eta,
+               static_cast<long long>(done), static_cast<long long>(total), mrays, eta.c_str(),
                tty_ ? "\033[K" : "\n");
   std::fflush(stderr);
   drawn_ = true;

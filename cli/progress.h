@@ -28,7 +28,7 @@ class ProgressBar {
  private:
   using Clock = std::chrono::steady_clock;
   bool quiet_, tty_;
-  Clock::time_point start_, phase_start_, last_print_;
+  Clock::time_point start_, last_print_;
   v1::Phase phase_ = v1::PHASE_UNSPECIFIED;
   bool drawn_ = false;
 };

@@ -7,6 +7,7 @@
 #include <grpcpp/server_context.h>
 
 #include <string>
+#include <string_view>
 
 namespace wavebake {
 
@@ -17,6 +18,9 @@ class TokenAuth {
   // OK, or UNAUTHENTICATED when the `authorization: Bearer <token>` metadata
   // is missing or wrong.
   grpc::Status Check(const grpc::ServerContext& context) const;
+  // `token` is the configured token, compared in time independent of where
+  // they differ (the web monitor's header and login form use it too).
+  bool Matches(std::string_view token) const;
 
  private:
   std::string token_;

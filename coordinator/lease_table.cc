@@ -8,6 +8,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
+#include "coordinator/eta_model.h"
 
 namespace wavebake {
 namespace {
@@ -37,6 +38,12 @@ bool SafeRelativePath(const std::string& p) {
   }
   return true;
 }
+
+// Stage index (tiles 0, groups 1, finalize 2) of a phase or a task kind.
+int StageOf(Phase phase) {
+  return phase == Phase::kTransforming ? 1 : phase == Phase::kFinalizing ? 2 : 0;
+}
+int StageOf(TaskKind kind) { return static_cast<int>(kind) - 1; }
 
 }  // namespace
 
@@ -114,6 +121,8 @@ absl::Status LeaseTable::ResumeJob(JobState& js, Transition& tx) {
     if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
   }
   if (!js.ready.empty()) runnable_.insert(js.rec.id);
+  // The stage's clock restarts here; earlier task times died with the old process.
+  if (js.rec.started_ms > 0) js.stages[StageOf(js.rec.phase)].opened_ms = clock_->NowMs();
   AddEvent(js, tx, EventKind::kResumed, nullptr,
            absl::StrCat("coordinator restarted; ", requeued, " leased tasks back to pending"));
   return absl::OkStatus();
@@ -224,6 +233,7 @@ absl::StatusOr<JobInfo> LeaseTable::Cancel(int64_t id) {
 // Opens the stage of `phase`: its pending tasks become leasable.
 void LeaseTable::OpenStage(JobState& js, Phase phase, Transition& tx) {
   js.rec.phase = phase;
+  js.stages[StageOf(phase)].opened_ms = clock_->NowMs();
   const auto [begin, end] = StageRange(js.rec, phase);
   for (int i = begin; i < end; ++i) {
     if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
@@ -259,7 +269,7 @@ void LeaseTable::EndJob(JobState& js, Phase phase, std::string error, Transition
 
 void LeaseTable::AddEvent(JobState& js, Transition& tx, EventKind kind, const TaskRecord* task,
                           std::string message, int64_t worker_id) {
-  const JobInfo info = InfoLocked(js);
+  const JobInfo info = CountsLocked(js);  // events carry no rates (proto/wavebake.proto)
   EventRecord e{.job_id = js.rec.id,
                 .seq = ++js.last_event_seq,
                 .unix_ms = clock_->NowMs(),
@@ -279,28 +289,86 @@ void LeaseTable::AddEvent(JobState& js, Transition& tx, EventKind kind, const Ta
   tx.events.push_back(std::move(e));
 }
 
+JobInfo LeaseTable::CountsLocked(const JobState& js) const {
+  const JobRecord& r = js.rec;
+  return {.record = r,
+          .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
+          .leased_tasks = static_cast<int>(js.leases.size()),
+          .rays_traced = r.rays_traced + js.live_rays,
+          .bytes_written = r.bytes_written + js.live_bytes};
+}
+
 JobInfo LeaseTable::InfoLocked(const JobState& js) const {
   const JobRecord& r = js.rec;
-  JobInfo info{.record = r,
-               .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
-               .leased_tasks = static_cast<int>(js.leases.size()),
-               .rays_traced = r.rays_traced + js.live_rays,
-               .bytes_written = r.bytes_written + js.live_bytes};
+  JobInfo info = CountsLocked(js);
   if (r.started_ms <= 0) return info;
-  const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : clock_->NowMs();
+  const int64_t now = clock_->NowMs();
+  const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : now;
   const double elapsed = std::max<int64_t>(end_ms - r.started_ms, 1) / 1000.0;
   info.rays_per_second = info.rays_traced / elapsed;
   if (r.phase == Phase::kDone) info.eta_seconds = 0;
-  if (IsTerminal(r.phase)) return info;
-  // Tracing dominates a bake: with an estimate, 90 % of the progress is the
-  // ray count and 10 % the transform and finalize tasks; else task counts.
-  double f = static_cast<double>(info.tasks_done) / r.tasks_total();
-  if (r.rays_estimate > 0) {
-    const double rays = std::min(1.0, static_cast<double>(info.rays_traced) / r.rays_estimate);
-    f = 0.9 * rays + 0.1 * (info.tasks_done - js.tiles_done) / (r.groups + 1.0);
-  }
-  if (f > 0) info.eta_seconds = elapsed * (1 - f) / f;
+  if (!IsTerminal(r.phase)) info.eta_seconds = EtaLocked(js, info, now);
   return info;
+}
+
+// The inputs of coordinator/eta_model.h from the job's tasks and leases.
+double LeaseTable::EtaLocked(const JobState& js, const JobInfo& info, int64_t now_ms) const {
+  const JobRecord& r = js.rec;
+  EtaInputs in;
+  in.current = StageOf(r.phase);
+  in.parallelism = std::max(js.peak_leases, 1);
+  const int counts[3] = {r.tiles, r.groups, 1};
+  const int done[3] = {js.tiles_done, js.groups_done,
+                       js.tasks_done - js.tiles_done - js.groups_done};
+  for (int s = 0; s < 3; ++s) {
+    in.stages[s].tasks = counts[s];
+    in.stages[s].done = done[s];
+    in.stages[s].measured = js.stages[s].measured;
+    in.stages[s].measured_seconds = js.stages[s].measured_seconds;
+  }
+  for (const auto& [task, lease] : js.leases) {
+    const int s = StageOf(js.tasks[task].kind);
+    in.stages[s].running.push_back(std::max<int64_t>(now_ms - lease.granted_ms, 0) / 1000.0);
+  }
+  const int64_t opened = js.stages[in.current].opened_ms;
+  in.stage_elapsed = opened > 0 ? std::max<int64_t>(now_ms - opened, 0) / 1000.0 : 0;
+  if (js.stages[1].opened_ms > 0 && r.started_ms > 0 && js.stages[0].opened_ms > 0) {
+    in.tile_stage_seconds = (js.stages[1].opened_ms - js.stages[0].opened_ms) / 1000.0;
+  }
+  if (in.current == 0 && r.rays_estimate > 0) {
+    in.tile_rays_fraction = static_cast<double>(info.rays_traced) / r.rays_estimate;
+  }
+  return EstimateEta(in);
+}
+
+SchedulerSnapshot LeaseTable::Metrics(int job_limit) const {
+  SchedulerSnapshot snap;
+  snap.lease_latency = lease_latency_.Read();
+  std::lock_guard lock(mu_);
+  snap.tasks = counters_;
+  for (auto it = jobs_.rbegin(); it != jobs_.rend(); ++it) {
+    const JobState& js = it->second;
+    ++snap.jobs_by_phase[static_cast<int>(js.rec.phase) - 1];
+    snap.rays_traced += js.rec.rays_traced;
+    if (static_cast<int>(snap.jobs.size()) >= job_limit) continue;
+    const JobInfo info = CountsLocked(js);
+    snap.jobs.push_back({.id = js.rec.id,
+                         .phase = js.rec.phase,
+                         .tasks_done = info.tasks_done,
+                         .tasks_total = js.rec.tasks_total(),
+                         .leased_tasks = info.leased_tasks,
+                         .rays_traced = info.rays_traced});
+  }
+  const int64_t now = clock_->NowMs();
+  for (const auto& [id, w] : workers_) {
+    ++snap.workers_registered;
+    if (w.rec.excluded) {
+      ++snap.workers_excluded;
+    } else if (now - w.last_seen_ms <= options_.lease_ms) {
+      ++snap.workers_alive;
+    }
+  }
+  return snap;
 }
 
 void LeaseTable::MaybeCleanup(JobState& js, Cleanups& cleanups) {

@@ -23,6 +23,7 @@
 // reloads the last committed state, in which the leases of the dead
 // coordinator are void and their tasks pending again (a restart is nobody's
 // failure: attempts are not charged).
+#include <array>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
@@ -42,6 +43,7 @@
 #include "coordinator/job_store.h"
 #include "coordinator/job_types.h"
 #include "coordinator/lease_id.h"
+#include "coordinator/scheduler_metrics.h"
 
 namespace wavebake {
 
@@ -154,12 +156,24 @@ class LeaseTable {
 
   const LeaseTableOptions& options() const { return options_; }
 
+  // Counters, jobs by phase, workers alive (seen within lease_ms and not
+  // excluded), and the task counts of the newest `job_limit` jobs.
+  SchedulerSnapshot Metrics(int job_limit) const;
+
  private:
   struct LiveLease {
     int64_t worker_id = 0;
     int attempt = 0;
     int64_t deadline_ms = 0;
+    int64_t granted_ms = 0;
     int64_t rays_traced = 0, bytes_written = 0;
+  };
+  // What the ETA (coordinator/eta_model.h) knows of one stage of a job in
+  // this process: when it opened and how long its done tasks took.
+  struct StageClock {
+    int64_t opened_ms = 0;  // 0: not in this process
+    int measured = 0;
+    double measured_seconds = 0;
   };
   struct JobState {
     JobRecord rec;
@@ -170,6 +184,8 @@ class LeaseTable {
     int64_t last_event_seq = 0;
     bool cleanup_scheduled = false;
     int64_t live_rays = 0, live_bytes = 0;  // sums over `leases` (kept, not recounted per event)
+    std::array<StageClock, 3> stages{};     // tiles, groups, finalize
+    int peak_leases = 0;
   };
   struct WorkerState {
     WorkerRecord rec;
@@ -179,7 +195,10 @@ class LeaseTable {
 
   absl::Status Load();
   absl::Status ResumeJob(JobState& js, Transition& tx);
+  // The counts (done, leased, rays, bytes); InfoLocked adds rays/s and the ETA.
+  JobInfo CountsLocked(const JobState& js) const;
   JobInfo InfoLocked(const JobState& js) const;
+  double EtaLocked(const JobState& js, const JobInfo& info, int64_t now_ms) const;
   void OpenStage(JobState& js, Phase phase, Transition& tx);
   void AdvanceStage(JobState& js, Transition& tx);
   void EndJob(JobState& js, Phase phase, std::string error, Transition& tx);
@@ -214,6 +233,8 @@ class LeaseTable {
   std::set<int64_t> runnable_;                             // jobs with a ready task
   std::set<std::tuple<int64_t, int64_t, int>> deadlines_;  // (deadline, job, task)
   std::map<int64_t, WorkerState> workers_;
+  TaskCounters counters_;
+  LatencyHistogram lease_latency_;
 };
 
 }  // namespace wavebake

@@ -1,5 +1,7 @@
 // LeaseTable, worker side (DESIGN.md §4): register, lease, heartbeat,
 // complete, fail, and the expiry of leases that were not renewed in time.
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "coordinator/lease_table.h"
@@ -36,6 +38,7 @@ std::optional<LeaseGrant> LeaseTable::LeaseOneLocked(int64_t worker_id, int64_t 
   if (js.rec.phase == Phase::kQueued) {
     js.rec.phase = Phase::kBaking;
     js.rec.started_ms = now;
+    js.stages[0].opened_ms = now;
     tx.jobs.push_back(js.rec);
     AddEvent(js, tx, EventKind::kPhase);
   }
@@ -44,7 +47,10 @@ std::optional<LeaseGrant> LeaseTable::LeaseOneLocked(int64_t worker_id, int64_t 
   t.worker_id = absl::StrCat(worker_id);
   ++t.attempts;
   const int64_t deadline = now + options_.lease_ms;
-  js.leases[idx] = {.worker_id = worker_id, .attempt = t.attempts, .deadline_ms = deadline};
+  js.leases[idx] = {
+      .worker_id = worker_id, .attempt = t.attempts, .deadline_ms = deadline, .granted_ms = now};
+  js.peak_leases = std::max(js.peak_leases, static_cast<int>(js.leases.size()));
+  ++counters_.leased[static_cast<int>(t.kind) - 1];
   deadlines_.emplace(deadline, js.rec.id, idx);
   tx.tasks.push_back(t);
   AddEvent(js, tx, EventKind::kTaskLeased, &t, {}, worker_id);
@@ -70,6 +76,8 @@ absl::StatusOr<std::optional<LeaseGrant>> LeaseTable::Lease(int64_t worker_id) {
 absl::StatusOr<ExchangeResult> LeaseTable::Exchange(int64_t worker_id,
                                                     std::span<const Completion> done,
                                                     int max_tasks) {
+  // The call's whole time (a Lease is an Exchange): lock wait and commit included.
+  LatencyHistogram::Timer timer(lease_latency_);
   Cleanups cleanups;
   ExchangeResult result;
   absl::Status refused;
@@ -191,7 +199,15 @@ absl::StatusOr<bool> LeaseTable::CompleteLocked(int64_t worker_id, const LeaseKe
   }
   TaskRecord& t = js.tasks[key.task];
   if (t.state == TaskState::kDone) return false;
-  if (js.leases.contains(key.task)) DropLease(js, key.task);  // ours or a later grant's
+  const int stage = static_cast<int>(t.kind) - 1;
+  if (auto it = js.leases.find(key.task); it != js.leases.end()) {  // ours or a later grant's
+    if (it->second.attempt == key.attempt) {  // timed from its grant (coordinator/eta_model.h)
+      ++js.stages[stage].measured;
+      js.stages[stage].measured_seconds += (clock_->NowMs() - it->second.granted_ms) / 1000.0;
+    }
+    DropLease(js, key.task);
+  }
+  ++counters_.completed[stage];
   if (t.state == TaskState::kPending && js.ready.erase(key.task) && js.ready.empty()) {
     runnable_.erase(js.rec.id);  // a late result of an expired lease
   }
@@ -241,6 +257,7 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
       if (!IsTerminal(js.rec.phase)) {
         const bool permanent = failure == Failure::kPermanent;
         if (!permanent) ChargeWorker(worker_id, js, tx);
+        ++counters_.failed[static_cast<int>(js.tasks[key.task].kind) - 1];
         ChargeTask(js, key.task, EventKind::kTaskFailed,
                    absl::StrCat("worker ", worker_id, ": ", reason), worker_id, tx, permanent);
         counted = true;
@@ -274,6 +291,7 @@ void LeaseTable::ExpireLocked(int64_t now, Transition& tx, Cleanups& cleanups) {
     const int64_t worker_id = js.leases.at(task).worker_id;
     DropLease(js, task);
     if (!IsTerminal(js.rec.phase)) {
+      ++counters_.expired[static_cast<int>(js.tasks[task].kind) - 1];
       ChargeWorker(worker_id, js, tx);
       ChargeTask(js, task, EventKind::kLeaseExpired,
                  absl::StrCat("worker ", worker_id, ": lease expired"), worker_id, tx);

@@ -103,7 +103,8 @@ void ToProto(const EventRecord& e, const JobRecord& job, v1::JobEvent* out) {
   out->set_tasks_total(e.tasks_total);
   out->set_rays_traced(e.rays_traced);
   out->set_bytes_written(e.bytes_written);
-  out->set_eta_seconds(-1);
+  // Persisted events carry no estimate, except that a finished job has none left.
+  out->set_eta_seconds(e.phase == Phase::kDone ? 0 : -1);
   out->set_stats_json(e.stats_json);
   SetPhaseTasks(job, out);
 }

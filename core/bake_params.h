@@ -17,6 +17,10 @@ enum class ErrorScope { kMatrix, kColumn };
 // normalized filters); kPaper first multiplies level-l values by 2^l (4D
 // paper §4.3), spending ~l extra bits on fine levels.
 enum class LevelScaling { kUniform, kPaper };
+// What a row of the matrix holds (DESIGN.md §1 "What a row holds"): kDiffuse
+// the transport T = Ω V cos/π, kVisibility the visibility V alone, for the
+// triple product with a BRDF in the global frame (runtime/glossy_relighter.h).
+enum class Transport { kDiffuse, kVisibility };
 
 struct BakeParams {
   int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
@@ -31,6 +35,7 @@ struct BakeParams {
   int column_terms = 0;  // > 0: keep a fixed K per column instead of the target
   int bits = 0;          // 0 = auto, else 2..16
   LevelScaling level_scaling = LevelScaling::kUniform;
+  Transport transport = Transport::kDiffuse;
   uint64_t seed = 1;
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task

@@ -38,6 +38,17 @@ std::string_view ToString(LevelScaling s) {
   return s == LevelScaling::kUniform ? "uniform" : "paper";
 }
 
+std::string_view ToString(Transport t) {
+  return t == Transport::kDiffuse ? "diffuse" : "visibility";
+}
+
+absl::StatusOr<Transport> ParseTransport(std::string_view s) {
+  if (s == "diffuse") return Transport::kDiffuse;
+  if (s == "visibility") return Transport::kVisibility;
+  return absl::InvalidArgumentError(
+      absl::StrCat("transport: unknown transport '", std::string(s), "' (diffuse|visibility)"));
+}
+
 absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s) {
   for (ColumnMode m : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive})
     if (s == ToString(m)) return m;
@@ -80,6 +91,14 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
     return bad("row_filter", std::string(ToString(p.row_filter)),
                " is not a row filter (haar|daub4)");
+  // The triple product's tripling coefficients are those of the Haar basis.
+  if (p.transport == Transport::kVisibility && p.row_filter != WaveletFilter::kHaar)
+    return bad("row_filter", "a visibility transport needs haar rows (the Haar triple product)");
+  // The tripling coefficients are those of the six-face cube's Haar basis.
+  if (p.transport == Transport::kVisibility && p.light_domain.is_plane())
+    return bad("light_domain",
+               "a visibility transport needs the cube (the triple product is "
+               "over the whole sphere of directions)");
   if (p.column_filter == WaveletFilter::kDaub4)
     return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
   if (!(p.target_error >= 0) || p.target_error > 1)

@@ -5,41 +5,12 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/pinhole_frame.h"
 
 namespace wavebake {
 namespace {
 
 bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
-
-// Orthonormal pinhole frame; `right` and `up` are pre-scaled to the image
-// plane at distance 1 so a pixel's ray is forward + sx·right + sy·up.
-struct PinholeFrame {
-  Vec3 forward, right, up;
-};
-
-absl::StatusOr<PinholeFrame> MakeFrame(const Camera& cam, int width, int height) {
-  if (!IsFinite(cam.eye) || !IsFinite(cam.target) || !IsFinite(cam.up)) {
-    return absl::InvalidArgumentError("layout camera: eye, target and up must be finite");
-  }
-  if (!(cam.fov_y_degrees > 0 && cam.fov_y_degrees < 180)) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("layout camera: fov_y_degrees ", cam.fov_y_degrees, " is not in (0, 180)"));
-  }
-  const Vec3 view = cam.target - cam.eye;
-  const Vec3 side = Cross(view, cam.up);
-  if (!(Dot(view, view) > 0) || !(Dot(side, side) > 0)) {
-    return absl::InvalidArgumentError(
-        "layout camera: target equals eye, or up is parallel to the view direction");
-  }
-  const float half_h = static_cast<float>(std::tan(cam.fov_y_degrees * std::numbers::pi / 360.0));
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  PinholeFrame f;
-  f.forward = Normalize(view);
-  const Vec3 right = Normalize(side);
-  f.right = right * (half_h * aspect);
-  f.up = Cross(right, f.forward) * half_h;
-  return f;
-}
 
 }  // namespace
 
@@ -50,7 +21,7 @@ absl::StatusOr<SampleSet> CameraLayout(const Scene& scene, const RayCaster& cast
     return absl::InvalidArgumentError(absl::StrCat("layout camera: ", width, "x", height,
                                                    " is not a power-of-two width x height"));
   }
-  absl::StatusOr<PinholeFrame> frame = MakeFrame(*scene.camera, width, height);
+  absl::StatusOr<PinholeFrame> frame = MakePinholeFrame(*scene.camera, width, height);
   if (!frame.ok()) return frame.status();
 
   SampleSet set;

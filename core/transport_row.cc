@@ -41,13 +41,18 @@ bool BelowHorizon(const JitterPattern& p, int m, Vec3 n) {
 }
 
 // Appends texel m's directions that are above the horizon; the ones below
-// contribute max(0, n·ω) = 0 whatever V is, so they are not traced.
-void AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
+// contribute max(0, n·ω) = 0 whatever V is, so they are not traced. Returns
+// how many were below.
+int AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
   const size_t first = static_cast<size_t>(m) * p.per_texel;
+  int below = 0;
   for (int k = 0; k < p.per_texel; ++k) {
     const size_t i = first + k;
     const float c = n.x * p.x[i] + n.y * p.y[i] + n.z * p.z[i];
-    if (!(c > 0)) continue;
+    if (!(c > 0)) {
+      ++below;
+      continue;
+    }
     b.x[b.count] = p.x[i];
     b.y[b.count] = p.y[i];
     b.z[b.count] = p.z[i];
@@ -55,12 +60,14 @@ void AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
     b.texel[b.count] = m;
     ++b.count;
   }
+  return below;
 }
 
 // Traces the batch and adds the cosines of the unoccluded rays to their
-// texels. A texel's rays are added in k order, so the sum is deterministic.
+// texels (with `count_only`, 1 per unoccluded ray instead: visibility). A
+// texel's rays are added in k order, so the sum is deterministic.
 void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> row,
-           TransportStats& stats) {
+           TransportStats& stats, bool count_only = false) {
   if (b.count == 0) return;
   const size_t n = static_cast<size_t>(b.count);
   caster.OccludedFan(origin, {{b.x, n}, {b.y, n}, {b.z, n}}, 0,
@@ -69,7 +76,7 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
     if (b.occluded[i]) {
       ++stats.rays_occluded;
     } else {
-      row[b.texel[i]] += b.cosine[i];
+      row[b.texel[i]] += count_only ? 1.0f : b.cosine[i];
     }
   }
   stats.rays_traced += n;
@@ -109,6 +116,38 @@ void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 po
   // Ω_m · (1/K) · f_r with f_r = 1/π (albedo factored out, DESIGN.md §1).
   const float inv_k_pi = static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi));
   for (int m = 0; m < texels; ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
+
+  if (stats) {
+    stats->rays_traced += local.rays_traced;
+    stats->rays_occluded += local.rays_occluded;
+    stats->texels_culled += local.texels_culled;
+  }
+}
+
+void VisibilityRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
+                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
+                   TransportStats* stats) {
+  CheckOrDie(row.size() == static_cast<size_t>(cubemap.size()), "row size differs from M");
+  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
+             "jitter pattern was made for another cubemap");
+  CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
+
+  TransportStats local;
+  const Vec3 origin = position + normal * epsilon;
+  std::fill(row.begin(), row.end(), 0.0f);
+  RayBatch batch;
+  for (int m = 0; m < cubemap.size(); ++m) {
+    if (BelowHorizon(pattern, m, normal)) {
+      ++local.texels_culled;
+      row[m] = static_cast<float>(pattern.per_texel);  // V := 1 below the horizon
+      continue;
+    }
+    if (batch.count + pattern.per_texel > kBatch) Flush(caster, origin, batch, row, local, true);
+    row[m] += static_cast<float>(AddTexel(pattern, m, normal, batch));
+  }
+  Flush(caster, origin, batch, row, local, true);
+  const float inv_k = 1.0f / static_cast<float>(pattern.per_texel);
+  for (float& v : row) v *= inv_k;
 
   if (stats) {
     stats->rays_traced += local.rays_traced;

@@ -35,4 +35,19 @@ void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterP
 void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
                   float epsilon, std::span<float> row, TransportStats* stats);
 
+// The visibility row of DESIGN.md §1 "What a row holds" (`visibility`):
+//
+//   V[s,m] = (1/K) Σ_k v(x + ε n, ω_k),  v = 1 if the ray escapes, 0 if it hits,
+//
+// no solid angle, no cosine, no BRDF (they are the triple product's other
+// factor, runtime/glossy_relighter.h). Directions below the sample's tangent
+// plane (n·ω_k ≤ 0) are not traced and count as visible: every integrand
+// that uses V carries the BRDF's max(0, n·ω) factor, which is 0 there, and
+// leaving V = 1 spares the row the hard horizon edge a traced "0 below"
+// would put into every row's Haar expansion (an unoccluded sample is then
+// V ≡ 1: six scaling coefficients).
+void VisibilityRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
+                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
+                   TransportStats* stats);
+
 }  // namespace wavebake

@@ -97,6 +97,26 @@ class Watchdog {
   std::jthread thread_;
 };
 
+// Calls on_ending once, on whichever way EmbeddedBake leaves after
+// on_started, while the coordinator still runs.
+class EndingCall {
+ public:
+  EndingCall(const EmbeddedBakeOptions& options, Coordinator& coordinator)
+      : options_(options), coordinator_(coordinator) {}
+  ~EndingCall() { Call(); }
+  void Call() {
+    if (called_ || !options_.on_ending) return;
+    called_ = true;
+    options_.on_ending(coordinator_, job_id);
+  }
+  std::string job_id;  // empty until the job is submitted
+
+ private:
+  const EmbeddedBakeOptions& options_;
+  Coordinator& coordinator_;
+  bool called_ = false;
+};
+
 }  // namespace
 
 absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams& params,
@@ -114,6 +134,8 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
   absl::StatusOr<ScopedDir> data = ScopedDir::CreateBeside(out, "bake");
   if (!data.ok()) return data.status();
   const std::filesystem::path store_root = data->path() / "store";
+  const PlannerOptions planner{
+      .data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes};
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
       {.listen_address = "",  // in-process only
        .data_dir = data->path(),
@@ -122,10 +144,10 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
        // nobody; max_attempts still fails a job that fails everywhere.
        .worker_failure_limit = 1 << 30,
        .wait_ms = 10},  // idle workers ask again soon: a phase's last task is not a wait
-      MakeJobPlanner(
-          {.data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes}),
-      MakeJobCleanup(store_root));
+      MakeJobPlanner(planner), MakeJobCleanup(store_root));
   if (!coordinator.ok()) return coordinator.status();
+  if (options.on_started) options.on_started(**coordinator, planner);
+  EndingCall ending(options, **coordinator);
   const Client client((*coordinator)->InProcessChannel(), "");
 
   const int workers = options.workers > 0
@@ -138,6 +160,7 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
     request.set_output_name(kStoreName);
     absl::StatusOr<v1::Job> submitted = SubmitScene(client, request, scene, /*with_files=*/false);
     if (!submitted.ok()) return submitted.status();
+    ending.job_id = submitted->id();
     Watchdog watchdog(client, submitted->id(), options.interrupted, loops);
     job = WatchJob(client, submitted->id(), {.patience_seconds = 60, .on_event = options.on_event});
     if (job.ok() && job->phase() == v1::PHASE_CANCELLED && loops.AllStopped() &&
@@ -145,6 +168,7 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
       job = loops.error();  // the workers' own failure, not a user's cancel
     }
   }  // workers drained: nothing writes any more
+  ending.Call();
   if (job.ok() && job->phase() == v1::PHASE_DONE) {
     if (absl::Status s = PublishStore(store_root / job->store_path(), out); !s.ok()) return s;
   }

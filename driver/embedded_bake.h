@@ -11,6 +11,8 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "coordinator/coordinator.h"
+#include "coordinator/job_planner.h"
 #include "core/bake_params.h"
 #include "wavebake.pb.h"
 
@@ -22,6 +24,14 @@ struct EmbeddedBakeOptions {
   std::function<void(const v1::JobEvent&)> on_event = {};
   // Raised (e.g. by SIGINT): the job is cancelled and the bake returns it CANCELLED.
   const std::atomic<bool>* interrupted = nullptr;
+  // The in-process coordinator once it runs, with what its planner reads
+  // scenes from; and (on_ending, on every way out after on_started) again
+  // once the job has ended and the workers are gone, before the store is
+  // published at `out` and the coordinator shuts down: `bake --serve` shows
+  // it on the web monitor meanwhile. on_ending's job_id is empty when the
+  // job was never submitted.
+  std::function<void(Coordinator&, const PlannerOptions&)> on_started = {};
+  std::function<void(Coordinator&, const std::string& job_id)> on_ending = {};
 };
 
 // The job as it ended: DONE (the store is at `out`; an older store there is

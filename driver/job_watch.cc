@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <optional>
+#include <stop_token>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
@@ -28,6 +29,7 @@ grpc::Status Follow(const Client& client, const std::string& job_id, const Watch
   v1::JobId id;
   id.set_id(job_id);
   std::unique_ptr<grpc::ClientContext> ctx = client.Call(0);
+  std::stop_callback cancel(options.stop, [&ctx] { ctx->TryCancel(); });
   std::unique_ptr<grpc::ClientReader<v1::JobEvent>> reader = client.jobs().Watch(ctx.get(), id);
   v1::JobEvent event;
   while (reader->Read(&event)) {
@@ -38,7 +40,8 @@ grpc::Status Follow(const Client& client, const std::string& job_id, const Watch
       if (event.seq() <= seen.seq) continue;
       seen.seq = event.seq();
       event.set_rays_per_second(seen.rays_per_second);
-      event.set_eta_seconds(seen.eta_seconds);
+      // An ended job's event keeps its own ETA (0 when DONE, else unknown).
+      if (!IsTerminal(event.phase())) event.set_eta_seconds(seen.eta_seconds);
     }
     *progressed = true;
     if (options.on_event) options.on_event(event);
@@ -83,6 +86,7 @@ absl::StatusOr<v1::Job> WatchJob(const Client& client, const std::string& job_id
     bool progressed = false;
     const grpc::Status s = Follow(client, job_id, options, seen, &progressed);
     if (seen.ended) break;
+    if (options.stop.stop_requested()) return absl::CancelledError("watch stopped");
     // A stream ends early when the coordinator goes away (UNAVAILABLE, or OK
     // from one shutting down): wait for it to come back.
     if (!s.ok() && s.error_code() != grpc::StatusCode::UNAVAILABLE) return FromGrpc(s);
@@ -92,7 +96,8 @@ absl::StatusOr<v1::Job> WatchJob(const Client& client, const std::string& job_id
       return absl::UnavailableError(absl::StrCat(
           "coordinator unreachable for ", options.patience_seconds, " s: ", s.error_message()));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    for (int i = 0; i < 5 && !options.stop.stop_requested(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return GetJob(client, job_id);
 }

@@ -6,6 +6,7 @@
 // with each event — a progress bar, a web page, a Python iterator — is the
 // caller's.
 #include <functional>
+#include <stop_token>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -21,6 +22,9 @@ struct WatchOptions {
   // Each new event in order: persisted ones once each, live progress ones as
   // they come. Called on the watching thread.
   std::function<void(const v1::JobEvent&)> on_event = {};
+  // Once requested, the watch stops (its stream is cancelled) and returns
+  // CANCELLED: a Python iterator dropped early, a page closed.
+  std::stop_token stop = {};
 };
 
 // Streams the job's events until it ends and returns the job as it ended.

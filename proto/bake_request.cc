@@ -128,6 +128,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.column_terms = r.column_terms();
   p.bits = r.bits();
   p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
+  p.transport = r.transport() == "visibility" ? Transport::kVisibility : Transport::kDiffuse;
   p.light_domain = ParseLightDomain(r.light_domain()).value_or(LightDomain{});
   p.seed = r.seed();
   p.tile_size = r.tile_size();
@@ -155,6 +156,7 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
+        CheckChoice("transport", *r.mutable_transport(), "diffuse", {"diffuse", "visibility"}),
         CheckLightDomain(*r.mutable_light_domain()), CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
@@ -180,6 +182,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_column_terms(p.column_terms);
   r.set_bits(p.bits);
   r.set_level_scaling(std::string(ToString(p.level_scaling)));
+  r.set_transport(std::string(ToString(p.transport)));
   if (p.light_domain.is_plane()) r.set_light_domain(ToString(p.light_domain));
   r.set_seed(p.seed);
   r.set_row_filter(std::string(ToString(p.row_filter)));

@@ -2,8 +2,9 @@
 
 #include <chrono>
 
-#include "core/wavelet2d.h"
+#include "runtime/parallel_for.h"
 #include "runtime/relighter.h"
+#include "runtime/sample_rows.h"
 
 namespace wavebake {
 
@@ -21,16 +22,15 @@ absl::StatusOr<CellRows> CellRows::Decode(const CompressedColumns& columns,
   for (int cell = 0; cell < r.cells(); ++cell)
     if (samples.grid[cell] >= 0) r.slot_[cell] = sampled++;
   r.rows_.assign(size_t(sampled) * r.columns_, 0.0f);
-  std::vector<float> image(r.cells());
-  for (int c = 0; c < r.columns_; ++c) {
-    const int64_t b = columns.indptr[c], e = columns.indptr[c + 1];
-    if (b == e) continue;  // an empty column is 0 everywhere
-    std::fill(image.begin(), image.end(), 0.0f);
-    for (int64_t k = b; k < e; ++k) image[columns.indices[k]] = columns.values[k];
-    Inverse2d(columns.column_filter, image, r.width_, r.height_, columns.depth[c]);
+  // Columns write disjoint entries of rows_: any thread count gives the same rows.
+  ParallelFor(r.columns_, [&](int c) {
+    if (columns.indptr[c] == columns.indptr[c + 1]) return;  // an empty column is 0 everywhere
+    thread_local std::vector<float> image;
+    image.resize(r.cells());
+    DecodeColumnImage(columns, c, image);
     for (int cell = 0; cell < r.cells(); ++cell)
       if (r.slot_[cell] >= 0) r.rows_[size_t(r.slot_[cell]) * r.columns_ + c] = image[cell];
-  }
+  });
   r.seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -13,9 +13,11 @@
 // terms are gathered by index. Memory: cells × M floats (64 MiB for 128×128
 // samples of a plane:S, N = 32 store).
 //
-// This is the near-field path's own small interface; the glossy triple
-// product (another branch) decodes per-cell sparse rows for per-sample
-// weights too — the two are meant to become one.
+// The same decode as SampleRows (runtime/sample_rows.h, DecodeColumnImage),
+// kept dense: a near-field frame gathers a few hundred arbitrary terms per
+// cell of a one-face M = N² row, where an indexed load beats searching a
+// sparse row; the glossy triple product needs the sparse form, since dense
+// cube rows (M = 6N²) would be 384 MiB at 128² samples, N = 32.
 #include <array>
 #include <cstdint>
 #include <span>

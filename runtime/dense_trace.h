@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/brdf.h"
 #include "core/ray_caster.h"
 #include "core/samples.h"
 
@@ -21,6 +22,9 @@ struct DenseTraceOptions {
   int supersample = 4;  // K of the store
   uint64_t seed = 1;    // job seed of the store (jitter pattern)
   float epsilon = 0;    // ray offset; 0: caster.DefaultEpsilon() as in the bake
+  // Glossy only: directions per texel of the BRDF factor's quadrature
+  // (runtime/brdf_slices.h); 0 = supersample.
+  int brdf_supersample = 0;
 };
 
 struct DenseTraceResult {
@@ -35,5 +39,16 @@ absl::StatusOr<DenseTraceResult> TraceDenseRelight(const RayCaster& caster,
                                                    const SampleSet& samples,
                                                    std::span<const float> cube_rgb,
                                                    const DenseTraceOptions& options);
+
+// The uncompressed answer for a glossy material on a visibility store: every
+// row V(x) retraced as the bake traced it (core/transport_row.h
+// VisibilityRow), the BRDF factor texel by texel (runtime/brdf_slices.h
+// BrdfTexels, the store's jitter directions) and B(x) = albedo · Σ_m L_m V_m
+// ρ_m in the pixel basis: no Haar basis, no tripling coefficient, no
+// approximation of any factor. views: per grid cell, towards the eye.
+absl::StatusOr<DenseTraceResult> TraceDenseGlossy(const RayCaster& caster, const SampleSet& samples,
+                                                  std::span<const float> cube_rgb,
+                                                  const DenseTraceOptions& options,
+                                                  const Brdf& brdf, std::span<const Vec3> views);
 
 }  // namespace wavebake

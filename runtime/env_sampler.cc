@@ -49,6 +49,8 @@ EnvSampler::EnvSampler(const EnvMap& env) : env_(&env) {
   // width_ ≥ 128 and height_ ≥ 64 after refinement: always 64 × 32 blocks.
   const int bx_count = kBlockColumns, by_count = kBlockRows;
   curve_ = HilbertCurveCells(bx_count, by_count);
+  curve_position_.resize(curve_.size());
+  for (size_t k = 0; k < curve_.size(); ++k) curve_position_[curve_[k]] = static_cast<int32_t>(k);
   for (int i = 0; i <= bx_count; ++i)
     block_x_.push_back(static_cast<int>(int64_t{i} * width_ / bx_count));
   for (int j = 0; j <= by_count; ++j)
@@ -127,7 +129,37 @@ EnvSampler::Draw EnvSampler::Sample(std::span<const double> cdf,
   // L_c · light_b / (P(block) · Y_p) with P(block) = (cdf[b+1] − cdf[b]) / total.
   const Vec3 radiance = env_->Pixel(x / replicate_, y / replicate_);
   const double scale = block_light_[b] * total / ((cdf[k + 1] - cdf[k]) * MeanRgb(radiance));
-  return {Direction(theta, phi), {radiance.x * scale, radiance.y * scale, radiance.z * scale}};
+  return {Direction(theta, phi),
+          {radiance.x * scale, radiance.y * scale, radiance.z * scale},
+          1 / scale};
+}
+
+Vec3 EnvSampler::Radiance(Vec3 direction) const {
+  const LatLong ll = DirectionToLatLong(direction);
+  const int x = std::clamp(static_cast<int>(ll.u * width_), 0, width_ - 1);
+  const int y = std::clamp(static_cast<int>(ll.v * height_), 0, height_ - 1);
+  return env_->Pixel(x / replicate_, y / replicate_);
+}
+
+double EnvSampler::Pdf(std::span<const double> cdf, Vec3 direction) const {
+  const double total = cdf[blocks()];
+  if (!(total > 0)) return 0;
+  const LatLong ll = DirectionToLatLong(direction);
+  const int x = std::clamp(static_cast<int>(ll.u * width_), 0, width_ - 1);
+  const int y = std::clamp(static_cast<int>(ll.v * height_), 0, height_ - 1);
+  const int bx =
+      static_cast<int>(std::upper_bound(block_x_.begin(), block_x_.end(), x) - block_x_.begin()) -
+      1;
+  const int by =
+      static_cast<int>(std::upper_bound(block_y_.begin(), block_y_.end(), y) - block_y_.begin()) -
+      1;
+  const int bx_count = static_cast<int>(block_x_.size()) - 1;
+  const int b = by * bx_count + bx;
+  if (!(block_light_[b] > 0)) return 0;
+  const int k = curve_position_[b];
+  // P(block) · (Y_p Ω_p / light_b) / Ω_p, as Sample draws it.
+  const double p_block = (cdf[k + 1] - cdf[k]) / total;
+  return p_block * MeanRgb(env_->Pixel(x / replicate_, y / replicate_)) / block_light_[b];
 }
 
 }  // namespace wavebake

@@ -48,15 +48,35 @@ class EnvSampler {
   // block along the curve; cdf.size() must be blocks() + 1. Returns the
   // total (0: no light above the horizon).
   double ReceiverCdf(Vec3 normal, std::span<double> cdf) const;
+  // The same with every block's light times bound(centre, radius), an upper
+  // bound of the receiver's integrand weight over the block's cap (a glossy
+  // lobe's Brdf::CapBound): the blocks the lobe sees get the draws.
+  template <typename Bound>
+  double ReceiverCdf(const Bound& bound, std::span<double> cdf) const {
+    cdf[0] = 0;
+    for (int k = 0; k < blocks(); ++k) {
+      const int b = curve_[k];
+      const double p =
+          block_light_[b] > 0 ? block_light_[b] * bound(block_centre_[b], block_radius_[b]) : 0.0;
+      cdf[k + 1] = cdf[k] + p;
+    }
+    return cdf[blocks()];
+  }
 
   struct Draw {
     Vec3 direction;                // unit
     std::array<double, 3> weight;  // L_c(ω) / pdf(ω), pdf in solid angle
+    double pdf = 0;
   };
   // One direction from the receiver distribution `cdf` (from ReceiverCdf, with
   // total > 0) and five uniforms in [0, 1): block, row, column, and the
   // position inside the pixel.
   Draw Sample(std::span<const double> cdf, const std::array<double, 5>& u) const;
+  // The density in solid angle with which Sample(cdf, ·) draws `direction`
+  // (for multiple importance sampling against a BRDF's lobe), and the
+  // radiance the map has there.
+  double Pdf(std::span<const double> cdf, Vec3 direction) const;
+  Vec3 Radiance(Vec3 direction) const;
 
  private:
   int width_ = 0, height_ = 0;  // of the (possibly refined) map
@@ -69,6 +89,7 @@ class EnvSampler {
   std::vector<Vec3> block_centre_;      // unit direction of each block's (θ, φ) centre
   std::vector<float> block_radius_;     // angular radius bound of each block
   std::vector<int32_t> curve_;          // block id of the k-th block along the Hilbert curve
+  std::vector<int32_t> curve_position_;  // inverse of curve_
 };
 
 }  // namespace wavebake

@@ -11,6 +11,7 @@
 #include "core/scene_hash.h"
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
+#include "runtime/glossy_eval.h"
 #include "runtime/store_relight.h"
 #include "storage/scene_loader.h"
 
@@ -75,6 +76,14 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   if (terms <= 0) {
     return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
   }
+  absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
+  if (!store_info.ok()) return store_info.status();
+  if (store_info->params.transport == Transport::kVisibility)
+    return EvaluateGlossy(store, env_spec, terms, options);
+  // A diffuse store is Lambertian by construction.
+  absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
+  if (!brdf.ok()) return brdf.status();
+  if ((*brdf)->Name() != "lambert") return CheckVisibilityStore(*store_info);
   absl::StatusOr<OpenedStore> opened = OpenStore(store);
   if (!opened.ok()) return opened.status();
   if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;

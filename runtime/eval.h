@@ -11,6 +11,8 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
+#include "core/ray_caster.h"
+#include "runtime/glossy_store.h"
 #include "runtime/reference.h"
 #include "storage/store_reader.h"
 
@@ -20,6 +22,10 @@ struct EvalOptions {
   ReferenceOptions reference;  // its epsilon is replaced by the bake's
   double rotate_degrees = 0;   // environment rotation about +Y (Rotated)
   bool dense = true;           // also retrace and evaluate the uncompressed T
+  // The material. A visibility store is relit through the triple product
+  // (runtime/glossy_eval.h) with this BRDF, its reference traced with it; a
+  // diffuse store takes lambert only (anything else is an error saying why).
+  GlossyOptions glossy;
 };
 
 // Over all unmasked cells and the three channels of image vs reference:

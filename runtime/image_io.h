@@ -38,6 +38,9 @@ absl::Status WritePng(const std::filesystem::path& path, int width, int height,
 // The same PNG as bytes (for embedding, e.g. in a glTF).
 absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
                                                  float exposure_stops, Vec3 background);
+// 8-bit pixels (channels 1..4, rows top first) as the bytes of a PNG file.
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, int channels,
+                                                 std::span<const uint8_t> pixels);
 
 // Binary little-endian PLY: vertices with float x, y, z and uchar red, green,
 // blue (tone-mapped as in WritePng, NaN → black), faces as `list uchar int

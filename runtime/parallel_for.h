@@ -22,6 +22,26 @@ void ParallelFor(int count, const Body& body) {
   work();
 }
 
+// body(worker, i) for i in [0, count) on `threads` threads (0: all cores),
+// worker ∈ [0, threads) naming the thread, so callers can keep one scratch
+// per worker. Indices go out in blocks of `block` for locality.
+template <typename Body>
+void ParallelForWorkers(int count, int threads, int block, const Body& body) {
+  if (threads <= 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+  const int blocks = (count + block - 1) / std::max(block, 1);
+  threads = std::clamp(threads, 1, std::max(blocks, 1));
+  std::atomic<int> next{0};
+  auto work = [&](int worker) {
+    for (int b; (b = next.fetch_add(1)) < blocks;) {
+      const int end = std::min(count, (b + 1) * block);
+      for (int i = b * block; i < end; ++i) body(worker, i);
+    }
+  };
+  std::vector<std::jthread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+}
+
 // body(state, begin, end) over [0, count) in chunks of `chunk`, on `threads`
 // threads (≤ 0: all cores), each with its own state = make_state(). Chunks
 // are handed out round-robin, which balances uneven work; each index is

@@ -19,6 +19,21 @@ void AppendBytes(void* context, void* data, int size) {
 }
 }  // namespace
 
+absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, int channels,
+                                                 std::span<const uint8_t> pixels) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+      pixels.size() != size_t(width) * height * channels) {
+    return absl::InvalidArgumentError(absl::StrCat("png: ", width, "x", height, "x", channels,
+                                                   " does not match ", pixels.size(), " bytes"));
+  }
+  std::vector<std::byte> png;
+  if (!stbi_write_png_to_func(AppendBytes, &png, width, height, channels, pixels.data(),
+                              width * channels)) {
+    return absl::InternalError("PNG encoding failed");
+  }
+  return png;
+}
+
 absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::span<const float> rgb,
                                                  float exposure_stops, Vec3 background) {
   if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * height * 3) {
@@ -32,11 +47,7 @@ absl::StatusOr<std::vector<std::byte>> EncodePng(int width, int height, std::spa
     const auto c = ToneMapPixel({rgb[i], rgb[i + 1], rgb[i + 2]}, scale, background);
     pixels[i] = c[0], pixels[i + 1] = c[1], pixels[i + 2] = c[2];
   }
-  std::vector<std::byte> png;
-  if (!stbi_write_png_to_func(AppendBytes, &png, width, height, 3, pixels.data(), width * 3)) {
-    return absl::InternalError("PNG encoding failed");
-  }
-  return png;
+  return EncodePng(width, height, 3, pixels);
 }
 
 absl::Status WritePng(const std::filesystem::path& path, int width, int height,

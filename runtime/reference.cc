@@ -85,6 +85,62 @@ void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<co
   e.traced += count;
 }
 
+// One batch for a glossy receiver: even draws from the environment, odd
+// ones from the BRDF's lobe, each weighted by the balance heuristic.
+void TraceGlossyBatch(const RayCaster& caster, const EnvSampler& sampler,
+                      std::span<const double> cdf, const Receiver& r, Vec3 view, const Brdf& brdf,
+                      Rng& rng, Estimate& e) {
+  alignas(64) float x[kBatch], y[kBatch], z[kBatch];
+  std::array<double, 3> f[kBatch];
+  uint8_t occluded[kBatch];
+  int count = 0;
+  constexpr int kHalf = kBatch / 2;
+  for (int i = 0; i < kBatch; ++i) {
+    std::array<double, 5> u;
+    for (double& v : u) v = rng.Next01();
+    const double stratum = (i / 2 + u[0]) / kHalf;
+    Vec3 w;
+    Vec3 radiance;
+    double p_env, p_brdf;
+    if (i % 2 == 0) {
+      u[0] = stratum;
+      const EnvSampler::Draw d = sampler.Sample(cdf, u);
+      w = d.direction;
+      p_env = d.pdf;
+      radiance = sampler.Radiance(w);
+      p_brdf = brdf.Pdf(r.normal, view, w);
+    } else {
+      w = brdf.Sample(r.normal, view, stratum, u[1]);
+      p_brdf = brdf.Pdf(r.normal, view, w);
+      p_env = sampler.Pdf(cdf, w);
+      radiance = sampler.Radiance(w);
+    }
+    const double cosine = Dot(r.normal, w);
+    if (!(cosine > 0)) continue;
+    const double fr = brdf.Eval(r.normal, view, w);
+    const double p_mix = 0.5 * (p_env + p_brdf);
+    if (!(fr > 0) || !(p_mix > 0)) continue;
+    x[count] = w.x, y[count] = w.y, z[count] = w.z;
+    for (int c = 0; c < 3; ++c) f[count][c] = radiance[c] * fr * cosine / p_mix;
+    ++count;
+  }
+  const size_t n = static_cast<size_t>(count);
+  caster.OccludedFan(r.origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
+                     {occluded, n});
+  std::array<double, 3> batch{};
+  for (int i = 0; i < count; ++i) {
+    if (occluded[i]) continue;
+    for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double mean = batch[c] / kBatch;
+    e.sum[c] += mean;
+    e.sum_sq[c] += mean * mean;
+  }
+  ++e.batches;
+  e.traced += count;
+}
+
 template <typename Body>
 void ForEachIndex(int count, int threads, const Body& body) {
   std::atomic<int> next{0};
@@ -106,6 +162,11 @@ absl::Status CheckInputs(const SampleSet& s, const EnvMap& env, const ReferenceO
       s.albedo.size() != s.position.size()) {
     return absl::InvalidArgumentError("samples: grid, normal or albedo sizes disagree");
   }
+  if (o.brdf && o.brdf->ViewDependent() && o.views.size() != s.position.size()) {
+    return absl::InvalidArgumentError(absl::StrCat("views: ", o.views.size(),
+                                                   " view directions for ", s.position.size(),
+                                                   " samples (", o.brdf->Name(), ")"));
+  }
   if (!(o.target_rel_se > 0) || o.min_rays < 2 || o.max_rays < o.min_rays) {
     return absl::InvalidArgumentError(absl::StrCat(
         "reference options: target_rel_se ", o.target_rel_se, ", min_rays ", o.min_rays,
@@ -126,6 +187,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
                           ? o.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int count = samples.size();
+  const bool glossy = o.brdf != nullptr && o.brdf->ViewDependent();
   std::vector<Estimate> est(count);
   std::vector<double> cdf_total(count);
   std::vector<Rng> rng;  // one stream per sample, continued by pass 2
@@ -139,9 +201,21 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
   };
   auto run = [&](int s, const auto& keep_going) {
     std::vector<double> cdf(sampler.blocks() + 1);
-    cdf_total[s] = sampler.ReceiverCdf(samples.normal[s], cdf);
+    if (glossy) {
+      const Vec3 n = samples.normal[s], wo = o.views[s];
+      cdf_total[s] =
+          sampler.ReceiverCdf([&](Vec3 c, float r) { return o.brdf->CapBound(n, wo, c, r); }, cdf);
+    } else {
+      cdf_total[s] = sampler.ReceiverCdf(samples.normal[s], cdf);
+    }
     if (cdf_total[s] == 0) return;  // no light above the horizon: B = 0 exactly
-    while (keep_going(est[s])) TraceBatch(caster, sampler, cdf, receiver(s), rng[s], est[s]);
+    const Receiver rec = receiver(s);
+    if (glossy) {
+      while (keep_going(est[s]))
+        TraceGlossyBatch(caster, sampler, cdf, rec, o.views[s], *o.brdf, rng[s], est[s]);
+    } else {
+      while (keep_going(est[s])) TraceBatch(caster, sampler, cdf, rec, rng[s], est[s]);
+    }
   };
   // Pass 1, the pilot: min_rays for everyone (whole batches, at least 8).
   ForEachIndex(count, threads, [&](int s) {

@@ -21,6 +21,8 @@ void CheckOrDie(bool ok, const char* what) {
   std::abort();
 }
 
+}  // namespace
+
 absl::Status CheckColumns(const CompressedColumns& t) {
   const int64_t cells = int64_t{t.width} * t.height;
   if (t.width <= 0 || t.height <= 0 || (t.width & (t.width - 1)) || (t.height & (t.height - 1))) {
@@ -65,6 +67,8 @@ absl::Status CheckColumns(const CompressedColumns& t) {
   }
   return absl::OkStatus();
 }
+
+namespace {
 
 absl::Status CheckSamples(const SampleSet& s, const CompressedColumns& t) {
   if (s.width != t.width || s.height != t.height) {

@@ -26,6 +26,10 @@
 
 namespace wavebake {
 
+// The checks every reader of a decoded matrix makes: sizes, indptr monotone,
+// positions inside the grid, depths ≤ MaxDepth(W, H); errors name the field.
+absl::Status CheckColumns(const CompressedColumns& columns);
+
 // Per-cell RGB albedo of a sample grid, [W*H*3] at 3*(y*W + x) + c; masked
 // cells (grid −1) are NaN, so any radiance multiplied by them is NaN too.
 std::vector<float> CellAlbedo(const SampleSet& samples);

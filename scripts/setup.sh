@@ -10,6 +10,8 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
   slurmctld slurmd slurm-client munge python3-kubernetes iproute2
+  libcpp-httplib-dev pybind11-dev python3-dev python3-pytest
+  chromium chromium-driver python3-selenium python3-prometheus-client
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -67,8 +67,10 @@ nlohmann::json ToJson(const BakeParams& p) {
                       {"tile_size", p.tile_size},
                       {"column_group", p.column_group},
                       {"ray_epsilon", p.ray_epsilon}};
-  // Only a plane light domain is spelled out: a cube store's .zattrs stays
-  // byte-identical to the stores written before the field existed.
+  // Only a visibility transport and a plane light domain are spelled out: a
+  // default store's .zattrs stays byte-identical to the stores written before
+  // the fields existed.
+  if (p.transport != Transport::kDiffuse) j["transport"] = std::string(ToString(p.transport));
   if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
   return j;
 }
@@ -98,6 +100,9 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   if (!j.contains("seed") || !j["seed"].is_number_unsigned())
     return Bad("seed", "missing or not an unsigned integer");
   p.seed = j["seed"].get<uint64_t>();
+  if (j.contains("transport")) {  // absent: diffuse (stores before the field)
+    if (absl::Status s = GetEnum(j, "transport", ParseTransport, &p.transport); !s.ok()) return s;
+  }
   if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
     if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
       return s;

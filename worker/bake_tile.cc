@@ -72,8 +72,13 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
       std::fill(row.begin(), row.end(), 0.0f);
       continue;
     }
-    TransportRow(ctx.caster, ctx.jitter, ctx.samples.position[id], ctx.samples.normal[id],
-                 ctx.epsilon, row, &traced);
+    if (ctx.params.transport == Transport::kVisibility) {
+      VisibilityRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
+                    ctx.samples.normal[id], ctx.epsilon, row, &traced);
+    } else {
+      TransportRow(ctx.caster, ctx.jitter, ctx.samples.position[id], ctx.samples.normal[id],
+                   ctx.epsilon, row, &traced);
+    }
     RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
     energy += SumOfSquares(row);
     ++stats.samples;

@@ -75,6 +75,10 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
                              {"dequantize", kDequantize},
                              {"stats", std::move(stats)}};
   if (ctx.layout.kind == LayoutKind::kUv) manifest["uv"] = UvManifest(ctx);
+  // DESIGN.md §1 "What a row holds": said only when the rows are not the
+  // diffuse T, so diffuse stores stay byte-identical to older ones.
+  if (p.transport != Transport::kDiffuse)
+    manifest["transport"] = std::string(ToString(p.transport));
   return manifest;
 }
 

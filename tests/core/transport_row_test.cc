@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <thread>
 #include <vector>
@@ -185,6 +186,43 @@ TEST(TransportRowTest, TexelsBelowTheHorizonAreZeroAndUntraced) {
   EXPECT_EQ(stats.texels_culled, below);
   EXPECT_LE(stats.rays_traced, (6ull * 16 * 16 - below) * 4);
   EXPECT_EQ(stats.rays_occluded, 0u);
+}
+
+// DESIGN.md §1 "What a row holds": a visibility row is V alone. Nothing
+// above the horizon occludes, and the floor that would block every downward
+// ray is never asked: the row is exactly 1 everywhere.
+TEST(VisibilityRowTest, UnoccludedIsOneEverywhereBelowTheHorizonIncluded) {
+  const RayCaster caster = BuildOrDie(SceneOf({Quad({0, 0, -1}, {0, 0, 1}, 100)}));
+  for (int res : {8, 16}) {
+    const Bake bake(res, 4);
+    std::vector<float> row(bake.cubemap.size(), -1.0f);
+    TransportStats stats;
+    VisibilityRow(caster, bake.cubemap, bake.pattern, {0, 0, 0}, {0, 0, 1}, caster.DefaultEpsilon(),
+                  row, &stats);
+    for (float v : row) ASSERT_EQ(v, 1.0f);
+    EXPECT_EQ(stats.rays_occluded, 0u);
+    EXPECT_EQ(stats.texels_culled, 3ull * res * res);
+  }
+}
+
+// With one direction per texel the diffuse entry is exactly the visibility
+// entry times Ω_m · max(0, n·ω_m)/π of that direction: the two transports
+// trace the same rays.
+TEST(VisibilityRowTest, TimesSolidAngleAndCosineIsTheDiffuseRow) {
+  const Vec3 x{0, 0, 0}, n = Normalize({0.1f, 0.2f, 1});
+  const RayCaster caster = BuildOrDie(SceneOf({Disk({0.2f, 0, 1}, {0, 0, -1}, 1.2f, 128)}));
+  const Bake bake(16, 1);
+  const std::vector<float> diffuse = bake.Row(caster, x, n);
+  std::vector<float> v(bake.cubemap.size());
+  VisibilityRow(caster, bake.cubemap, bake.pattern, x, n, caster.DefaultEpsilon(), v, nullptr);
+  int blocked = 0;
+  for (int m = 0; m < bake.cubemap.size(); ++m) {
+    ASSERT_TRUE(v[m] == 0 || v[m] == 1) << m;
+    const double c = std::max(0.0f, Dot(n, bake.pattern.Direction(m, 0)));
+    EXPECT_NEAR(diffuse[m], bake.pattern.solid_angle[m] * v[m] * c / std::numbers::pi, 1e-7) << m;
+    blocked += v[m] == 0;
+  }
+  EXPECT_GT(blocked, 100);
 }
 
 // A scene with real visibility edges for the determinism tests.

@@ -104,7 +104,8 @@ struct MiniBakeOptions {
   int supersample = 4;
   uint64_t seed = 1;
   WaveletFilter column_filter = WaveletFilter::kHaar;
-  double target_error = 0.01;  // ≤ 0: keep every nonzero coefficient
+  double target_error = 0.01;                 // ≤ 0: keep every nonzero coefficient
+  Transport transport = Transport::kDiffuse;  // kVisibility: rows of V (VisibilityRow)
 };
 
 struct MiniBake {
@@ -183,11 +184,14 @@ inline MiniBake RunMiniBake(const MiniBakeOptions& o) {
   for (int cell = 0; cell < cells; ++cell) {
     const int32_t id = b.samples.grid[cell];
     if (id < 0) continue;
-    TransportRow(
-        *caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
-        caster->DefaultEpsilon(),
-        std::span<float>(b.pixel_rows.data() + static_cast<size_t>(cell) * b.columns, b.columns),
-        nullptr);
+    const std::span<float> row(b.pixel_rows.data() + static_cast<size_t>(cell) * b.columns,
+                               b.columns);
+    if (o.transport == Transport::kVisibility)
+      VisibilityRow(*caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
+                    caster->DefaultEpsilon(), row, nullptr);
+    else
+      TransportRow(*caster, cube, *jitter, b.samples.position[id], b.samples.normal[id],
+                   caster->DefaultEpsilon(), row, nullptr);
   }
   b.wavelet_rows = b.pixel_rows;
   for (int cell = 0; cell < cells; ++cell) {
@@ -203,8 +207,8 @@ inline MiniBake RunMiniBake(const MiniBakeOptions& o) {
 // A bake shared by the tests of one binary (gtest runs them in turn), made
 // on first use: scenes with several sharp shadows are worth baking once.
 inline const MiniBake& SharedBake(const MiniBakeOptions& o) {
-  static std::map<std::tuple<std::string, int>, MiniBake> bakes;
-  const auto key = std::make_tuple(o.scene, o.light_res);
+  static std::map<std::tuple<std::string, int, Transport, double>, MiniBake> bakes;
+  const auto key = std::make_tuple(o.scene, o.light_res, o.transport, o.target_error);
   auto it = bakes.find(key);
   if (it == bakes.end()) it = bakes.emplace(key, RunMiniBake(o)).first;
   return it->second;

@@ -233,6 +233,19 @@ TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
   EXPECT_EQ(back->column_group, p.column_group);
   EXPECT_EQ(back->ray_epsilon, p.ray_epsilon);
   EXPECT_EQ(ToJson(BakeParams{})["bits"], "auto");
+  // The transport: absent for diffuse (stores stay as they were), spelled
+  // out and read back for visibility.
+  EXPECT_FALSE(ToJson(BakeParams{}).contains("transport"));
+  BakeParams v;
+  v.transport = Transport::kVisibility;
+  EXPECT_EQ(ToJson(v)["transport"], "visibility");
+  absl::StatusOr<BakeParams> vb = BakeParamsFromJson(ToJson(v));
+  ASSERT_TRUE(vb.ok()) << vb.status();
+  EXPECT_EQ(vb->transport, Transport::kVisibility);
+  EXPECT_EQ(BakeParamsFromJson(ToJson(BakeParams{}))->transport, Transport::kDiffuse);
+  nlohmann::json bad = ToJson(v);
+  bad["transport"] = "glossy";
+  EXPECT_THAT(BakeParamsFromJson(bad).status().message(), HasSubstr("transport"));
 }
 
 TEST(StoreReaderTest, SamplesRoundTrip) {

@@ -1,0 +1,32 @@
+#include "cli/glossy_flags.h"
+
+#include "cli/command_error.h"
+
+namespace wavebake::cli {
+
+void AddGlossyFlags(CLI::App& cmd, GlossyFlags& f) {
+  cmd.add_option("--brdf", f.brdf,
+                 "material (visibility stores; a diffuse store is lambert): lambert | phong:EXP "
+                 "| blinn:EXP | ggx:ROUGHNESS")
+      ->capture_default_str();
+  cmd.add_option("--brdf-terms", f.brdf_terms,
+                 "Haar coefficients kept per sample's BRDF slice (0: all)")
+      ->capture_default_str();
+  cmd.add_option("--view", f.view,
+                 "X,Y,Z eye position for glossy BRDFs on mesh layouts (camera layouts use the "
+                 "baked camera)");
+}
+
+GlossyOptions GlossyOf(const GlossyFlags& f, const char* command) {
+  GlossyOptions g;
+  g.brdf = f.brdf;
+  g.slices.terms = f.brdf_terms;
+  if (!f.view.empty()) {
+    absl::StatusOr<Vec3> eye = ParseView(f.view);
+    if (!eye.ok()) Fail(command, eye.status());
+    g.eye = *eye;
+  }
+  return g;
+}
+
+}  // namespace wavebake::cli

@@ -1,0 +1,42 @@
+#pragma once
+// Between Python objects and the project's types: protobuf messages as dicts
+// (enum values by name, int64 as int), BakeRequest fields from keyword
+// arguments, nlohmann::json as Python values, absl errors as exceptions.
+#include <google/protobuf/message.h>
+#include <pybind11/pybind11.h>
+
+#include <nlohmann/json.hpp>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "wavebake.pb.h"
+
+namespace wavebake::python {
+
+namespace py = pybind11;
+
+// Every field, set or not, so a dict has the same keys each time.
+py::dict MessageToDict(const google::protobuf::Message& message);
+
+// light_res=16, layout="camera:32x32", seed=7, ...: the BakeRequest fields by
+// name. An unknown name or a value of the wrong type raises ValueError /
+// TypeError naming the argument.
+void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields);
+
+py::object JsonToPython(const nlohmann::json& j);
+
+// Raises ValueError for INVALID_ARGUMENT (and OUT_OF_RANGE), KeyError for
+// NOT_FOUND, RuntimeError otherwise; the message is the status's, which
+// names the code and the bad input.
+[[noreturn]] void Raise(const absl::Status& status);
+
+template <typename T>
+T Unwrap(absl::StatusOr<T> value) {
+  if (!value.ok()) Raise(value.status());
+  return *std::move(value);
+}
+inline void Check(const absl::Status& status) {
+  if (!status.ok()) Raise(status);
+}
+
+}  // namespace wavebake::python
