@@ -8,18 +8,21 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "cli/bake_flags.h"
-#include "cli/bake_serve.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "cli/signal_watcher.h"
+#include "cli/web_flags.h"
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
+#include "web/bake_monitor.h"
 
 namespace wavebake::cli {
 namespace {
@@ -71,7 +74,8 @@ void Run(const BakeCommandFlags& f) {
   if (!params.ok()) Fail("bake", params.status());
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  BakeMonitor monitor(f.web, f.token_file, f.out);
+  web::BakeMonitor monitor(
+      StartMonitor("bake", f.web, TokenOrFail(f.token_file, "bake"), {}, {}, nullptr), f.out);
   ProgressBar display(f.quiet);
   driver::EmbeddedBakeOptions options{
       .workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted};
@@ -87,8 +91,10 @@ void Run(const BakeCommandFlags& f) {
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", f.out.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
-  std::fflush(stdout);
-  monitor.ServeUntil(interrupted);
+  if (!monitor) return;
+  std::fprintf(stderr, "bake: serving the finished bake at %s; Ctrl-C to stop\n",
+               monitor.server().url().c_str());
+  while (!interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
 }  // namespace

@@ -1,29 +1,21 @@
-<<<<<<< HEAD
-// `wavebake coordinator --listen ADDR --data DIR` (DESIGN.md §4, §5): the
-// job service and the work queue, until SIGINT or SIGTERM.
-#include <spdlog/spdlog.h>
-
-=======
 // `wavebake coordinator --listen ADDR --data DIR [--http ADDR]` (DESIGN.md
 // §4, §5): the job service and the work queue, and with --http the web
 // monitor and /metrics, until SIGINT or SIGTERM.
->>>>>>> main
+#include <spdlog/spdlog.h>
+
 #include <future>
 #include <memory>
 #include <mutex>
 #include <span>
 
 #include "absl/strings/str_cat.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/signal_watcher.h"
-<<<<<<< HEAD
-=======
 #include "cli/web_flags.h"
->>>>>>> main
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
-#include "driver/client.h"
 #include "storage/atomic_file.h"
 #include "web/coordinator_source.h"
 
@@ -46,11 +38,7 @@ void Run(CoordinatorFlags f) {
   CoordinatorOptions& options = f.options;
   options.max_upload_bytes = f.max_upload_mb << 20;
   if (options.store_root.empty()) options.store_root = options.data_dir / "store";
-  if (!f.token_file.empty()) {
-    absl::StatusOr<std::string> token = driver::ReadTokenFile(f.token_file);
-    if (!token.ok()) Fail("coordinator", token.status());
-    options.token = *token;
-  }
+  options.token = TokenOrFail(f.token_file, "coordinator");
   const PlannerOptions planner{
       .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =

@@ -1,5 +1,6 @@
 #include "cli/web_flags.h"
 
+#include <cstdio>
 #include <span>
 
 #include "absl/strings/str_cat.h"
@@ -50,6 +51,7 @@ std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, con
         !s.ok())
       Fail(command, absl::StrCat(f.flag, "-address-file: ", s.message()));
   }
+  std::fprintf(stderr, "%s: web monitor at %s\n", command.c_str(), (*server)->url().c_str());
   return *std::move(server);
 }
 
