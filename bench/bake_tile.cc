@@ -1,8 +1,10 @@
 // One BAKE_TILE task (worker/bake_tile.h) on builtin:sphere-plane — camera
 // layout 64×64, N=32, K=4, the default 32×32 tile and 256-column groups —
-// beside, in the same run, the pure tracing cost of the same tile: TransportRow
-// alone for the same samples (no row transform, no transpose, no store), and
-// tracing plus the row transform. The tile is the one with the most samples.
+// beside, in the same run, the pure tracing cost of the same tile: the row
+// tracer alone for the same samples (no row transform, no transpose, no
+// store), and tracing plus the row transform. The tile is the one with the
+// most samples. /refine:1 traces by visibility refinement (the default),
+// /refine:0 by brute force.
 //
 //   build/bench_bake_tile --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 //
@@ -26,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "core/refined_row.h"
 #include "core/transport_row.h"
 #include "worker/bake_context.h"
 #include "worker/row_transform.h"
@@ -44,17 +47,20 @@ struct Fixture {
   std::filesystem::path store;
   int tile = 0;
   std::vector<int32_t> samples;  // ids of the tile's samples, in cell order
+  // Per tile, set by BM_TraceOnly and read by BM_BakeTile.
+  double trace_wall_seconds = 0, trace_cpu_seconds = 0;
 
-  Fixture() {
+  explicit Fixture(bool refine) {
     BakeParams p;
     p.light_res = 32;
     p.supersample = 4;
     p.layout = "camera";
+    p.refine = refine;
     absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext("builtin:sphere-plane", p);
     if (!made.ok()) Die(made.status().ToString());
     ctx = *std::move(made);
     store = std::filesystem::temp_directory_path() /
-            ("wavebake-bench-bake-tile-" + std::to_string(::getpid()));
+            ("wavebake-bench-bake-tile-" + std::to_string(::getpid()) + (refine ? "-r" : "-b"));
     if (absl::Status s = CreateStaging(ctx->plan, store); !s.ok()) Die(s.ToString());
     size_t most = 0;
     for (int t = 0; t < ctx->plan.tiles(); ++t) {
@@ -80,9 +86,9 @@ struct Fixture {
   }
 };
 
-Fixture& GetFixture() {
-  static Fixture fixture;  // built once, shared by all benchmarks
-  return fixture;
+Fixture& GetFixture(bool refine) {
+  static Fixture brute(false), refined(true);  // built once, shared by all benchmarks
+  return refine ? refined : brute;
 }
 
 // Wall-clock and this thread's CPU seconds since construction.
@@ -100,9 +106,6 @@ struct Stopwatch {
   double CpuSeconds() const { return CpuNow() - cpu; }
 };
 
-// Per tile, set by BM_TraceOnly and read by BM_BakeTile.
-double trace_wall_seconds = 0, trace_cpu_seconds = 0;
-
 void SetCounters(benchmark::State& state, uint64_t rays, size_t samples) {
   state.counters["rays/s"] =
       benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
@@ -111,16 +114,23 @@ void SetCounters(benchmark::State& state, uint64_t rays, size_t samples) {
 
 // Tracing (and, with row_transform, the row transform) of the tile's rows.
 void TraceTile(benchmark::State& state, bool row_transform) {
-  const Fixture& f = GetFixture();
+  Fixture& f = GetFixture(state.range(0) != 0);
   const BakeContext& ctx = *f.ctx;
   std::vector<float> row(ctx.plan.columns);
   TransportStats stats;
+  RefineScratch scratch;
   double wall = 0, cpu = 0;
   for (auto _ : state) {
     const Stopwatch watch;
     for (int32_t id : f.samples) {
-      TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
-                   ctx.samples.normal[id], ctx.epsilon, row, &stats);
+      if (ctx.refine) {
+        RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine,
+                            ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, row,
+                            &stats, scratch);
+      } else {
+        TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
+                     ctx.samples.normal[id], ctx.epsilon, row, &stats);
+      }
       if (row_transform) RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
       benchmark::DoNotOptimize(row.data());
     }
@@ -128,20 +138,30 @@ void TraceTile(benchmark::State& state, bool row_transform) {
     cpu += watch.CpuSeconds();
   }
   if (!row_transform) {
-    trace_wall_seconds = wall / state.iterations();
-    trace_cpu_seconds = cpu / state.iterations();
+    f.trace_wall_seconds = wall / state.iterations();
+    f.trace_cpu_seconds = cpu / state.iterations();
   }
   SetCounters(state, stats.rays_traced, f.samples.size());
 }
 
 void BM_TraceOnly(benchmark::State& state) { TraceTile(state, false); }
-BENCHMARK(BM_TraceOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TraceOnly)
+    ->ArgName("refine")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_TraceAndRowTransform(benchmark::State& state) { TraceTile(state, true); }
-BENCHMARK(BM_TraceAndRowTransform)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TraceAndRowTransform)
+    ->ArgName("refine")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_BakeTile(benchmark::State& state) {
-  const Fixture& f = GetFixture();
+  const Fixture& f = GetFixture(state.range(0) != 0);
   TileStats stats;
   double wall = 0, cpu = 0;
   for (auto _ : state) {
@@ -156,12 +176,17 @@ void BM_BakeTile(benchmark::State& state) {
   SetCounters(state, stats.rays_traced, f.samples.size());
   state.counters["MB_written"] =
       static_cast<double>(stats.bytes_written) / state.iterations() / 1e6;
-  if (trace_wall_seconds > 0 && trace_cpu_seconds > 0) {
-    state.counters["x_trace"] = wall / state.iterations() / trace_wall_seconds;
-    state.counters["x_trace_cpu"] = cpu / state.iterations() / trace_cpu_seconds;
+  if (f.trace_wall_seconds > 0 && f.trace_cpu_seconds > 0) {
+    state.counters["x_trace"] = wall / state.iterations() / f.trace_wall_seconds;
+    state.counters["x_trace_cpu"] = cpu / state.iterations() / f.trace_cpu_seconds;
   }
 }
-BENCHMARK(BM_BakeTile)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BakeTile)
+    ->ArgName("refine")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace wavebake

@@ -37,10 +37,8 @@ T Value(absl::StatusOr<T> v) {
   return *std::move(v);
 }
 
-// Runs task(i) for every i in [0, count) on `threads` threads and dies on
-// the first failure. Chart 2 times the trace and the column stage apart and
-// recompresses one trace many times, so it drives the task functions itself
-// rather than through a job; this loop is only for that.
+// task(0..count-1) on `threads` threads; the first failure stops new tasks
+// and dies (bench/charts_uv.cc's in-place staging and coding).
 inline void RunTasksOrDie(int count, int threads, const std::function<absl::Status(int)>& task) {
   std::atomic<int> next{0};
   std::mutex mu;

@@ -142,37 +142,63 @@ def depth_by_level(rows, out):
     fig.savefig(out, dpi=90)
 
 
+VIS_STYLES = {"brute": ("tab:red", "--", "s", "brute force"),
+              "refined": ("tab:blue", "-", "o", "refined")}
+
+
+def by_visibility(rows):
+    """Chart 2's rows split by visibility method, each sorted by N (older
+    CSVs without the column are all brute force)."""
+    out = {}
+    for r in rows:
+        out.setdefault(r.get("visibility", "brute"), []).append(r)
+    for v in out.values():
+        v.sort(key=lambda r: int(r["light_res"]))
+    return out
+
+
 def bake_time(rows, out):
-    """Chart 2: trace and column-stage time, size and matrix error vs N, and
-    the relighting error against the independent reference (when measured)."""
+    """Chart 2: brute force against visibility refinement vs N — trace and
+    column-stage time, rays, store size — and the relighting error against
+    the independent reference (when measured)."""
+    series = by_visibility(rows)
     with_ref = "dense_ref_rel_rms" in rows[0]
-    fig, axes = plt.subplots(1, 3 if with_ref else 2, figsize=(18 if with_ref else 11, 4.5))
-    ax, bx = axes[0], axes[1]
-    n = [int(r["light_res"]) for r in rows]
-    ax.plot(n, [float(r["bake_seconds"]) for r in rows], "-o", label="trace (BAKE_TILE)")
-    ax.plot(n, [float(r["column_seconds"]) for r in rows], "-o",
-            label="column stage + FINALIZE")
-    ax.set_xscale("log", base=2)
-    ax.set_yscale("log")
-    ax.set_xlabel("light resolution N (M = 6N^2 columns)")
+    fig, axes = plt.subplots(1, 4 if with_ref else 3, figsize=(24 if with_ref else 18, 4.8))
+    ax, rx, bx = axes[0], axes[1], axes[2]
+    for vis, rs in series.items():
+        color, ls, mk, label = VIS_STYLES.get(vis, ("gray", "-", "x", vis))
+        n = [int(r["light_res"]) for r in rs]
+        ax.plot(n, [float(r["bake_seconds"]) for r in rs], ls, color=color, marker=mk,
+                label=f"trace, {label}")
+        ax.plot(n, [float(r["column_seconds"]) for r in rs], ":", color=color, marker=mk,
+                label=f"column stage + FINALIZE, {label}")
+        rx.plot(n, [int(r["rays"]) / 1e6 for r in rs], ls, color=color, marker=mk, label=label)
+        bx.plot(n, [int(r["transport_bytes"]) / 1e3 for r in rs], ls, color=color, marker=mk,
+                label=f"{label} (matrix err "
+                f"{min(float(r['matrix_rel_rms']) for r in rs):.4f}–"
+                f"{max(float(r['matrix_rel_rms']) for r in rs):.4f})")
+    if "brute" in series and "refined" in series:
+        brute = {int(r["light_res"]): int(r["rays"]) for r in series["brute"]}
+        for r in series["refined"]:
+            k = int(r["light_res"])
+            if k in brute and brute[k] > 0:
+                rx.annotate(f"{int(r['rays']) / brute[k]:.2f}x", (k, int(r["rays"]) / 1e6),
+                            textcoords="offset points", xytext=(4, -12), fontsize=8,
+                            color="tab:blue")
     ax.set_ylabel(f"seconds ({rows[0]['threads']} threads)")
     ax.set_title(f"{rows[0]['scene']}: bake time vs N")
-    bx.plot(n, [int(r["transport_bytes"]) / 1e3 for r in rows], "-o", color="tab:purple",
-            label="transport kB")
-    bx.set_xscale("log", base=2)
-    bx.set_yscale("log")
-    bx.set_xlabel("light resolution N")
+    rx.set_ylabel("rays traced (millions)")
+    rx.set_title("rays: refined / brute force")
     bx.set_ylabel("transport bytes on disk (kB)")
-    # The matrix error sits at the target for every N: printed, not plotted.
-    for x, r in zip(n, rows):
-        bx.annotate(f"err {float(r['matrix_rel_rms']):.4f}", (x, int(r["transport_bytes"]) / 1e3),
-                    textcoords="offset points", xytext=(6, -12), fontsize=8)
-    bx.set_title("store size vs N (adaptive, target 0.01; err = matrix rel. RMS)")
-    for a in (ax, bx):
+    bx.set_title("store size vs N (adaptive, target 0.01)")
+    for a in (ax, rx, bx):
+        a.set_xscale("log", base=2)
+        a.set_yscale("log")
+        a.set_xlabel("light resolution N (M = 6N^2 columns)")
         a.grid(True, which="both", alpha=0.3)
-        a.legend(loc="upper left")
+        a.legend(fontsize=8, loc="upper left")
     if with_ref:
-        reference_error(rows, n, axes[2])
+        reference_error(series, axes[3])
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
@@ -257,23 +283,29 @@ def rotation_error(rows, out):
     fig.savefig(out, dpi=90)
 
 
-def reference_error(rows, n, ax):
-    """Chart 2, third panel: rel. RMS of the relit samples vs the reference."""
-    ax.plot(n, [float(r["dense_ref_rel_rms"]) for r in rows], "-o", color="tab:blue",
-            label="dense T (discretization)")
-    ax.plot(n, [float(r["store_ref_rel_rms"]) for r in rows], "-s", color="tab:green",
-            label="store, all 6N^2 lights")
-    ax.plot(n, [float(r["store_ref_rel_rms_256"]) for r in rows], "--^", color="tab:olive",
-            label="store, 256 lights")
-    ax.plot(n, [float(r["reference_rel_se"]) for r in rows], ":", color="grey",
+def reference_error(series, ax):
+    """Chart 2, last panel: rel. RMS of the relit samples vs the reference,
+    brute force and refined: the trace's own dense T and its store."""
+    any_rows = next(iter(series.values()))
+    for vis, rs in series.items():
+        color, ls, mk, label = VIS_STYLES.get(vis, ("gray", "-", "x", vis))
+        n = [int(r["light_res"]) for r in rs]
+        ax.plot(n, [float(r["dense_ref_rel_rms"]) for r in rs], ls, color=color, marker=mk,
+                alpha=0.5, label=f"dense T, {label}")
+        ax.plot(n, [float(r["store_ref_rel_rms"]) for r in rs], ls, color=color, marker=mk,
+                label=f"store, all 6N^2 lights, {label}")
+        ax.plot(n, [float(r["store_ref_rel_rms_256"]) for r in rs], ":", color=color, marker="^",
+                label=f"store, 256 lights, {label}")
+    n = [int(r["light_res"]) for r in any_rows]
+    ax.plot(n, [float(r["reference_rel_se"]) for r in any_rows], ":", color="grey",
             label="reference's own rel. SE")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("light resolution N")
     ax.set_ylabel("relative RMS error vs independent reference")
-    ax.set_title(f"relighting error under {rows[0]['env']} (target 0.01)")
+    ax.set_title(f"relighting error under {any_rows[0]['env']} (target 0.01)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7)
 
 
 LAYOUT_COLORS = {("hilbert", "64"): "tab:gray", ("uv", "128"): "tab:blue",

@@ -3,17 +3,18 @@
 //
 //   build/bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]
 //
-// Each (scene, layout, light resolution) is traced once (BAKE_TILE × tiles
-// into a staging store); every compression setting then reruns only
-// TRANSFORM_COLUMNS × groups and FINALIZE on that staging (FINALIZE keeps
-// it), so a sweep costs one trace plus one column stage per point. The x
+// Each (scene, layout, light resolution) is traced once (worker/recode.h
+// TraceStaging); every compression setting then reruns only the column
+// stage on that trace (worker/recode.h Recode), so a sweep costs one trace
+// plus one column stage per point. The x
 // axis of charts 1, 5 and 6 is the store's own stats.matrix_rel_rms =
 // sqrt(Σ dropped + quantization energy / Σ energy) (worker/store_stats.h):
 // the relative Frobenius error of the whole matrix, a summary that depends on
 // no lighting. Chart 1 adds the relighting error each store has under both
 // probes of ../shared/data against the dense T (the error users see), and
-// chart 2 the relighting error under a probe against the independent
-// Monte-Carlo reference (runtime/reference.h). A plain main(): the file is
+// chart 2 brute force against visibility refinement (rays, time) and the
+// relighting error under a probe against the independent Monte-Carlo
+// reference (runtime/reference.h). A plain main(): the file is
 // linked with Google Benchmark like every bench/*.cc but uses none of it.
 #include <unistd.h>
 
@@ -33,7 +34,7 @@
 #include "core/bake_params_io.h"
 #include "core/cubemap.h"
 #include "driver/reference_measure.h"
-#include "runtime/dense_trace.h"
+#include "driver/staged_relight.h"
 #include "runtime/env_map.h"
 #include "runtime/env_resample.h"
 #include "runtime/eval.h"
@@ -41,10 +42,7 @@
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "worker/recode.h"
 
 namespace wavebake {
 namespace {
@@ -52,7 +50,6 @@ namespace {
 using charts::Check;
 using charts::Csv;
 using charts::Die;
-using charts::RunTasksOrDie;
 using charts::SecondsSince;
 using charts::Value;
 
@@ -77,67 +74,67 @@ struct RunConfig {
   int threads = 2;
 };
 
-// One traced (scene, layout, N): a staging store ready for column stages.
+// One traced (scene, layout, N, refinement): a trace ready for column stages.
 struct Staged {
   SceneCase scene;
   BakeParams base;
-  std::filesystem::path store;
+  std::unique_ptr<BakeContext> ctx;  // the trace's
+  std::filesystem::path store;       // the trace; the latest Compress's store beside it
   double bake_seconds = 0;
   uint64_t rays = 0;
+  std::filesystem::path coded() const { return store.string() + "-coded.wbk"; }
 };
 
-Staged BakeStaging(const SceneCase& scene, int light_res, const RunConfig& run) {
+Staged BakeStaging(const SceneCase& scene, int light_res, const RunConfig& run,
+                   bool refine = true) {
   Staged s;
   s.scene = scene;
   s.base.light_res = light_res;
   s.base.layout = scene.layout;
-  s.store = run.work_dir / (scene.name + "-N" + std::to_string(light_res) + ".wbk");
+  s.base.refine = refine;
+  s.store = run.work_dir / (scene.name + "-N" + std::to_string(light_res) +
+                            (refine ? "-refined" : "-brute") + ".trace");
   std::filesystem::remove_all(s.store);
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(scene.spec, s.base));
-  Check(CreateStaging(ctx->plan, s.store));
-  std::vector<TileStats> stats(ctx->plan.tiles());
-  RunTasksOrDie(ctx->plan.tiles(), run.threads,
-                [&](int t) { return BakeTile(*ctx, s.store, t, &stats[t]); });
+  s.ctx = Value(MakeBakeContext(scene.spec, s.base));
+  s.rays = Value(TraceStaging(*s.ctx, s.store, {.threads = run.threads}));
   s.bake_seconds = SecondsSince(start);
-  for (const TileStats& t : stats) s.rays += t.rays_traced;
-  std::fprintf(stderr, "traced %s N=%d: %.1f s, %.1f Mrays\n", scene.name.c_str(), light_res,
-               s.bake_seconds, s.rays / 1e6);
+  std::fprintf(stderr, "traced %s N=%d (%s): %.1f s, %.1f Mrays\n", scene.name.c_str(), light_res,
+               refine ? "refined" : "brute force", s.bake_seconds, s.rays / 1e6);
   return s;
 }
 
-// What one compression setting produced, from the store's .zattrs.
+// What one compression setting produced, from the store's .zattrs; the store
+// is at staged.coded() until the next Compress.
 struct Compressed {
   nlohmann::json stats;  // attrs["stats"]
   int bits = 0;
   double seconds = 0;  // TRANSFORM_COLUMNS × groups + FINALIZE
 };
 
-// FINALIZE refuses to overwrite an array of another shape, so the previous
-// setting's output goes first; staging stays.
-void DropFinalArrays(const std::filesystem::path& store) {
-  for (const char* name : {store::kTransport, store::kSamples, ".zattrs"})
-    std::filesystem::remove_all(store / name);
-}
-
 Compressed Compress(const Staged& staged, const BakeParams& params, const RunConfig& run) {
-  DropFinalArrays(staged.store);
+  std::filesystem::remove_all(staged.coded());
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, params));
-  RunTasksOrDie(ctx->plan.groups, run.threads,
-                [&](int g) { return TransformColumns(*ctx, staged.store, g, nullptr); });
-  Check(Finalize(*ctx, staged.store, {.keep_staging = true}));
+  BakeParams p = params;
+  p.refine = staged.base.refine;
+  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, p));
+  Check(Recode(*ctx, staged.store, staged.coded(), {.threads = run.threads}));
   Compressed c;
   c.seconds = SecondsSince(start);
-  const StoreInfo info = Value(ReadStoreInfo(staged.store));
+  const StoreInfo info = Value(ReadStoreInfo(staged.coded()));
   c.stats = info.attrs.at("stats");
   c.bits = info.bits;
   return c;
 }
 
+void Drop(const Staged& staged) {
+  std::filesystem::remove_all(staged.store);
+  std::filesystem::remove_all(staged.coded());
+}
+
 // Chart 1 "under both probes": each store relit with all its wavelet lights
-// under each probe of ../shared/data, against the dense T of the same N
-// relit under that probe (runtime/dense_trace.h, the same jitter pattern):
+// under each probe of ../shared/data, against the dense T of the same trace
+// relit under that probe (driver/staged_relight.h):
 // the relighting error compression alone adds for that lighting, which the
 // matrix error bounds for all lightings at once.
 struct ProbeCase {
@@ -147,15 +144,13 @@ struct ProbeCase {
 };
 
 std::vector<ProbeCase> DenseUnderProbes(const Staged& staged) {
-  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(staged.scene.spec, staged.base));
-  const DenseTraceOptions options{staged.base.light_res, ctx->params.supersample, ctx->params.seed,
-                                  ctx->epsilon};
   std::vector<ProbeCase> probes;
   for (const char* name : {"grace", "pisa"}) {
     ProbeCase p{
         name, Value(LoadEnvMap(std::string(WB_SHARED_DATA) + "/probes/" + name + ".hdr")), {}};
     const std::vector<float> cube = ResampleToCubemap(p.env, Cubemap(staged.base.light_res));
-    p.dense = Value(TraceDenseRelight(ctx->caster, ctx->samples, cube, options)).rgb;
+    // The trace's own dense T (refined or brute force, as the store's).
+    p.dense = Value(driver::RelightStaging(*staged.ctx, staged.store, cube));
     probes.push_back(std::move(p));
   }
   return probes;
@@ -163,7 +158,7 @@ std::vector<ProbeCase> DenseUnderProbes(const Staged& staged) {
 
 // The store's relighting error under each probe, in `probes` order.
 std::vector<double> ProbeErrors(const Staged& staged, const std::vector<ProbeCase>& probes) {
-  OpenedStore store = Value(OpenStore(staged.store));
+  OpenedStore store = Value(OpenStore(staged.coded()));
   const int all_lights = 6 * staged.base.light_res * staged.base.light_res;
   std::vector<double> errors;
   for (const ProbeCase& p : probes)
@@ -244,15 +239,16 @@ void SweepBits(const Staged& staged, const RunConfig& run, Csv& csv) {
   }
 }
 
-// Chart 2: trace time (and column stage, size, matrix error) against N,
-// and the relighting error under `env` against the independent reference
-// (driver/reference_measure.h, traced once): the dense T at N (discretization
-// alone) and the store with all 6N² wavelet lights and with the runtime's
-// default 256 — what `eval --reference` reports, and what `bake --auto`
-// chooses N by.
+// Chart 2: brute force against visibility refinement per N — rays, trace
+// time, column stage, size, matrix error — and the relighting error under
+// `env` against the independent reference (driver/reference_measure.h,
+// traced once): the trace's own dense T at N (discretization alone, relit
+// from the trace: driver/staged_relight.h) and the store with all 6N²
+// wavelet lights and with the runtime's default 256 — what `eval
+// --reference` reports, and what `bake --auto` chooses N by.
 void SweepLightRes(const SceneCase& scene, const std::string& env, const RunConfig& run, Csv& csv) {
   const std::vector<int> resolutions =
-      run.quick ? std::vector<int>{8, 16} : std::vector<int>{8, 16, 32, 64};
+      run.quick ? std::vector<int>{8, 16} : std::vector<int>{8, 16, 32, 64, 128};
   BakeParams base;
   base.layout = scene.layout;
   const auto start = std::chrono::steady_clock::now();
@@ -261,20 +257,23 @@ void SweepLightRes(const SceneCase& scene, const std::string& env, const RunConf
   std::fprintf(stderr, "reference %s: rel SE %.4f, %.1f s\n", scene.name.c_str(),
                measure->reference().rel_se, SecondsSince(start));
   for (int n : resolutions) {
-    const Staged staged = BakeStaging(scene, n, run);
-    BakeParams p = staged.base;  // adaptive, haar, target 0.01, bits auto
-    const Compressed c = Compress(staged, p, run);
-    const auto dense_start = std::chrono::steady_clock::now();
-    const double dense = Value(measure->DenseError(n));
-    const double dense_seconds = SecondsSince(dense_start);
-    const int terms[] = {6 * n * n, 256};
-    const std::vector<double> store = Value(measure->StoreErrors(staged.store, terms));
-    csv.Row(scene.name, n, staged.bake_seconds, staged.rays, c.seconds,
-            c.stats.at("nnz").get<int64_t>(), c.stats.at("bytes").at("transport").get<uint64_t>(),
-            c.stats.at("matrix_rel_rms").get<double>(), c.bits, run.threads,
-            std::filesystem::path(env).filename().string(), measure->reference().rel_se, dense,
-            store[0], store[1], dense_seconds);
-    std::filesystem::remove_all(staged.store);
+    for (bool refine : {false, true}) {
+      const Staged staged = BakeStaging(scene, n, run, refine);
+      BakeParams p = staged.base;  // adaptive, haar, target 0.01, bits auto
+      const Compressed c = Compress(staged, p, run);
+      const auto dense_start = std::chrono::steady_clock::now();
+      const double dense = Value(measure->StagingError(*staged.ctx, staged.store));
+      const double dense_seconds = SecondsSince(dense_start);
+      const int terms[] = {6 * n * n, 256};
+      const std::vector<double> store = Value(measure->StoreErrors(staged.coded(), terms));
+      csv.Row(scene.name, refine ? "refined" : "brute", n, staged.bake_seconds, staged.rays,
+              c.seconds, c.stats.at("nnz").get<int64_t>(),
+              c.stats.at("bytes").at("transport").get<uint64_t>(),
+              c.stats.at("matrix_rel_rms").get<double>(), c.bits, run.threads,
+              std::filesystem::path(env).filename().string(), measure->reference().rel_se, dense,
+              store[0], store[1], dense_seconds);
+      Drop(staged);
+    }
   }
 }
 
@@ -290,7 +289,7 @@ void Run(const RunConfig& run) {
   Csv bits_csv(run.out_dir / "bits_error.csv",
                "scene,mode,target,bits,matrix_rel_rms,transport_bytes,nnz");
   Csv res_csv(run.out_dir / "bake_time.csv",
-              "scene,light_res,bake_seconds,rays,column_seconds,nnz,transport_bytes,"
+              "scene,visibility,light_res,bake_seconds,rays,column_seconds,nnz,transport_bytes,"
               "matrix_rel_rms,bits,threads,env,reference_rel_se,dense_ref_rel_rms,"
               "store_ref_rel_rms,store_ref_rel_rms_256,dense_seconds");
   const int light_res = run.quick ? 8 : 32;
@@ -298,7 +297,7 @@ void Run(const RunConfig& run) {
     const Staged staged = BakeStaging(scene, light_res, run);
     SweepSizeAndDepth(staged, run, size_csv, depth_csv);
     if (scene.name == "cubes-wall") SweepBits(staged, run, bits_csv);
-    std::filesystem::remove_all(staged.store);
+    Drop(staged);
   }
   // The bunny under grace.hdr: a mesh layout under a probe with small,
   // very bright sources, where N matters (docs/RESULTS.md, chart 2).

@@ -1,13 +1,22 @@
 // The column stage (TRANSFORM_COLUMNS × groups, then FINALIZE) on a real
-// job — builtin:sphere-plane, camera 64×64, N=16 (M = 1536), K=4, 32×32 tiles
-// and 256-column groups — beside, in the same run:
+// job traced by brute force, K=4, 32×32 tiles and 256-column groups —
+// --case=sphere-plane (default: camera 64×64, N=16, M = 1536), bunny
+// (hilbert 64×64, N=32) or cubes-wall (camera 256×256, N=64) — beside, in
+// the same run:
 //   * the I/O floor: reading the same staging chunks (file read + zstd
 //     decompression + checksum) and scattering them into column images
 //     (memcpy), with no transform;
-//   * the bake of the same job (BAKE_TILE × tiles), for the ratio
-//     column stage / bake (target ≤ 0.25).
+//   * the brute-force trace of the same job (BAKE_TILE × tiles, one thread),
+//     for the ratio column stage / trace (target ≤ 0.25 on bunny and
+//     cubes-wall).
 //
-//   build/bench_column_stage --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+//   build/bench_column_stage [--case=bunny] --benchmark_repetitions=3
+//                            --benchmark_report_aggregates_only=true
+//
+// BM_ColumnStage/threads:T is the whole column stage as a rerun on the kept
+// trace (worker/recode.h) with T TRANSFORM_COLUMNS tasks at a time:
+// x_trace_cpu = its CPU time (all threads) / the trace's, x_trace = its wall
+// time / (the one-thread trace's wall time / T), the trace divided evenly.
 //
 // All single-threaded. Counters: columns/s, staging MB/s (float32 bytes read;
 // rates per CPU second, Google Benchmark's default), x_io = wall time over the
@@ -18,6 +27,7 @@
 // filter (DESIGN.md §3), the bits --bits auto chose and the achieved
 // per-column error (mean, max of sqrt(dropped + quantization)/sqrt(E_ref)).
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -35,12 +45,12 @@
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
+#include "worker/recode.h"
 #include "worker/staging.h"
 #include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
-namespace {
 
 [[noreturn]] void Die(const std::string& what) {
   std::fprintf(stderr, "bench_column_stage: %s\n", what.c_str());
@@ -57,13 +67,33 @@ void Check(const absl::Status& s) {
   if (!s.ok()) Die(s.ToString());
 }
 
+double ProcessCpuSeconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec + u.ru_stime.tv_sec +
+         1e-6 * u.ru_stime.tv_usec;
+}
+
+struct Case {
+  std::string name, scene, layout;
+  int light_res;
+};
+
+const Case kCases[] = {
+    {"sphere-plane", "builtin:sphere-plane", "camera:64x64", 16},
+    {"bunny", std::string(WB_SHARED_DATA) + "/models/bunny.obj", "hilbert:64x64", 32},
+    {"cubes-wall", "builtin:cubes-wall", "camera:256x256", 64},
+};
+Case g_case = kCases[0];
+
 std::unique_ptr<BakeContext> MakeContext(ColumnMode mode) {
   BakeParams p;
-  p.light_res = 16;
+  p.light_res = g_case.light_res;
   p.supersample = 4;
-  p.layout = "camera:64x64";
+  p.layout = g_case.layout;
   p.column_mode = mode;
-  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext("builtin:sphere-plane", p);
+  p.refine = false;  // the ratio's baseline is brute force's trace
+  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(g_case.scene, p);
   if (!made.ok()) Die(made.status().ToString());
   return *std::move(made);
 }
@@ -76,7 +106,7 @@ struct Fixture {
   double io_seconds = 0, io_cpu_seconds = 0;      // the I/O floor of all groups (BM_StagingIo)
 
   Fixture() {
-    Check(CreateStaging(ctx->plan, store));
+    Check(CreateStaging(ctx->plan, store, TraceRecord(*ctx)));
     const auto start = std::chrono::steady_clock::now();
     const double cpu = ThreadCpuSeconds();
     for (int t = 0; t < ctx->plan.tiles(); ++t) Check(BakeTile(*ctx, store, t, nullptr));
@@ -179,6 +209,37 @@ BENCHMARK(BM_TransformColumns)
     ->Arg(int(ColumnMode::kAdaptive))
     ->Unit(benchmark::kMillisecond);
 
+// The whole column stage, as a rerun on the kept trace: what a bake spends
+// after its trace.
+void BM_ColumnStage(benchmark::State& state) {
+  Fixture& f = GetFixture();
+  const int threads = state.range(0);
+  const auto out = f.store.string() + "-recoded";
+  double seconds = 0, cpu = 0;
+  for (auto _ : state) {
+    std::filesystem::remove_all(out);
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu_start = ProcessCpuSeconds();
+    Check(Recode(*f.ctx, f.store, out, {.threads = threads}));
+    cpu += ProcessCpuSeconds() - cpu_start;
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  std::filesystem::remove_all(out);
+  seconds /= state.iterations();
+  cpu /= state.iterations();
+  state.counters["x_trace"] = seconds / (f.bake_seconds / threads);
+  state.counters["x_trace_cpu"] = cpu / f.bake_cpu_seconds;
+  state.counters["cpu_s"] = cpu;
+  state.counters["trace_cpu_s"] = f.bake_cpu_seconds;
+  state.SetLabel(g_case.name);
+}
+BENCHMARK(BM_ColumnStage)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // FINALIZE (staging kept so it can repeat), after an adaptive column pass.
 void BM_Finalize(benchmark::State& state) {
   Fixture& f = GetFixture();
@@ -213,7 +274,26 @@ void BM_Finalize(benchmark::State& state) {
 }
 BENCHMARK(BM_Finalize)->Unit(benchmark::kMillisecond);
 
-}  // namespace
 }  // namespace wavebake
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // --case=NAME, ours; the rest is Google Benchmark's.
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--case=", 0) != 0) {
+      rest.push_back(argv[i]);
+      continue;
+    }
+    bool found = false;
+    for (const wavebake::Case& c : wavebake::kCases) {
+      if (arg.substr(7) == c.name) wavebake::g_case = c, found = true;
+    }
+    if (!found) wavebake::Die("--case: sphere-plane, bunny or cubes-wall");
+  }
+  int n = static_cast<int>(rest.size());
+  benchmark::Initialize(&n, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -67,6 +67,12 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
                  "relighting by the triple product; needs --row-filter haar)")
       ->capture_default_str();
   cmd.add_option("--seed", p.seed, "job seed (jitter and dither)")->capture_default_str();
+  cmd.add_option("--refine", f.refine,
+                 "on: trace only where visibility changes (coarse probes, refined along "
+                 "silhouettes; fully visible texels get their exact integral; cube light domain "
+                 "only); off: brute force, K rays in every texel")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd.add_flag("--keep-staging", p.keep_staging,
                "leave the staging arrays (row-transformed T, transposed) in the store");
   cmd.add_option("--tile-size", p.tile_size,
@@ -91,6 +97,7 @@ absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
                          Set(ParseTransport(f.transport), p.transport),
                          Set(ParseLightDomain(f.light_domain), p.light_domain)})
     if (!s.ok()) return s;
+  p.refine = f.refine == "on";
   if (f.bits != "auto") {
     const char* end = f.bits.data() + f.bits.size();
     auto [ptr, ec] = std::from_chars(f.bits.data(), end, p.bits);

@@ -14,7 +14,7 @@ struct BakeFlags {
   BakeParams params;  // the numeric flags, and the defaults of the named ones
   std::string row_filter = "haar", column_mode = "adaptive", column_filter = "haar",
               error_scope = "matrix", bits = "auto", level_scaling = "uniform",
-              transport = "diffuse", light_domain = "cube";
+              transport = "diffuse", light_domain = "cube", refine = "on";
   bool allow_uv_overlap = false;  // uv layouts: the layout's ",allow-overlap"
 };
 

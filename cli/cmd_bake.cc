@@ -34,7 +34,7 @@ struct BakeCommandFlags {
   bool quiet = false;
   BakeFlags bake;
   bool auto_mode = false;
-  std::string env = driver::kDefaultAutoEnv;
+  std::vector<std::string> envs;  // --auto: empty means driver::kDefaultAutoEnv
   int max_light_res = 128;
   WebFlags web;
   std::string token_file;
@@ -44,7 +44,7 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
              const std::atomic<bool>& interrupted) {
   ProgressBar display(f.quiet);
   driver::AutoBakeOptions options;
-  options.env = f.env;
+  if (!f.envs.empty()) options.envs = f.envs;
   options.search.target_error = f.bake.params.target_error;
   options.search.resolutions.clear();
   for (int n = 8; n <= f.max_light_res; n *= 2) options.search.resolutions.push_back(n);
@@ -54,7 +54,6 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
       display.Finish();
       std::fprintf(stderr, "auto: %s\n", line.c_str());
     };
-    options.on_event = display.Callback();
   }
   options.interrupted = &interrupted;
   absl::StatusOr<driver::AutoBakeReport> report = driver::AutoBake(f.scene, params, f.out, options);
@@ -116,16 +115,17 @@ void AddBakeCommand(CLI::App& app) {
   CLI::Option* auto_flag =
       cmd->add_flag("--auto", f->auto_mode,
                     "choose the light resolution, column target and bits: the smallest store "
-                    "whose relighting under --env is within --target-error (relative RMS) of "
-                    "the independent reference")
+                    "whose relighting under every --env is within --target-error (relative RMS) "
+                    "of the independent reference")
           ->needs(cmd->get_option("--target-error"))
           ->excludes(cmd->get_option("--light-res"))
           ->excludes(cmd->get_option("--column-terms"));
-  cmd->add_option("--env", f->env,
-                  "--auto: the lighting to judge by (EXR/HDR or builtin:NAME); the default's "
-                  "small bright sun is the conservative case")
-      ->needs(auto_flag)
-      ->capture_default_str();
+  cmd->add_option("--env", f->envs,
+                  "--auto: a lighting to judge by (EXR/HDR or builtin:NAME); repeat it to judge "
+                  "by several, the worst error counting. Default: builtin:sky, whose small "
+                  "bright sun is the conservative case")
+      ->take_all()
+      ->needs(auto_flag);
   cmd->add_option("--max-light-res", f->max_light_res, "--auto: the finest light resolution to try")
       ->needs(auto_flag)
       ->check(CLI::IsMember({8, 16, 32, 64, 128, 256}))

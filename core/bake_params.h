@@ -40,9 +40,20 @@ struct BakeParams {
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
   int column_group = 256;  // columns per TRANSFORM_COLUMNS task
   float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
+  // Visibility refinement (core/refined_row.h): trace only where visibility
+  // changes. false = brute force, every texel's K rays (core/transport_row.h).
+  // Refinement works on the cube's faces (core/refine_plan.h) and on the
+  // cosine-weighted T; a plane light domain and a visibility transport are
+  // always traced by brute force (see refines()).
+  bool refine = true;
   // Not a property of the matrix (not recorded with it): FINALIZE leaves
   // staging/ in the store for inspection.
   bool keep_staging = false;
+
+  // Whether the rows are traced by refinement: asked for, on the cube, for T.
+  bool refines() const {
+    return refine && !light_domain.is_plane() && transport == Transport::kDiffuse;
+  }
 };
 
 }  // namespace wavebake

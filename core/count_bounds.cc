@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace wavebake {
 namespace {
@@ -34,22 +35,38 @@ double EnergyHistogram::Hi(int bin) const {
   return std::min(budget_, FromKey(base_key_ + bin + 1));
 }
 
+void EnergyHistogram::AddTo(int lane, double e, int sign) {
+  int b = BinOf(e);
+  b = e > budget_ ? kAboveSlot : b;
+  b = e == 0 ? kZeroSlot : b;
+  count_[lane][b] += sign;
+  energy_[lane][b] += sign * e;
+}
+
 void EnergyHistogram::Update(std::span<const float> v, std::span<const float> w, int sign) {
-  auto one = [&](double m) {
-    const double e = m * m;
-    if (e == 0) return;  // dropped first whatever the budget: never counted
-    if (!(e <= budget_)) {
-      above_ += sign;
-      return;
+  const size_t n = v.size();
+  if (!w.empty()) {
+    for (size_t i = 0; i < n; ++i) {
+      const double m = double(v[i]) * w[i];
+      AddTo(i & 1, m * m, sign);
     }
-    const int b = BinOf(e);
-    count_[b] += sign;
-    energy_[b] += sign * e;
-  };
-  if (w.empty()) {
-    for (float x : v) one(x);
-  } else {
-    for (size_t i = 0; i < v.size(); ++i) one(double(v[i]) * w[i]);
+    return;
+  }
+  // Most coefficients of a transport column are exactly 0 and come in runs:
+  // four at a time are skipped when their bits, sign aside, are all 0.
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    uint32_t bits[4];
+    std::memcpy(bits, &v[i], sizeof bits);
+    if (((bits[0] | bits[1] | bits[2] | bits[3]) & 0x7fffffffu) == 0) continue;
+    for (size_t j = i; j < i + 4; ++j) {
+      const double m = v[j];
+      AddTo(j & 1, m * m, sign);
+    }
+  }
+  for (; i < n; ++i) {
+    const double m = v[i];
+    AddTo(i & 1, m * m, sign);
   }
 }
 
@@ -58,31 +75,44 @@ void EnergyHistogram::Remove(std::span<const float> v, std::span<const float> w)
   Update(v, w, -1);
 }
 
-int64_t EnergyHistogram::Droppable(double budget, bool optimistic) const {
+void EnergyHistogram::Merge(std::array<int64_t, kBins>& count,
+                            std::array<double, kBins>& energy) const {
+  for (int b = 0; b < kBins; ++b) {
+    count[b] = count_[0][b] + count_[1][b];
+    energy[b] = energy_[0][b] + energy_[1][b];
+  }
+}
+
+int64_t EnergyHistogram::Droppable(const std::array<int64_t, kBins>& count,
+                                   const std::array<double, kBins>& energy, double budget,
+                                   bool optimistic) const {
   double dropped = 0;
   int64_t k = 0;
   for (int b = 0; b < kBins; ++b) {
-    if (count_[b] == 0) continue;
-    if (dropped + energy_[b] <= budget) {
-      dropped += energy_[b];
-      k += count_[b];
+    if (count[b] == 0) continue;
+    if (dropped + energy[b] <= budget) {
+      dropped += energy[b];
+      k += count[b];
       continue;
     }
     const double left = std::max(0.0, budget - dropped);
     const double per_entry = optimistic ? Lo(b) : Hi(b);
     const int64_t partial =
-        per_entry > 0 ? static_cast<int64_t>(std::floor(left / per_entry)) : count_[b];
-    return k + std::min(count_[b], partial);
+        per_entry > 0 ? static_cast<int64_t>(std::floor(left / per_entry)) : count[b];
+    return k + std::min(count[b], partial);
   }
   return k;
 }
 
 CountBounds EnergyHistogram::Bounds() const {
-  int64_t nonzero = above_;
-  for (int64_t c : count_) nonzero += c;
+  std::array<int64_t, kBins> count;
+  std::array<double, kBins> energy;
+  Merge(count, energy);
+  int64_t nonzero = count_[0][kAboveSlot] + count_[1][kAboveSlot];
+  for (int64_t c : count) nonzero += c;
   if (budget_ <= 0) return {static_cast<int>(nonzero), static_cast<int>(nonzero)};
-  return {static_cast<int>(nonzero - Droppable(budget_ * (1 + kSlack), true)),
-          static_cast<int>(nonzero - Droppable(budget_ * (1 - kSlack), false))};
+  return {static_cast<int>(nonzero - Droppable(count, energy, budget_ * (1 + kSlack), true)),
+          static_cast<int>(nonzero - Droppable(count, energy, budget_ * (1 - kSlack), false))};
 }
 
 }  // namespace wavebake

@@ -36,19 +36,26 @@ class EnergyHistogram {
 
  private:
   static constexpr int kBins = 4 * 64 + 1;  // bin 0: everything far below the budget
+  // Two more slots, so that every entry lands in one without a branch: exact
+  // zeros (never counted) and entries above the budget (always kept).
+  static constexpr int kZeroSlot = kBins, kAboveSlot = kBins + 1, kSlots = kBins + 2;
   void Update(std::span<const float> v, std::span<const float> w, int sign);
+  // Adds entry energy e to lane `lane` (two lanes: consecutive entries in
+  // the same bin do not wait for each other's store).
+  void AddTo(int lane, double e, int sign);
+  void Merge(std::array<int64_t, kBins>& count, std::array<double, kBins>& energy) const;
   int BinOf(double e) const;
   double Lo(int bin) const;
   double Hi(int bin) const;
   // How many least important entries fit in `budget`: whole bins, then
   // `per_entry` (Lo or Hi of the cut bin) decides the partial bin.
-  int64_t Droppable(double budget, bool optimistic) const;
+  int64_t Droppable(const std::array<int64_t, kBins>& count,
+                    const std::array<double, kBins>& energy, double budget, bool optimistic) const;
 
   double budget_;
   int64_t base_key_;  // bit key of bin 1's lower edge
-  std::array<int64_t, kBins> count_{};
-  std::array<double, kBins> energy_{};
-  int64_t above_ = 0;  // entries with e > budget
+  std::array<std::array<int64_t, kSlots>, 2> count_{};
+  std::array<std::array<double, kSlots>, 2> energy_{};
 };
 
 }  // namespace wavebake

@@ -15,31 +15,34 @@ Texel Cubemap::TexelOf(int m) const {
 
 // OpenGL spec table 3.21 (major axis → sc, tc), inverted: for a face and
 // sc, tc ∈ [-1,1] the (unnormalized) direction is the major axis plus the two
-// minor components.
-Vec3 Cubemap::FaceDirection(int face, double s, double t) {
-  const float sc = static_cast<float>(2 * s - 1), tc = static_cast<float>(2 * t - 1);
-  Vec3 d;
+// minor components. One table for the float directions and the double points.
+namespace {
+template <class T>
+std::array<T, 3> FaceAxes(int face, T sc, T tc) {
   switch (face) {
     case kPosX:
-      d = {1, -tc, -sc};
-      break;
+      return {1, -tc, -sc};
     case kNegX:
-      d = {-1, -tc, sc};
-      break;
+      return {-1, -tc, sc};
     case kPosY:
-      d = {sc, 1, tc};
-      break;
+      return {sc, 1, tc};
     case kNegY:
-      d = {sc, -1, -tc};
-      break;
+      return {sc, -1, -tc};
     case kPosZ:
-      d = {sc, -tc, 1};
-      break;
+      return {sc, -tc, 1};
     default:
-      d = {-sc, -tc, -1};
-      break;
+      return {-sc, -tc, -1};
   }
-  return Normalize(d);
+}
+}  // namespace
+
+Vec3 Cubemap::FaceDirection(int face, double s, double t) {
+  const auto d = FaceAxes(face, static_cast<float>(2 * s - 1), static_cast<float>(2 * t - 1));
+  return Normalize(Vec3{d[0], d[1], d[2]});
+}
+
+std::array<double, 3> Cubemap::FacePoint(int face, double s, double t) {
+  return FaceAxes(face, 2 * s - 1, 2 * t - 1);
 }
 
 Vec3 Cubemap::TexelCenter(int m) const {

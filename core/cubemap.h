@@ -29,6 +29,9 @@ class Cubemap {
   // Unit direction through face coordinates (s, t) ∈ [0,1]², OpenGL convention:
   // s grows with texel x, t grows with texel y.
   static Vec3 FaceDirection(int face, double s, double t);
+  // The same direction in double, not normalized: the point on the face of
+  // the cube [-1,1]³ (texel corners for exact integrals, core/texel_irradiance.h).
+  static std::array<double, 3> FacePoint(int face, double s, double t);
   Vec3 TexelCenter(int m) const;
   // Solid angle of texel m, exact (corner formula atan2(xy, sqrt(x²+y²+1))).
   double SolidAngle(int m) const;

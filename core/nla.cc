@@ -71,11 +71,16 @@ size_t DropWithinBin(std::vector<Entry>& entries, double budget, double& dropped
 }
 
 // What FindCut computed per entry, kept for the caller's next pass over the
-// same column (SelectForBudget): each magnitude and bin is worked out once.
-// Per thread, reused column after column.
+// same column (SelectForBudget): each magnitude and bin is worked out once,
+// for the nonzero entries only — most coefficients of a transport column are
+// exactly 0 (two thirds on the bunny), and every pass after the first runs
+// over the compact list. Zeros add nothing to any sum and are never kept, so
+// the results are those of passes over every entry. Per thread, reused
+// column after column.
 struct CutScratch {
-  std::vector<double> mag;    // Magnitude(v, w, i)
-  std::vector<uint16_t> bin;  // BinOf(mag[i]) for nonzero mag[i]
+  std::vector<uint32_t> index;  // the nonzero entries, increasing
+  std::vector<double> mag;      // Magnitude(v, w, index[k])
+  std::vector<uint16_t> bin;    // BinOf(mag[k])
   std::array<double, kBins> energy{};
   std::array<uint32_t, kBins> count{};
   std::vector<Entry> entries;  // the cut bin's entries
@@ -86,28 +91,48 @@ CutScratch& ThreadCutScratch() {
   return scratch;
 }
 
+// The nonzero entries with their magnitudes, their largest magnitude and
+// Σ magnitude² (in index order, as a pass over every entry would add them).
+void Gather(std::span<const float> v, std::span<const float> w, CutScratch& s, double& max_mag,
+            double& total) {
+  const size_t n = v.size();
+  s.index.resize(n);
+  s.mag.resize(n);
+  uint32_t* index = s.index.data();
+  double* mag = s.mag.data();
+  size_t count = 0;
+  double max_m = 0, sum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (v[i] == 0) continue;
+    const double m = Magnitude(v, w, i);
+    if (m == 0) continue;  // a zero weight
+    index[count] = static_cast<uint32_t>(i);
+    mag[count] = m;
+    ++count;
+    max_m = std::max(max_m, m);
+    sum += m * m;
+  }
+  s.index.resize(count);
+  s.mag.resize(count);
+  max_mag = max_m;
+  total = sum;
+}
+
 Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, CutScratch& s) {
   Cut cut;
-  const size_t n = v.size();
-  s.mag.resize(n);
   double max_mag = 0, total = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const double m = Magnitude(v, w, i);
-    s.mag[i] = m;
-    max_mag = std::max(max_mag, m);
-    total += m * m;
-  }
+  Gather(v, w, s, max_mag, total);
   if (total <= budget) {
     cut.dropped_energy = total;
     return cut;
   }
   cut.max_top = std::bit_cast<uint64_t>(max_mag) >> 48;
+  const size_t n = s.index.size();
   s.bin.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    const double m = s.mag[i];
-    if (m == 0) continue;
+  for (size_t k = 0; k < n; ++k) {
+    const double m = s.mag[k];
     const int b = BinOf(m, cut.max_top);
-    s.bin[i] = static_cast<uint16_t>(b);
+    s.bin[k] = static_cast<uint16_t>(b);
     s.energy[b] += m * m;
     ++s.count[b];
   }
@@ -117,8 +142,8 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, C
   while (b < kBins && dropped + s.energy[b] <= budget) dropped += s.energy[b++];
   cut.bin = b;  // < kBins, since total > budget
   s.entries.clear();
-  for (size_t i = 0; i < n; ++i) {
-    if (s.mag[i] > 0 && s.bin[i] == b) s.entries.push_back({s.mag[i], static_cast<uint32_t>(i)});
+  for (size_t k = 0; k < n; ++k) {
+    if (s.bin[k] == b) s.entries.push_back({s.mag[k], s.index[k]});
   }
   const size_t lo = DropWithinBin(s.entries, budget, dropped);
   cut.kept_in_bin = s.entries.size() - lo;
@@ -158,10 +183,9 @@ Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
   // least as important as its least important kept entry. Scanning in index
   // order gives the list sorted without a sort.
   sel.kept.reserve(cut.kept);
-  for (size_t i = 0; i < v.size(); ++i) {
-    const Entry e{s.mag[i], static_cast<uint32_t>(i)};
-    if (e.mag == 0) continue;
-    const int b = s.bin[i];
+  for (size_t k = 0; k < s.index.size(); ++k) {
+    const Entry e{s.mag[k], s.index[k]};
+    const int b = s.bin[k];
     if (b > cut.bin || (b == cut.bin && cut.kept_in_bin > 0 && !LessImportant(e, cut.least_kept))) {
       sel.kept.push_back(e.index);
     }

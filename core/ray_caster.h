@@ -61,7 +61,7 @@ class RayCaster {
   // occluded.size() must be at least fan.size().
   void OccludedFan(Vec3 origin, const RayFan& fan, float tnear, float tfar,
                    std::span<uint8_t> occluded, FanKernel kernel = kDefaultFanKernel) const;
-  static constexpr FanKernel kDefaultFanKernel = FanKernel::kPacket8;
+  static constexpr FanKernel kDefaultFanKernel = FanKernel::kPacket16;
 
   // Closest hit along origin + t·dir, t in [tnear, tfar]; dir is normalized here.
   std::optional<Hit> FirstHit(Vec3 origin, Vec3 dir, float tnear = 0,

@@ -31,7 +31,9 @@ void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterP
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats);
 // The same over whatever light domain the pattern was made for (the cube or
-// a plane face, core/light_domain.h): row has pattern.texels() entries.
+// a plane face, core/light_domain.h): row has pattern.texels() entries,
+// traced in index order (the cube's overload above traces in Z order, which
+// is faster, and gives the same row).
 void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
                   float epsilon, std::span<float> row, TransportStats* stats);
 
@@ -49,5 +51,11 @@ void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 po
 void VisibilityRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                    Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                    TransportStats* stats);
+
+// The rays TransportRow traces for a sample of this normal, counted without
+// tracing them (the same horizon culling and per-ray test): brute force's
+// cost, for comparing refinement against it at resolutions where brute
+// force itself would take long.
+uint64_t BruteForceRays(const Cubemap& cubemap, const JitterPattern& pattern, Vec3 normal);
 
 }  // namespace wavebake

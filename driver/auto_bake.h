@@ -1,24 +1,27 @@
 #pragma once
-// `wavebake bake SCENE --auto --target-error E [--env ENV]`: the
-// orchestration of the search in runtime/auto_search.h. It traces the
-// independent reference (runtime/reference.h) once for the scene's samples
-// and ENV, measures the dense cubemap error e_disc(N) per light resolution
-// (runtime/dense_trace.h), bakes candidates with the embedded bake
-// (driver/embedded_bake.h) into a temporary directory beside the output,
-// relights each under ENV (all wavelet lights, and the runtime's default
-// number) against the reference, and publishes only the chosen store at
-// the output with an "auto" object in its .zattrs recording what was tried
-// and measured. Nothing else is left behind, whatever the outcome.
+// `wavebake bake SCENE --auto --target-error E [--env ENV]...`: the
+// orchestration of the search in runtime/auto_search.h, judged by every ENV
+// given (the worst error counts: a store chosen for one lighting can miss E
+// under another of the same kind). It traces the independent reference
+// (runtime/reference.h) once per ENV for the scene's samples; traces each
+// light resolution N once (worker/recode.h TraceStaging), into a temporary
+// directory beside the output, and measures e_disc(N) by relighting that
+// dense traced T itself (driver/staged_relight.h); codes every candidate
+// column target from the same trace (worker/recode.h Recode), relights it
+// under every ENV (all wavelet lights, and the runtime's default number)
+// against the references; and publishes only the chosen store at the output
+// with an "auto" object in its .zattrs recording what was tried and
+// measured. Nothing else is left behind, whatever the outcome.
 #include <atomic>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
 #include "runtime/auto_search.h"
-#include "wavebake.pb.h"
 
 namespace wavebake::driver {
 
@@ -30,23 +33,28 @@ inline constexpr char kDefaultAutoEnv[] = "builtin:sky";
 inline constexpr int kDefaultRelightTerms = 256;
 
 struct AutoBakeOptions {
-  std::string env = kDefaultAutoEnv;
-  AutoSearchConfig search;  // its target_error is E
-  int workers = 0;
-  // What the search is doing, a line at a time ("N=32: baking with column
-  // target 0.0302"), and each candidate bake's job events.
+  std::vector<std::string> envs = {kDefaultAutoEnv};  // at least one
+  AutoSearchConfig search;                            // its target_error is E
+  int workers = 0;  // threads of the traces and column stages; 0 = one per hardware thread
+  // What the search is doing, a line at a time ("N=32: coding with column
+  // target 0.0302", a trace's progress).
   std::function<void(const std::string&)> on_message = {};
-  std::function<void(const v1::JobEvent&)> on_event = {};
   const std::atomic<bool>* interrupted = nullptr;
 };
 
 struct AutoBakeReport {
   AutoSearch search{AutoSearchConfig{}};
-  std::string failure;          // non-empty: no candidate met E, nothing written
-  double reference_rel_se = 0;  // the reference's own error (kept, not subtracted)
-  double reference_seconds = 0;
-  double seconds = 0;     // the whole search
-  nlohmann::json record;  // the "auto" object written to .zattrs
+  std::string failure;           // non-empty: no candidate met E, nothing written
+  double reference_rel_se = 0;   // the largest of the references' own errors (kept, not subtracted)
+  double reference_seconds = 0;  // all references
+  // Per candidate row of search.candidates(): each env's e_disc, and (baked)
+  // e_tot with all lights and with kDefaultRelightTerms, in options.envs order.
+  std::vector<std::vector<double>> e_disc_by_env, e_tot_by_env, e_tot_default_by_env;
+  std::vector<std::string> envs;  // as judged by, options.envs
+  int traces = 0;                 // light resolutions traced (once each)
+  uint64_t rays = 0;              // in all traces
+  double seconds = 0;             // the whole search
+  nlohmann::json record;          // the "auto" object written to .zattrs
 };
 
 // Errors: bad input (scene, env, output path, params; named by field), a
@@ -57,7 +65,8 @@ absl::StatusOr<AutoBakeReport> AutoBake(const std::string& scene, const BakePara
                                         const AutoBakeOptions& options);
 
 // The candidates as a table (N, e_disc, column target, bits, bytes, e_tot
-// with all lights and at kDefaultRelightTerms, seconds) and the choice.
+// with all lights and at kDefaultRelightTerms — the worst env's —, seconds)
+// and the choice; with several envs, the worst env of each row.
 std::string AutoBakeTable(const AutoBakeReport& report);
 
 }  // namespace wavebake::driver

@@ -2,6 +2,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/cubemap.h"
+#include "driver/staged_relight.h"
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
 #include "runtime/eval.h"
@@ -43,6 +44,17 @@ absl::StatusOr<double> ReferenceMeasure::DenseError(int light_res) const {
       TraceDenseRelight(ctx_->caster, ctx_->samples, cube, options);
   if (!dense.ok()) return dense.status();
   return CompareToReference(dense->rgb, reference_.rgb).rel_rms;
+}
+
+absl::StatusOr<double> ReferenceMeasure::StagingError(const BakeContext& trace_ctx,
+                                                      const std::filesystem::path& traced) const {
+  const std::vector<float> cube = ResampleToCubemap(env_, trace_ctx.cubemap);
+  absl::StatusOr<std::vector<float>> rgb = RelightStaging(trace_ctx, traced, cube);
+  if (!rgb.ok()) return rgb.status();
+  if (rgb->size() != reference_.rgb.size())
+    return absl::FailedPreconditionError(
+        absl::StrCat("traced: ", traced.string(), " has another sample grid than the reference"));
+  return CompareToReference(*rgb, reference_.rgb).rel_rms;
 }
 
 absl::StatusOr<std::vector<double>> ReferenceMeasure::StoreErrors(

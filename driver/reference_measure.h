@@ -39,6 +39,11 @@ class ReferenceMeasure {
   // e_disc(N): the dense T at light_res (the params' supersample and seed),
   // relit under env, against the reference.
   absl::StatusOr<double> DenseError(int light_res) const;
+  // e_disc of a bake's own trace (worker/recode.h TraceStaging): its dense
+  // staged T relit under env (driver/staged_relight.h) against the
+  // reference. trace_ctx is the trace's context (same scene and layout).
+  absl::StatusOr<double> StagingError(const BakeContext& trace_ctx,
+                                      const std::filesystem::path& traced) const;
   // e_tot of a store of this scene relit by each of `terms` wavelet lights
   // (≥ 6N² is all of them); also its bits.
   absl::StatusOr<std::vector<double>> StoreErrors(const std::filesystem::path& store,

@@ -134,6 +134,7 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
   p.keep_staging = r.keep_staging();
+  p.refine = r.refine() != "off";
   return p;
 }
 
@@ -147,6 +148,7 @@ std::string BuiltinSceneName(const v1::BakeRequest& request) {
 }
 
 absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
+  const bool refine_unset = r.refine().empty();
   for (absl::Status s :
        {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
         CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
@@ -157,8 +159,21 @@ absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
         CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
         CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
         CheckChoice("transport", *r.mutable_transport(), "diffuse", {"diffuse", "visibility"}),
+        CheckChoice("refine", *r.mutable_refine(), "on", {"on", "off"}),
         CheckLightDomain(*r.mutable_light_domain()), CheckOutputName(r)}) {
     if (!s.ok()) return s;
+  }
+  // Refinement follows the cube's faces and integrates cosines: a plane
+  // domain and a visibility transport default to brute force and cannot ask
+  // for refinement.
+  const bool plane = ParseLightDomain(r.light_domain())->is_plane();
+  if (plane || r.transport() == "visibility") {
+    if (!refine_unset && r.refine() == "on")
+      return Bad("refine", plane ? "\"on\" needs the cube light domain (plane domains trace "
+                                   "every texel)"
+                                 : "\"on\" needs the diffuse transport (visibility rows are "
+                                   "traced by brute force)");
+    r.set_refine("off");
   }
   // The fields one by one are fine; the core's own rules have the last word.
   return ValidateBakeParams(ParamsOf(r));
@@ -189,6 +204,7 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_tile_size(p.tile_size);
   r.set_column_group(p.column_group);
   r.set_keep_staging(p.keep_staging);
+  r.set_refine(p.refines() ? "on" : "off");
   return r;
 }
 

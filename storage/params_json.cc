@@ -67,6 +67,9 @@ nlohmann::json ToJson(const BakeParams& p) {
                       {"tile_size", p.tile_size},
                       {"column_group", p.column_group},
                       {"ray_epsilon", p.ray_epsilon}};
+  // Absent means brute force: what every store baked before refinement
+  // existed holds, so a --refine off store keeps their exact bytes.
+  if (p.refines()) j["refine"] = "on";
   // Only a visibility transport and a plane light domain are spelled out: a
   // default store's .zattrs stays byte-identical to the stores written before
   // the fields existed.
@@ -102,6 +105,11 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   p.seed = j["seed"].get<uint64_t>();
   if (j.contains("transport")) {  // absent: diffuse (stores before the field)
     if (absl::Status s = GetEnum(j, "transport", ParseTransport, &p.transport); !s.ok()) return s;
+  }
+  p.refine = false;
+  if (j.contains("refine")) {
+    if (j["refine"] != "on" && j["refine"] != "off") return Bad("refine", "not \"on\" or \"off\"");
+    p.refine = j["refine"] == "on";
   }
   if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
     if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())

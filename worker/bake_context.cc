@@ -39,6 +39,7 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
           : MakeJitterPattern(ctx->cubemap, params.supersample, params.seed);
   if (!jitter.ok()) return jitter.status();
   ctx->jitter = *std::move(jitter);
+  if (params.refines()) ctx->refine.emplace(ctx->cubemap, ctx->jitter, RefineOptions{});
   ctx->plan = MakeJobPlan(params, ctx->samples.width, ctx->samples.height);
   ctx->epsilon = params.ray_epsilon > 0 ? params.ray_epsilon : ctx->caster.DefaultEpsilon();
   return ctx;

@@ -5,6 +5,7 @@
 // restarted one) derives the same context. Read-only once built: tasks share
 // it across threads.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -15,6 +16,7 @@
 #include "core/job_plan.h"
 #include "core/layout.h"
 #include "core/ray_caster.h"
+#include "core/refine_plan.h"
 #include "core/samples.h"
 #include "core/scene.h"
 #include "core/scene_check.h"
@@ -34,7 +36,8 @@ struct BakeContext {
   JobPlan plan;
   Cubemap cubemap{8};
   JitterPattern jitter;
-  float epsilon = 0;  // ray offset along the normal (DESIGN.md §1)
+  std::optional<RefinePlan> refine;  // params.refine: the rows are traced by refinement
+  float epsilon = 0;                 // ray offset along the normal (DESIGN.md §1)
   RayCaster caster;
 };
 

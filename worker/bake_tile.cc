@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/refined_row.h"
 #include "core/transport_row.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
@@ -61,7 +62,7 @@ double SumOfSquares(std::span<const float> row) {
 // per N=32 tile, memory-bound); the fixed order (cell, then m) makes the sum
 // the same bits on every worker.
 void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::span<float> rows,
-                  double& energy, TileStats& stats) {
+                  double& energy, TileStats& stats, RefineScratch& scratch) {
   const int m_count = ctx.plan.columns;
   const int y = rect.y0 + cy;
   TransportStats traced;
@@ -75,9 +76,16 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
     if (ctx.params.transport == Transport::kVisibility) {
       VisibilityRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
                     ctx.samples.normal[id], ctx.epsilon, row, &traced);
-    } else {
+    } else if (ctx.refine) {
+      RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine,
+                          ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, row,
+                          &traced, scratch);
+    } else if (ctx.params.light_domain.is_plane()) {
       TransportRow(ctx.caster, ctx.jitter, ctx.samples.position[id], ctx.samples.normal[id],
                    ctx.epsilon, row, &traced);
+    } else {  // the cube's faces in Z order
+      TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
+                   ctx.samples.normal[id], ctx.epsilon, row, &traced);
     }
     RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
     energy += SumOfSquares(row);
@@ -144,10 +152,11 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   const TileRect rect = plan.Tile(tile);
   TileStats local;
   double energy = 0;
+  RefineScratch scratch;
   for (int cy = 0; cy < rect.height; ++cy) {
     if (signals.cancel && signals.cancel->load(std::memory_order_relaxed))
       return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
-    TraceTileRow(ctx, rect, cy, rows, energy, local);
+    TraceTileRow(ctx, rect, cy, rows, energy, local, scratch);
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
     TransposeTileRow(rows, plan, cy, block);

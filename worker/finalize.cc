@@ -200,6 +200,8 @@ bool AlreadyFinalized(const std::filesystem::path& store) {
   return attrs.ok() && attrs->value("format", "") == store::kFormat;
 }
 
+}  // namespace
+
 // Renamed away first (atomic), so a crash midway never leaves a half-deleted
 // staging/ that looks like an unfinished job.
 absl::Status DropStaging(const std::filesystem::path& store) {
@@ -216,8 +218,6 @@ absl::Status DropStaging(const std::filesystem::path& store) {
   if (ec) return absl::InternalError(absl::StrCat(trash.string(), ": ", ec.message()));
   return absl::OkStatus();
 }
-
-}  // namespace
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
                       const FinalizeOptions& options) {

@@ -27,4 +27,8 @@ struct FinalizeOptions {
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
                       const FinalizeOptions& options);
 
+// Removes staging/ from a store (atomically renamed away first). Symbolic
+// links in it are removed, not followed. OK if there is none.
+absl::Status DropStaging(const std::filesystem::path& store);
+
 }  // namespace wavebake

@@ -2,6 +2,7 @@
 
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
+#include "storage/zarr_group.h"
 
 namespace wavebake {
 
@@ -23,10 +24,16 @@ ArraySpec TileEnergySpec(const JobPlan& plan) {
   return spec;
 }
 
-absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store) {
+absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store,
+                           const nlohmann::json& trace) {
   // Groups first, so a Zarr reader sees the hierarchy (DESIGN.md §3).
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
   if (absl::Status s = WriteGroup(store::Path(store, store::kStaging)); !s.ok()) return s;
+  if (!trace.is_null()) {
+    if (absl::Status s = WriteAttrs(store::Path(store, store::kStaging), {{"trace", trace}});
+        !s.ok())
+      return s;
+  }
   absl::StatusOr<ZarrArray> transport =
       ZarrArray::Create(store::Path(store, store::kStagingTransport), StagingTransportSpec(plan));
   if (!transport.ok()) return transport.status();

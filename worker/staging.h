@@ -6,6 +6,7 @@
 
 #include "absl/status/status.h"
 #include "core/job_plan.h"
+#include "nlohmann/json.hpp"
 #include "storage/array_spec.h"
 
 namespace wavebake {
@@ -19,10 +20,14 @@ ArraySpec StagingTransportSpec(const JobPlan& plan);
 // staged values of each tile.
 ArraySpec TileEnergySpec(const JobPlan& plan);
 
-// Creates the store's root group, the staging group and both arrays.
-// Idempotent: several workers (or a retried task) may call it, concurrently
-// too; arrays already there with the same spec are kept with their chunks.
-// A staging array with another spec (another plan) is AlreadyExists.
-absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store);
+// Creates the store's root group, the staging group and both arrays, and,
+// given one, writes `trace` (worker/recode.h TraceRecord: what the staged
+// values depend on) as the staging group's attributes, so that a kept
+// staging can be recoded later. Idempotent: several workers (or a retried
+// task) may call it, concurrently too; arrays already there with the same
+// spec are kept with their chunks. A staging array with another spec
+// (another plan) is AlreadyExists.
+absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store,
+                           const nlohmann::json& trace = nullptr);
 
 }  // namespace wavebake

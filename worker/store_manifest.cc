@@ -22,6 +22,11 @@ constexpr char kDequantize[] =
     "position at the column's depth (0 = coarsest: the LL block and the details of the last "
     "step; details of step s have l = depth-1-s); scale 0 decodes to 0";
 
+constexpr char kRefinedEntry[] =
+    "texels decided by a uniform block: 0 if occluded, I_m = (1/pi) * integral over the texel "
+    "of max(0, n.w) dw if visible (exact, Lambert's polygon formula); traced texels entirely "
+    "above the horizon: I_m * sum_k V_k c_k / sum_k c_k; traced texels the horizon crosses: "
+    "Omega_m / (K pi) * sum_{c_k > 0} V_k c_k (c_k = n.w_k, w_k the jittered directions)";
 // The uv layout's atlas (core/uv_atlas.h): where each mesh's texels are,
 // beside samples/uv_rects and samples/uv_domains.
 nlohmann::json UvManifest(const BakeContext& ctx) {
@@ -74,6 +79,15 @@ nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann
                              {"dither", kDither},
                              {"dequantize", kDequantize},
                              {"stats", std::move(stats)}};
+  // Only a refined bake says so: a brute-force store keeps the bytes of
+  // every store baked before refinement existed.
+  if (ctx.refine) {
+    const RefineOptions& o = ctx.refine->options();
+    manifest["refinement"] = {{"start_spacing", o.start_spacing},
+                              {"stagger", o.stagger},
+                              {"follow", o.follow},
+                              {"transport_entry", kRefinedEntry}};
+  }
   if (ctx.layout.kind == LayoutKind::kUv) manifest["uv"] = UvManifest(ctx);
   // DESIGN.md §1 "What a row holds": said only when the rows are not the
   // diffuse T, so diffuse stores stay byte-identical to older ones.

@@ -12,6 +12,7 @@
 #include "storage/store_reader.h"
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
+#include "worker/recode.h"
 #include "worker/staging.h"
 #include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
@@ -62,7 +63,7 @@ absl::Status CheckPartial(const std::filesystem::path& partial) {
 absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext& ctx,
                                          const std::filesystem::path& partial,
                                          TaskProgress& progress) {
-  if (absl::Status s = CreateStaging(ctx.plan, partial); !s.ok()) return s;
+  if (absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx)); !s.ok()) return s;
   TileStats stats;
   absl::Status s =
       BakeTile(ctx, partial, task.index(), &stats, {&progress.cancel, &progress.rays_traced});

@@ -24,6 +24,8 @@ TEST(RequestValidationTest, FillsDefaultsOfDesignSection5) {
   EXPECT_EQ(r.bits(), 0);
   EXPECT_EQ(r.seed(), 1u);
   EXPECT_EQ(r.max_attempts(), 3);
+  EXPECT_EQ(r.refine(), "on");
+  EXPECT_TRUE(ToBakeParams(r)->refine);
   EXPECT_EQ(BuiltinSceneName(r), "furnace");
 }
 
@@ -38,6 +40,7 @@ TEST(RequestValidationTest, KeepsExplicitValuesAndSeedZero) {
   r.set_column_terms(64);
   r.set_bits(12);
   r.set_seed(0);
+  r.set_refine("off");
   ASSERT_TRUE(NormalizeBakeRequest(r).ok());
   EXPECT_EQ(r.seed(), 0u);
   auto p = ToBakeParams(r);
@@ -51,7 +54,39 @@ TEST(RequestValidationTest, KeepsExplicitValuesAndSeedZero) {
   EXPECT_EQ(p->column_terms, 64);
   EXPECT_EQ(p->bits, 12);
   EXPECT_EQ(p->seed, 0u);
+  EXPECT_FALSE(p->refine);
   EXPECT_EQ(BuiltinSceneName(r), "cubes-wall");
+}
+
+// Refinement follows the cube's faces: a plane domain is traced by brute
+// force unless the request asks for refinement, which is an error.
+TEST(RequestValidationTest, PlaneDomainDefaultsToBruteForce) {
+  v1::BakeRequest r = testing::BuiltinRequest("cubes-wall");
+  r.set_light_domain("plane:4");
+  const absl::Status s = NormalizeBakeRequest(r);
+  ASSERT_TRUE(s.ok()) << s;
+  EXPECT_EQ(r.refine(), "off");
+  EXPECT_FALSE(ToBakeParams(r)->refines());
+  BakeParams p;
+  p.light_domain = *ParseLightDomain("plane:4");
+  EXPECT_EQ(ToBakeRequest(p).refine(), "off");  // asked for, but not on a plane
+}
+
+// Refinement integrates cosines: visibility rows are traced by brute force,
+// and asking for refinement with them is an error naming the field.
+TEST(RequestValidationTest, VisibilityTransportDefaultsToBruteForce) {
+  v1::BakeRequest r = testing::BuiltinRequest("cubes-wall");
+  r.set_transport("visibility");
+  ASSERT_TRUE(NormalizeBakeRequest(r).ok());
+  EXPECT_EQ(r.refine(), "off");
+  EXPECT_FALSE(ToBakeParams(r)->refines());
+  r.set_refine("on");
+  const absl::Status s = NormalizeBakeRequest(r);
+  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(s.message()), ::testing::StartsWith("refine: "));
+  BakeParams p;
+  p.transport = Transport::kVisibility;
+  EXPECT_EQ(ToBakeRequest(p).refine(), "off");
 }
 
 TEST(RequestValidationTest, ErrorsStartWithTheField) {
@@ -67,6 +102,8 @@ TEST(RequestValidationTest, ErrorsStartWithTheField) {
       {[](auto& r) { r.set_column_group(100000); }, "column_group: "},
       {[](auto& r) { r.set_error_scope("row"); }, "error_scope: "},
       {[](auto& r) { r.set_row_filter("cdf97"); }, "row_filter: "},
+      {[](auto& r) { r.set_refine("yes"); }, "refine: "},
+      {[](auto& r) { r.set_light_domain("plane:4"), r.set_refine("on"); }, "refine: "},
       {[](auto& r) { r.set_output_name(".hidden"); }, "output_name: "},
       {[](auto& r) { r.mutable_scene()->mutable_uploaded()->set_sha256("abc"); },
        "scene.uploaded.sha256: "},

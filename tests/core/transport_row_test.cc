@@ -279,6 +279,20 @@ TEST(TransportRowTest, JitterFollowsTheSeedAndIsSharedBySamples) {
             bake.Row(plane, {3.0f, -0.5f, 0}, {0, 0, 1}));
 }
 
+// BruteForceRays counts exactly the rays TransportRow hands to Embree.
+TEST(TransportRowTest, BruteForceRaysCountsTheTracedRays) {
+  const RayCaster caster = BuildOrDie(DiskOverFloor());
+  const Vec3 normals[] = {{0, 0, 1}, Normalize({1, 2, 3}), Normalize({-0.3f, 0.9f, -0.2f})};
+  for (int res : {8, 16}) {
+    const Bake bake(res, 4);
+    for (Vec3 n : normals) {
+      TransportStats stats;
+      bake.Row(caster, {0, 0, 0.5f}, n, &stats);
+      EXPECT_EQ(BruteForceRays(bake.cubemap, bake.pattern, n), stats.rays_traced);
+    }
+  }
+}
+
 TEST(TransportRowTest, StatsAddUpOverRows) {
   const RayCaster caster = BuildOrDie(DiskOverFloor());
   const Bake bake(8, 4);

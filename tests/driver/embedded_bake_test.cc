@@ -67,6 +67,7 @@ absl::StatusOr<v1::Job> Bake(const std::filesystem::path& out, int workers,
 }
 
 TEST(EmbeddedBakeTest, BitIdenticalAcrossWorkersAndToShuffledRetriedTasks) {
+  ASSERT_TRUE(SmallJob().refine);  // the default: rows traced by visibility refinement
   ScratchDir dir;
   const auto one = dir.path() / "one.wbk";
   absl::StatusOr<v1::Job> job = Bake(one, 1);
@@ -99,6 +100,32 @@ TEST(EmbeddedBakeTest, BitIdenticalAcrossWorkersAndToShuffledRetriedTasks) {
   // Nothing but the stores: the coordinators' data dirs are gone.
   EXPECT_THAT(Names(dir.path()),
               ::testing::UnorderedElementsAre("one.wbk", "three.wbk", "manual.wbk"));
+}
+
+// .zattrs records refinement (params.refine and the options), and a
+// brute-force store carries neither key: its bytes are those of every store
+// baked before refinement existed. Brute force traces many more rays.
+TEST(EmbeddedBakeTest, StoreRecordsTheVisibilityMethod) {
+  ScratchDir dir;
+  BakeParams p = SmallJob();
+  p.light_res = 16;
+  absl::StatusOr<v1::Job> refined = Bake(dir.path() / "refined.wbk", 2, p);
+  ASSERT_TRUE(refined.ok()) << refined.status();
+  p.refine = false;
+  absl::StatusOr<v1::Job> brute = Bake(dir.path() / "brute.wbk", 2, p);
+  ASSERT_TRUE(brute.ok()) << brute.status();
+  absl::StatusOr<StoreInfo> on = ReadStoreInfo(dir.path() / "refined.wbk");
+  absl::StatusOr<StoreInfo> off = ReadStoreInfo(dir.path() / "brute.wbk");
+  ASSERT_TRUE(on.ok() && off.ok());
+  EXPECT_TRUE(on->params.refine);
+  EXPECT_EQ(on->attrs["params"]["refine"], "on");
+  EXPECT_EQ(on->attrs["refinement"]["start_spacing"], 2);  // N/8
+  EXPECT_EQ(on->attrs["refinement"]["stagger"], true);
+  EXPECT_EQ(on->attrs["refinement"]["follow"], true);
+  EXPECT_FALSE(off->params.refine);
+  EXPECT_FALSE(off->attrs["params"].contains("refine"));
+  EXPECT_FALSE(off->attrs.contains("refinement"));
+  EXPECT_LT(refined->rays_traced(), brute->rays_traced() / 2);
 }
 
 // L ≡ 1 on builtin:furnace: B = Σ_m T[s,m] = 1 for every sample. With the

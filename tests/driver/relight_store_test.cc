@@ -73,13 +73,14 @@ TEST(RelightStore, WhiteFurnace) {
 }
 
 // The store's relighting against T·L with T retraced exactly as the bake did
-// (runtime/dense_trace.h, same jitter seed): with every light and 16-bit
-// quantization only the column compression (target 1 %) is left; with fewer
-// lights the error grows.
+// (runtime/dense_trace.h, brute force with the same jitter seed): with every
+// light and 16-bit quantization only the column compression (target 1 %) is
+// left; with fewer lights the error grows.
 TEST(RelightStore, CompressedMatchesDenseRetrace) {
   TempDir dir;
   BakeParams p = SmallBake();
   p.bits = 16;
+  p.refine = false;  // the dense retrace is brute force
   const auto store = Bake(dir, "disk.wbk", "builtin:disk-over-plane", p);
   auto opened = OpenStore(store);
   ASSERT_TRUE(opened.ok()) << opened.status();

@@ -243,9 +243,24 @@ TEST(StoreReaderTest, ParamsRoundTripThroughJson) {
   ASSERT_TRUE(vb.ok()) << vb.status();
   EXPECT_EQ(vb->transport, Transport::kVisibility);
   EXPECT_EQ(BakeParamsFromJson(ToJson(BakeParams{}))->transport, Transport::kDiffuse);
-  nlohmann::json bad = ToJson(v);
-  bad["transport"] = "glossy";
-  EXPECT_THAT(BakeParamsFromJson(bad).status().message(), HasSubstr("transport"));
+  nlohmann::json bad_transport = ToJson(v);
+  bad_transport["transport"] = "glossy";
+  EXPECT_THAT(BakeParamsFromJson(bad_transport).status().message(), HasSubstr("transport"));
+  // Refinement is recorded when on; a store without the key (every store
+  // baked before refinement existed, and --refine off) was brute-forced.
+  EXPECT_TRUE(p.refine);
+  EXPECT_EQ(ToJson(p)["refine"], "on");
+  EXPECT_TRUE(back->refine);
+  BakeParams brute = p;
+  brute.refine = false;
+  EXPECT_FALSE(ToJson(brute).contains("refine"));
+  absl::StatusOr<BakeParams> read = BakeParamsFromJson(ToJson(brute));
+  ASSERT_TRUE(read.ok());
+  EXPECT_FALSE(read->refine);
+  nlohmann::json bad = ToJson(p);
+  bad["refine"] = "maybe";
+  EXPECT_THAT(std::string(BakeParamsFromJson(bad).status().message()),
+              ::testing::HasSubstr("params.refine"));
 }
 
 TEST(StoreReaderTest, SamplesRoundTrip) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/builtin_scenes.h"
+#include "core/refined_row.h"
 #include "core/transport_row.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/bake_tile.h"
@@ -128,11 +129,15 @@ TEST(BakeTilePhysicsTest, DiskOverPlaneMatchesAnalyticOcclusion) {
 }
 
 // The staged row, inverse row-transformed, is the pixel-basis row traced here
-// independently; the tile energy is Σ staged² read back, and — the filters
-// being orthonormal — also Σ of the pixel rows' squares (Parseval).
+// independently (by brute force or by refinement, as the job says); the tile
+// energy is Σ staged² read back, and — the filters being orthonormal — also
+// Σ of the pixel rows' squares (Parseval).
 TEST(BakeTilePhysicsTest, StagedRowsInvertToTransportRows) {
-  for (WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4}) {
+  for (auto [f, refine] : {std::pair{WaveletFilter::kHaar, false},
+                           {WaveletFilter::kDaub4, false},
+                           {WaveletFilter::kHaar, true}}) {
     BakeParams p;
+    p.refine = refine;
     p.light_res = 8;
     p.supersample = 4;
     p.layout = "camera:16x16";
@@ -155,8 +160,15 @@ TEST(BakeTilePhysicsTest, StagedRowsInvertToTransportRows) {
         const int32_t id = SampleAt(*ctx, plan.Tile(t), cell);
         if (id < 0) continue;
         std::vector<float> pixels(plan.columns);
-        TransportRow(ctx->caster, ctx->cubemap, ctx->jitter, ctx->samples.position[id],
-                     ctx->samples.normal[id], ctx->epsilon, pixels, nullptr);
+        if (refine) {
+          RefineScratch scratch;
+          RefinedTransportRow(ctx->caster, ctx->cubemap, ctx->jitter, *ctx->refine,
+                              ctx->samples.position[id], ctx->samples.normal[id], ctx->epsilon,
+                              pixels, nullptr, scratch);
+        } else {
+          TransportRow(ctx->caster, ctx->cubemap, ctx->jitter, ctx->samples.position[id],
+                       ctx->samples.normal[id], ctx->epsilon, pixels, nullptr);
+        }
         InverseRowTransform(f, p.light_res, row);
         const float peak = *std::max_element(pixels.begin(), pixels.end());
         for (int m = 0; m < plan.columns; ++m) {

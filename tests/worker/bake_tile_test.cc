@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/refined_row.h"
 #include "core/transport_row.h"
 #include "storage/store_layout.h"
 #include "tests/worker/staging_testing.h"
@@ -92,44 +93,56 @@ TEST(BakeTileTest, StagingIsBitIdenticalAcrossThreadsOrderAndRetries) {
   EXPECT_TRUE(FileContents(shuffled.path()) == reference) << "shuffled order with retries";
 }
 
-// rays_traced is what TransportRow reports for the tile's samples, samples
-// counts the non-masked cells, bytes_written the chunk files on disk.
+// rays_traced is what the row tracer (refined or brute force) reports for the
+// tile's samples, samples counts the non-masked cells, bytes_written the
+// chunk files on disk.
 TEST(BakeTileTest, StatsCountRaysSamplesAndBytes) {
-  const auto ctx = ContextOrDie("builtin:cylinder-bump", SmallParams());
-  ASSERT_NE(ctx, nullptr);
-  const JobPlan& plan = ctx->plan;
-  ScratchDir dir;
-  ASSERT_TRUE(CreateStaging(plan, dir.path()).ok());
-  uint64_t all_samples = 0;
-  for (int t : {0, 9, 14}) {  // tile 0 is a corner of sky: all masked
-    TileStats stats;
-    ASSERT_TRUE(BakeTile(*ctx, dir.path(), t, &stats).ok());
+  for (bool refine : {true, false}) {
+    BakeParams params = SmallParams();
+    params.refine = refine;
+    const auto ctx = ContextOrDie("builtin:cylinder-bump", params);
+    ASSERT_NE(ctx, nullptr);
+    const JobPlan& plan = ctx->plan;
+    ScratchDir dir;
+    ASSERT_TRUE(CreateStaging(plan, dir.path()).ok());
+    uint64_t all_samples = 0;
+    for (int t : {0, 9, 14}) {  // tile 0 is a corner of sky: all masked
+      TileStats stats;
+      ASSERT_TRUE(BakeTile(*ctx, dir.path(), t, &stats).ok());
 
-    TransportStats traced;
-    uint64_t samples = 0;
-    std::vector<float> row(plan.columns);
-    const TileRect r = plan.Tile(t);
-    for (int y = r.y0; y < r.y0 + r.height; ++y) {
-      for (int x = r.x0; x < r.x0 + r.width; ++x) {
-        const int32_t id = ctx->samples.grid[y * plan.width + x];
-        if (id < 0) continue;
-        ++samples;
-        TransportRow(ctx->caster, ctx->cubemap, ctx->jitter, ctx->samples.position[id],
-                     ctx->samples.normal[id], ctx->epsilon, row, &traced);
+      TransportStats traced;
+      uint64_t samples = 0;
+      std::vector<float> row(plan.columns);
+      const TileRect r = plan.Tile(t);
+      for (int y = r.y0; y < r.y0 + r.height; ++y) {
+        for (int x = r.x0; x < r.x0 + r.width; ++x) {
+          const int32_t id = ctx->samples.grid[y * plan.width + x];
+          if (id < 0) continue;
+          ++samples;
+          RefineScratch scratch;
+          if (refine) {
+            RefinedTransportRow(ctx->caster, ctx->cubemap, ctx->jitter, *ctx->refine,
+                                ctx->samples.position[id], ctx->samples.normal[id], ctx->epsilon,
+                                row, &traced, scratch);
+          } else {
+            TransportRow(ctx->caster, ctx->cubemap, ctx->jitter, ctx->samples.position[id],
+                         ctx->samples.normal[id], ctx->epsilon, row, &traced);
+          }
+        }
       }
+      uint64_t bytes =
+          std::filesystem::file_size(dir.path() / "staging/tile_energy" / std::to_string(t));
+      for (int g = 0; g < plan.groups; ++g) {
+        bytes += std::filesystem::file_size(dir.path() / "staging/transport" /
+                                            (std::to_string(g) + "." + std::to_string(t)));
+      }
+      EXPECT_EQ(stats.samples, samples) << t;
+      EXPECT_EQ(stats.rays_traced, traced.rays_traced) << t;
+      EXPECT_EQ(stats.bytes_written, bytes) << t;
+      all_samples += samples;
     }
-    uint64_t bytes =
-        std::filesystem::file_size(dir.path() / "staging/tile_energy" / std::to_string(t));
-    for (int g = 0; g < plan.groups; ++g) {
-      bytes += std::filesystem::file_size(dir.path() / "staging/transport" /
-                                          (std::to_string(g) + "." + std::to_string(t)));
-    }
-    EXPECT_EQ(stats.samples, samples) << t;
-    EXPECT_EQ(stats.rays_traced, traced.rays_traced) << t;
-    EXPECT_EQ(stats.bytes_written, bytes) << t;
-    all_samples += samples;
+    EXPECT_GT(all_samples, 0u);
   }
-  EXPECT_GT(all_samples, 0u);
 }
 
 TEST(BakeTileTest, TileOutOfRangeIsInvalidArgumentAndWritesNothing) {

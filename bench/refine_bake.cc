@@ -1,0 +1,200 @@
+// Visibility refinement against brute force, whole bakes, in one run: the
+// ratios the speed goals ask for, printed side by side.
+//
+//   build/bench_refine_bake WORK_DIR [--quick] [--workers W]
+//
+// Cases: builtin:cubes-wall on camera:256x256, spot.obj and the bunny on
+// hilbert:64x64 (../shared/data). For each, at N = 64:
+//   * two bakes through the product path (driver/embedded_bake.h, W workers,
+//     default 2): --refine off and on; rays, wall and CPU seconds, store size;
+//   * each store's relighting error against the independent reference under
+//     grace.hdr and pisa.hdr with the runtime's default 256 wavelet lights —
+//     `eval --reference --no-dense`'s compressed rel_rms: the same reference
+//     (same samples, seed and ray offset) traced once and used for both
+//     stores (driver/reference_measure.h);
+// and at N = 128 the rays alone: refinement's, traced row by row, against the
+// rays brute force would trace (core/transport_row.h BruteForceRays, counted
+// without tracing).
+//
+// Targets: refined rays ≤ 0.25× brute force (≤ 0.12× at N = 128), whole-bake
+// wall time ≤ 0.35×, error within +0.002 of the brute-force store's under
+// each probe. The machine's load inflates wall times; CPU ratios are printed
+// beside them. --quick: cubes-wall on camera:64x64 only, N = 32 and 64.
+// The last line is one JSON object with every number.
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/bake_run.h"
+#include "core/refined_row.h"
+#include "core/transport_row.h"
+#include "driver/reference_measure.h"
+#include "worker/bake_context.h"
+
+namespace wavebake {
+namespace {
+
+[[noreturn]] void Die(const std::string& what) {
+  std::fprintf(stderr, "bench_refine_bake: %s\n", what.c_str());
+  std::exit(1);
+}
+
+template <typename T>
+T Value(absl::StatusOr<T> v) {
+  if (!v.ok()) Die(v.status().ToString());
+  return *std::move(v);
+}
+
+struct Case {
+  std::string name, scene, layout;
+};
+
+struct Config {
+  std::filesystem::path work;
+  bool quick = false;
+  int workers = 2;
+  int bake_res = 64, rays_res = 128;
+};
+
+std::vector<Case> Cases(const Config& c) {
+  const std::string models = std::string(WB_SHARED_DATA) + "/models/";
+  if (c.quick) return {{"cubes-wall", "builtin:cubes-wall", "camera:64x64"}};
+  return {{"cubes-wall", "builtin:cubes-wall", "camera:256x256"},
+          {"spot", models + "spot.obj", "hilbert:64x64"},
+          {"bunny", models + "bunny.obj", "hilbert:64x64"}};
+}
+
+const char* kProbes[] = {"grace", "pisa"};
+
+std::string Probe(const char* name) {
+  return std::string(WB_SHARED_DATA) + "/probes/" + name + ".hdr";
+}
+
+// Refined rays over every sample (rows traced and dropped) and brute force's
+// count for the same samples, at one light resolution.
+std::pair<uint64_t, uint64_t> CountRays(const Case& c, int light_res, int threads) {
+  BakeParams p;
+  p.light_res = light_res;
+  p.layout = c.layout;
+  const std::unique_ptr<BakeContext> ctx = Value(MakeBakeContext(c.scene, p));
+  std::atomic<size_t> next{0};
+  std::atomic<uint64_t> refined{0}, brute{0};
+  auto work = [&] {
+    RefineScratch scratch;
+    std::vector<float> row(ctx->cubemap.size());
+    TransportStats stats;
+    uint64_t brute_rays = 0;
+    for (size_t s; (s = next.fetch_add(1)) < size_t(ctx->samples.size());) {
+      RefinedTransportRow(ctx->caster, ctx->cubemap, ctx->jitter, *ctx->refine,
+                          ctx->samples.position[s], ctx->samples.normal[s], ctx->epsilon, row,
+                          &stats, scratch);
+      brute_rays += BruteForceRays(ctx->cubemap, ctx->jitter, ctx->samples.normal[s]);
+    }
+    refined += stats.rays_traced;
+    brute += brute_rays;
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+  }
+  return {refined.load(), brute.load()};
+}
+
+nlohmann::json RunCase(const Case& c, const Config& config) {
+  nlohmann::json j = {{"case", c.name}, {"scene", c.scene}, {"layout", c.layout}};
+  std::filesystem::path stores[2];
+  bench::PhasedBake bakes[2];
+  for (int refine = 0; refine < 2; ++refine) {
+    BakeParams p;
+    p.light_res = config.bake_res;
+    p.layout = c.layout;
+    p.refine = refine == 1;
+    stores[refine] = config.work / (c.name + (refine ? "-refined.wbk" : "-brute.wbk"));
+    std::filesystem::remove_all(stores[refine]);
+    bakes[refine] = Value(bench::RunPhasedBake(c.scene, p, stores[refine], config.workers));
+    std::fprintf(stderr, "%s N=%d %s: %lld rays, %.1f s wall (%.1f s CPU)\n", c.name.c_str(),
+                 config.bake_res, refine ? "refined" : "brute force",
+                 static_cast<long long>(bakes[refine].rays), bakes[refine].total.wall,
+                 bakes[refine].total.cpu);
+    j[refine ? "refined" : "brute"] = bakes[refine].ToJson();
+  }
+  j["x_rays"] = double(bakes[1].rays) / bakes[0].rays;
+  j["x_wall"] = bakes[1].total.wall / bakes[0].total.wall;
+  j["x_cpu"] = bakes[1].total.cpu / bakes[0].total.cpu;
+  BakeParams layout;
+  layout.layout = c.layout;
+  for (const char* probe : kProbes) {
+    const auto measure =
+        Value(driver::ReferenceMeasure::Create(c.scene, layout, Probe(probe), 0.002));
+    const int terms[] = {256};
+    const double brute = Value(measure->StoreErrors(stores[0], terms))[0];
+    const double refined = Value(measure->StoreErrors(stores[1], terms))[0];
+    j["error"][probe] = {{"brute", brute},
+                         {"refined", refined},
+                         {"delta", refined - brute},
+                         {"reference_rel_se", measure->reference().rel_se}};
+    std::fprintf(stderr, "%s under %s: brute %.5f, refined %.5f (reference rel SE %.5f)\n",
+                 c.name.c_str(), probe, brute, refined, measure->reference().rel_se);
+  }
+  for (const auto& s : stores) std::filesystem::remove_all(s);
+  const auto [refined_rays, brute_rays] = CountRays(c, config.rays_res, config.workers);
+  j["rays_at"] = {{"light_res", config.rays_res},
+                  {"refined", refined_rays},
+                  {"brute", brute_rays},
+                  {"x_rays", double(refined_rays) / brute_rays}};
+  return j;
+}
+
+const char* Mark(bool ok) { return ok ? "  ok" : "  MISSED"; }
+
+void PrintTable(const nlohmann::json& cases, const Config& config) {
+  std::printf("\n%-11s %8s %8s %8s %8s  %-9s %-9s  %s\n", "case", "x_rays", "x_rays", "x_wall",
+              "x_cpu", "d_err", "d_err", "");
+  std::printf("%-11s %8s %8s %8s %8s  %-9s %-9s\n", "",
+              ("N=" + std::to_string(config.bake_res)).c_str(),
+              ("N=" + std::to_string(config.rays_res)).c_str(), "", "", "grace", "pisa");
+  for (const nlohmann::json& c : cases) {
+    const double xr = c["x_rays"], xr2 = c["rays_at"]["x_rays"], xw = c["x_wall"], xc = c["x_cpu"];
+    const double dg = c["error"]["grace"]["delta"], dp = c["error"]["pisa"]["delta"];
+    std::printf("%-11s %8.3f %8.3f %8.3f %8.3f  %+.5f  %+.5f %s%s%s%s\n",
+                c["case"].get<std::string>().c_str(), xr, xr2, xw, xc, dg, dp, Mark(xr <= 0.25),
+                Mark(xr2 <= 0.12), Mark(xw <= 0.35), Mark(dg <= 0.002 && dp <= 0.002));
+  }
+  std::printf("targets: x_rays <= 0.25 (N=%d), <= 0.12 (N=%d); x_wall <= 0.35; d_err <= +0.002\n",
+              config.bake_res, config.rays_res);
+}
+
+}  // namespace
+}  // namespace wavebake
+
+int main(int argc, char** argv) {
+  wavebake::Config config;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") {
+      config.quick = true;
+    } else if (arg == "--workers" && i + 1 < argc) {
+      config.workers = std::atoi(argv[++i]);
+    } else if (!arg.empty() && arg[0] != '-' && config.work.empty()) {
+      config.work = arg;
+    } else {
+      wavebake::Die("usage: bench_refine_bake WORK_DIR [--quick] [--workers W]");
+    }
+  }
+  if (config.work.empty() || config.workers < 1)
+    wavebake::Die("usage: bench_refine_bake WORK_DIR [--quick] [--workers W]");
+  if (config.quick) config.bake_res = 32, config.rays_res = 64;
+  std::filesystem::create_directories(config.work);
+  nlohmann::json cases = nlohmann::json::array();
+  for (const wavebake::Case& c : wavebake::Cases(config))
+    cases.push_back(wavebake::RunCase(c, config));
+  wavebake::PrintTable(cases, config);
+  std::printf("%s\n", nlohmann::json{{"cases", cases}}.dump().c_str());
+  return 0;
+}

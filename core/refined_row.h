@@ -1,0 +1,73 @@
+#pragma once
+// One row of T by visibility refinement: trace only where visibility changes
+// (DESIGN.md §1 "Transport entry", computed by refinement).
+//
+// Brute force (core/transport_row.h) traces the K jittered rays of every
+// texel above the horizon, N² work per face, while what the row holds —
+// where visibility changes — lies along occluder silhouettes, N long. Here
+// every cube face is a quadtree of texel blocks (core/refine_plan.h):
+//
+//  1. One ray probes each start block (the jittered ray 0 of its anchor texel).
+//  2. A block whose probe agrees with the probes (or decided values) of its 8
+//     neighbours is uniform: every texel in it gets its value without rays.
+//     Any other block, and every block the horizon crosses, is split in 4
+//     and its children probed, down to single texels.
+//  3. A texel still undecided there traces its K jittered rays (ray 0 was
+//     its probe).
+//  4. Silhouette following (RefineOptions::follow): a traced texel whose rays
+//     disagree has its decided neighbours traced; one whose rays agree but
+//     whose neighbour was decided the other way has that neighbour traced;
+//     repeated until nothing changes.
+//
+// Values (V the visibility, c_k = n·ω_k, I_m = (1/π)∫_m max(0, n·ω) dω the
+// exact integral of core/texel_irradiance.h):
+//   * a decided occluded texel, or one below the horizon: 0;
+//   * a decided visible texel (always entirely above the horizon, because
+//     blocks the horizon crosses are split to texels and traced): I_m;
+//   * a traced texel entirely above the horizon: I_m · Σ V_k c_k / Σ c_k,
+//     the cosine-weighted visible fraction of its K rays times the exact
+//     integral — so a fully visible texel is I_m whether it was traced or
+//     decided, and blocks meet without seams in the row's Haar coefficients;
+//   * a traced texel the horizon crosses: Ω_m/(Kπ) Σ_{c_k>0} V_k c_k, brute
+//     force's estimate with its per-ray clamp.
+// With nothing occluding, the row sums to 1 up to float rounding (brute
+// force: up to its quadrature error). The result depends only on (scene,
+// cubemap, pattern, plan, sample, ε): deterministic, like brute force.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/cubemap.h"
+#include "core/jitter_pattern.h"
+#include "core/ray_caster.h"
+#include "core/refine_plan.h"
+#include "core/transport_row.h"
+#include "core/vec3.h"
+
+namespace wavebake {
+
+// A texel being traced: its rays' sums, in k order.
+struct RefineSlot {
+  int32_t texel;
+  bool above;  // entirely above the horizon
+  int rays_above = 0, visible = 0;
+  float sum_c = 0, sum_vc = 0;
+};
+
+// Per-thread working memory of a row, reused row after row (O(M) bytes).
+struct RefineScratch {
+  std::vector<uint8_t> state;  // per texel, refined_row.cc's TexelState
+  std::vector<int8_t> probe;   // per texel: its ray 0, -1 untraced, -2 below the horizon
+  std::vector<int32_t> active, next, to_trace, frontier;
+  std::vector<uint8_t> crossing;  // per active block: the horizon crosses it
+  std::vector<RefineSlot> slots;
+};
+
+// As TransportRow, by refinement; plan and pattern must be made for
+// `cubemap`. stats->rays_traced counts the rays handed to Embree.
+void RefinedTransportRow(const RayCaster& caster, const Cubemap& cubemap,
+                         const JitterPattern& pattern, const RefinePlan& plan, Vec3 position,
+                         Vec3 normal, float epsilon, std::span<float> row, TransportStats* stats,
+                         RefineScratch& scratch);
+
+}  // namespace wavebake

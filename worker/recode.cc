@@ -1,0 +1,163 @@
+#include "worker/recode.h"
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/bake_params_io.h"
+#include "storage/store_layout.h"
+#include "storage/zarr_group.h"
+#include "worker/bake_tile.h"
+#include "worker/finalize.h"
+#include "worker/staging.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status CheckTrace(const BakeContext& ctx, const std::filesystem::path& traced) {
+  const std::filesystem::path staging = store::Path(traced, store::kStaging);
+  if (!std::filesystem::is_directory(staging))
+    return absl::FailedPreconditionError(
+        absl::StrCat("traced: ", traced.string(), " has no staging (bake it with keep_staging)"));
+  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(staging);
+  if (!attrs.ok()) return attrs.status();
+  if (!attrs->contains("trace"))
+    return absl::FailedPreconditionError(
+        absl::StrCat(staging.string(), ": no trace record (not a kept staging)"));
+  const nlohmann::json& have = (*attrs)["trace"];
+  const nlohmann::json want = TraceRecord(ctx);
+  // The scene first: another scene differs in everything that follows.
+  std::vector<std::string> fields = {"scene_hash"};
+  for (const auto& [field, value] : want.items())
+    if (field != "scene_hash") fields.push_back(field);
+  for (const std::string& field : fields) {
+    const nlohmann::json& value = want[field];
+    if (!have.contains(field) || have[field] != value)
+      return absl::FailedPreconditionError(
+          absl::StrCat("traced: ", field, " is ", have.value(field, nlohmann::json()).dump(),
+                       " in ", traced.string(), ", the new parameters need ", value.dump()));
+  }
+  return absl::OkStatus();
+}
+
+// The new store's staging/ shares the trace's arrays through symbolic links
+// (nothing is copied; FINALIZE drops the links, not their targets) and holds
+// its own group results.
+absl::Status LinkStaging(const std::filesystem::path& traced, const std::filesystem::path& out) {
+  if (absl::Status s = WriteGroup(out); !s.ok()) return s;
+  if (absl::Status s = WriteGroup(store::Path(out, store::kStaging)); !s.ok()) return s;
+  for (const char* name : {store::kStagingTransport, store::kStagingTileEnergy}) {
+    std::error_code ec;
+    std::filesystem::create_directory_symlink(std::filesystem::absolute(store::Path(traced, name)),
+                                              store::Path(out, name), ec);
+    if (ec) return absl::InternalError(absl::StrCat(out.string(), ": ", name, ": ", ec.message()));
+  }
+  return absl::OkStatus();
+}
+
+// task(i) for i in [0, count) on `threads` threads; the first error stops
+// new tasks and is returned.
+absl::Status RunAll(int count, int threads, const std::function<absl::Status(int)>& task) {
+  std::atomic<int> next{0};
+  std::mutex mu;
+  absl::Status first;
+  auto work = [&] {
+    for (int i; (i = next.fetch_add(1)) < count;) {
+      absl::Status s = task(i);
+      if (s.ok()) continue;
+      std::lock_guard lock(mu);
+      if (first.ok()) first = s;
+      next = count;  // no new task starts
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(work);
+    work();
+  }
+  return first;
+}
+
+std::filesystem::path PartialBeside(const std::filesystem::path& out, const char* what) {
+  return out.parent_path() / absl::StrCat(".", out.filename().string(), ".", what);
+}
+
+}  // namespace
+
+nlohmann::json TraceRecord(const BakeContext& ctx) {
+  const BakeParams& p = ctx.params;
+  return {{"scene_hash", ctx.scene_hash},
+          {"light_res", p.light_res},
+          {"layout", p.layout},
+          {"supersample", p.supersample},
+          {"seed", p.seed},
+          {"row_filter", std::string(ToString(p.row_filter))},
+          {"tile_size", p.tile_size},
+          {"column_group", p.column_group},
+          {"ray_epsilon", ctx.epsilon},
+          {"refine", p.refine}};
+}
+
+absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesystem::path& dir,
+                                      const TraceOptions& options) {
+  if (std::filesystem::exists(dir))
+    return absl::AlreadyExistsError(absl::StrCat("dir: ", dir.string(), " exists"));
+  const std::filesystem::path partial = PartialBeside(dir, "tracing");
+  std::error_code ec;
+  std::filesystem::remove_all(partial, ec);
+  std::atomic<uint64_t> rays{0};
+  std::atomic<int> tiles{0};
+  std::mutex progress;
+  absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx));
+  if (s.ok()) {
+    s = RunAll(ctx.plan.tiles(), options.threads, [&](int t) {
+      TileStats stats;
+      if (absl::Status b = BakeTile(ctx, partial, t, &stats, {.cancel = options.cancel}); !b.ok())
+        return b;
+      const uint64_t total = rays += stats.rays_traced;
+      const int done = ++tiles;
+      if (options.on_tile) {
+        std::lock_guard lock(progress);
+        options.on_tile(done, total);
+      }
+      return absl::OkStatus();
+    });
+  }
+  if (s.ok()) {
+    std::filesystem::rename(partial, dir, ec);
+    if (ec) s = absl::InternalError(absl::StrCat("dir: ", dir.string(), ": ", ec.message()));
+  }
+  if (!s.ok()) {
+    std::filesystem::remove_all(partial, ec);
+    return s;
+  }
+  return rays.load();
+}
+
+absl::Status Recode(const BakeContext& ctx, const std::filesystem::path& traced,
+                    const std::filesystem::path& out, const RecodeOptions& options) {
+  if (std::filesystem::exists(out))
+    return absl::AlreadyExistsError(absl::StrCat("out: ", out.string(), " exists"));
+  if (absl::Status s = CheckTrace(ctx, traced); !s.ok()) return s;
+  const std::filesystem::path partial = PartialBeside(out, "recoding");
+  std::error_code ec;
+  std::filesystem::remove_all(partial, ec);
+  absl::Status s = LinkStaging(traced, partial);
+  if (s.ok()) {
+    s = RunAll(ctx.plan.groups, options.threads,
+               [&](int g) { return TransformColumns(ctx, partial, g, nullptr); });
+  }
+  if (s.ok()) s = Finalize(ctx, partial, {.keep_staging = false});
+  if (s.ok()) {
+    std::filesystem::rename(partial, out, ec);
+    if (ec) s = absl::InternalError(absl::StrCat("out: ", out.string(), ": ", ec.message()));
+  }
+  if (!s.ok()) std::filesystem::remove_all(partial, ec);
+  return s;
+}
+
+}  // namespace wavebake
