@@ -4,7 +4,7 @@
 // at OUT. With --auto (driver/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
 // of the independent reference under --env. With --serve the web monitor
-// follows the bake and then relights its store (cli/bake_serve.h).
+// follows the bake and then relights its store (web/bake_monitor.h).
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -17,11 +17,11 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/signal_watcher.h"
 #include "cli/web_flags.h"
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
+#include "driver/signal_watcher.h"
 #include "web/bake_monitor.h"
 
 namespace wavebake::cli {
@@ -68,13 +68,14 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
 
 void Run(const BakeCommandFlags& f) {
   std::atomic<bool> interrupted{false};
-  SignalWatcher signals([&](int) { interrupted = true; });
+  driver::SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
   if (!params.ok()) Fail("bake", params.status());
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  web::BakeMonitor monitor(
-      StartMonitor("bake", f.web, TokenOrFail(f.token_file, "bake"), {}, {}, nullptr), f.out);
+  WebFlags web = f.web;
+  web.options.token = TokenOrFail(f.token_file, "bake");
+  web::BakeMonitor monitor(StartMonitor("bake", std::move(web), nullptr), f.out);
   ProgressBar display(f.quiet);
   driver::EmbeddedBakeOptions options{
       .workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted};

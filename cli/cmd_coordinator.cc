@@ -12,10 +12,10 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/signal_watcher.h"
 #include "cli/web_flags.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
+#include "driver/signal_watcher.h"
 #include "storage/atomic_file.h"
 #include "web/coordinator_source.h"
 
@@ -32,7 +32,7 @@ struct CoordinatorFlags {
 void Run(CoordinatorFlags f) {
   spdlog::set_level(spdlog::level::info);  // its log is its output
   std::promise<void> stop;
-  SignalWatcher signals([&, once = std::make_shared<std::once_flag>()](int) {
+  driver::SignalWatcher signals([&, once = std::make_shared<std::once_flag>()](int) {
     std::call_once(*once, [&] { stop.set_value(); });
   });
   CoordinatorOptions& options = f.options;
@@ -45,9 +45,10 @@ void Run(CoordinatorFlags f) {
       Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
   if (!coordinator.ok()) Fail("coordinator", coordinator.status());
   // The same token and certificate as gRPC (DESIGN.md §4).
+  f.web.options.token = options.token;
+  f.web.options.tls_cert = options.tls_cert_path, f.web.options.tls_key = options.tls_key_path;
   std::unique_ptr<web::MonitorServer> monitor =
-      StartMonitor("coordinator", f.web, options.token, options.tls_cert_path, options.tls_key_path,
-                   web::CoordinatorSource(**coordinator, planner));
+      StartMonitor("coordinator", f.web, web::CoordinatorSource(**coordinator, planner));
   // "host:port" for scripts that listen on port 0; appears whole (rename).
   const std::string address = (*coordinator)->address() + "\n";
   if (!f.address_file.empty())
