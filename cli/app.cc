@@ -1,5 +1,8 @@
 #include "cli/app.h"
 
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
 
 #include "cli/command_error.h"
@@ -8,6 +11,11 @@
 namespace wavebake::cli {
 
 int Run(int argc, char** argv) {
+  // Logs go to stderr, so that stdout carries only results (a job id, a
+  // status table) for scripts; warnings only, but for the coordinator and
+  // worker, whose log is their output.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("wavebake"));
+  spdlog::set_level(spdlog::level::warn);
   CLI::App app{"wavebake: bake, compress and relight all-frequency light transport"};
   app.require_subcommand(1);
   AddBakeCommand(app);

@@ -1,28 +1,10 @@
 #include "cli/bake_flags.h"
 
-#include <charconv>
-
-#include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
-#include "core/layout.h"
-
 namespace wavebake::cli {
-namespace {
 
-// A parsed name into `out`; the error keeps the parser's field name, with
-// `prefix` for the two filters (row_filter, column_filter).
-template <typename T>
-absl::Status Set(absl::StatusOr<T> parsed, T& out, const char* prefix = "") {
-  if (!parsed.ok())
-    return absl::InvalidArgumentError(absl::StrCat(prefix, parsed.status().message()));
-  out = *parsed;
-  return absl::OkStatus();
-}
-
-}  // namespace
-
-void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
-  BakeParams& p = f.params;
+void AddBakeFlags(CLI::App& cmd, BakeFlags& flags) {
+  BakeParams& p = flags.params;
+  BakeParamWords& f = flags.words;
   cmd.add_option("--light-res", p.light_res,
                  "cubemap texels per face edge N (power of two, 8..256)")
       ->capture_default_str();
@@ -80,32 +62,6 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& f) {
       ->capture_default_str();
   cmd.add_option("--column-group", p.column_group, "columns per TRANSFORM_COLUMNS task")
       ->capture_default_str();
-}
-
-absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
-  BakeParams p = f.params;
-  if (f.allow_uv_overlap) {
-    absl::StatusOr<std::string> layout = WithUvOverlapAllowed(p.layout);
-    if (!layout.ok()) return layout.status();
-    p.layout = *layout;
-  }
-  for (absl::Status s : {Set(ParseWaveletFilter(f.row_filter), p.row_filter, "row_"),
-                         Set(ParseColumnMode(f.column_mode), p.column_mode),
-                         Set(ParseWaveletFilter(f.column_filter), p.column_filter, "column_"),
-                         Set(ParseErrorScope(f.error_scope), p.error_scope),
-                         Set(ParseLevelScaling(f.level_scaling), p.level_scaling),
-                         Set(ParseTransport(f.transport), p.transport),
-                         Set(ParseLightDomain(f.light_domain), p.light_domain)})
-    if (!s.ok()) return s;
-  p.refine = f.refine == "on";
-  if (f.bits != "auto") {
-    const char* end = f.bits.data() + f.bits.size();
-    auto [ptr, ec] = std::from_chars(f.bits.data(), end, p.bits);
-    if (ec != std::errc() || ptr != end || p.bits == 0)
-      return absl::InvalidArgumentError(absl::StrCat("bits: '", f.bits, "' is not 2..16 or auto"));
-  }
-  if (absl::Status s = ValidateBakeParams(p); !s.ok()) return s;
-  return p;
 }
 
 }  // namespace wavebake::cli

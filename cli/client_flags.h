@@ -9,4 +9,7 @@ namespace wavebake::cli {
 
 void AddClientFlags(CLI::App& cmd, driver::ClientConfig& config);
 
+// The token in a --token-file ("" for no file); an unreadable file fails `command`.
+std::string TokenOrFail(const std::string& token_file, const char* command);
+
 }  // namespace wavebake::cli

@@ -4,23 +4,25 @@
 // at OUT. With --auto (driver/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
 // of the independent reference under --env. With --serve the web monitor
-// follows the bake and then relights its store (cli/bake_serve.h).
+// follows the bake and then relights its store (web/bake_monitor.h).
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "cli/bake_flags.h"
-#include "cli/bake_serve.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/signal_watcher.h"
-#include "cli/stderr_log.h"
+#include "cli/web_flags.h"
 #include "driver/auto_bake.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
+#include "driver/signal_watcher.h"
+#include "web/bake_monitor.h"
 #include "worker/publish_store.h"
 
 namespace wavebake::cli {
@@ -66,19 +68,20 @@ void RunAuto(const BakeCommandFlags& f, const BakeParams& params,
 }
 
 void Run(BakeCommandFlags f) {
-  LogToStderr(spdlog::level::warn);
   // A link at --out is where the user keeps the store: bake at its target.
   absl::StatusOr<std::filesystem::path> out = ResolveOutputPath(f.out);
   if (!out.ok()) Fail("bake", out.status());
   const std::string given = f.out;
   f.out = out->string();
   std::atomic<bool> interrupted{false};
-  SignalWatcher signals([&](int) { interrupted = true; });
+  driver::SignalWatcher signals([&](int) { interrupted = true; });
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
   if (!params.ok()) Fail("bake", params.status());
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();
-  BakeMonitor monitor(f.web, f.token_file, f.out);
+  WebFlags web = f.web;
+  web.options.token = TokenOrFail(f.token_file, "bake");
+  web::BakeMonitor monitor(StartMonitor("bake", std::move(web), nullptr), f.out);
   ProgressBar display(f.quiet);
   driver::EmbeddedBakeOptions options{
       .workers = f.workers, .on_event = display.Callback(), .interrupted = &interrupted};
@@ -94,8 +97,11 @@ void Run(BakeCommandFlags f) {
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
+  if (!monitor) return;
   std::fflush(stdout);
-  monitor.ServeUntil(interrupted);
+  std::fprintf(stderr, "bake: serving the finished bake at %s; Ctrl-C to stop\n",
+               monitor.server().url().c_str());
+  while (!interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
 }  // namespace

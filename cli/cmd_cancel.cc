@@ -5,7 +5,6 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/stderr_log.h"
 #include "driver/job_query.h"
 
 namespace wavebake::cli {
@@ -17,7 +16,6 @@ struct CancelFlags {
 };
 
 void Run(const CancelFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("cancel", client.status());
   absl::StatusOr<v1::Job> job = driver::CancelJob(*client, f.job);

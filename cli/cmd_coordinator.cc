@@ -1,20 +1,21 @@
 // `wavebake coordinator --listen ADDR --data DIR [--http ADDR]` (DESIGN.md
 // §4, §5): the job service and the work queue, and with --http the web
 // monitor and /metrics, until SIGINT or SIGTERM.
+#include <spdlog/spdlog.h>
+
 #include <future>
 #include <memory>
 #include <mutex>
 #include <span>
 
 #include "absl/strings/str_cat.h"
+#include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/signal_watcher.h"
-#include "cli/stderr_log.h"
 #include "cli/web_flags.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
-#include "driver/client.h"
+#include "driver/signal_watcher.h"
 #include "storage/atomic_file.h"
 #include "web/coordinator_source.h"
 
@@ -29,28 +30,25 @@ struct CoordinatorFlags {
 };
 
 void Run(CoordinatorFlags f) {
-  LogToStderr(spdlog::level::info);
+  spdlog::set_level(spdlog::level::info);  // its log is its output
   std::promise<void> stop;
-  SignalWatcher signals([&, once = std::make_shared<std::once_flag>()](int) {
+  driver::SignalWatcher signals([&, once = std::make_shared<std::once_flag>()](int) {
     std::call_once(*once, [&] { stop.set_value(); });
   });
   CoordinatorOptions& options = f.options;
   options.max_upload_bytes = f.max_upload_mb << 20;
   if (options.store_root.empty()) options.store_root = options.data_dir / "store";
-  if (!f.token_file.empty()) {
-    absl::StatusOr<std::string> token = driver::ReadTokenFile(f.token_file);
-    if (!token.ok()) Fail("coordinator", token.status());
-    options.token = *token;
-  }
+  options.token = TokenOrFail(f.token_file, "coordinator");
   const PlannerOptions planner{
       .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =
       Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
   if (!coordinator.ok()) Fail("coordinator", coordinator.status());
   // The same token and certificate as gRPC (DESIGN.md §4).
+  f.web.options.token = options.token;
+  f.web.options.tls_cert = options.tls_cert_path, f.web.options.tls_key = options.tls_key_path;
   std::unique_ptr<web::MonitorServer> monitor =
-      StartMonitor("coordinator", f.web, options.token, options.tls_cert_path, options.tls_key_path,
-                   web::CoordinatorSource(**coordinator, planner));
+      StartMonitor("coordinator", f.web, web::CoordinatorSource(**coordinator, planner));
   // "host:port" for scripts that listen on port 0; appears whole (rename).
   const std::string address = (*coordinator)->address() + "\n";
   if (!f.address_file.empty())

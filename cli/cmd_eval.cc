@@ -2,7 +2,6 @@
 // (DESIGN.md §5): the store's relighting error, and the uncompressed T's,
 // against an independently traced Monte-Carlo reference (runtime/eval.h);
 // with --area-light, near-field lights over their area (runtime/area_eval.h).
-#include <cmath>
 #include <cstdio>
 
 #include "cli/area_light_flags.h"
@@ -17,18 +16,12 @@ namespace {
 struct EvalFlags {
   std::string store, env;
   int terms = 256;
-  double rotate = 0;
+  EvalOptions options;  // --rotate, --reference-se
   bool reference = false, json = false, no_dense = false;
-  double reference_se = 0.002;
   int reference_batches = 8;
   driver::AreaLightCommand area;
   GlossyFlags glossy;
 };
-
-void PrintRow(const char* name, const ErrorStats& e) {
-  std::printf("%-11s rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %.3f s\n", name, e.rel_rms,
-              e.max_abs, e.psnr, e.seconds);
-}
 
 void Run(const EvalFlags& f) {
   if (!f.reference)
@@ -45,22 +38,13 @@ void Run(const EvalFlags& f) {
     return (void)std::printf("%s\n", text->c_str());
   }
   if (f.env.empty()) Fail("eval", "--env or --area-light is required", kExitBadInput);
-  EvalOptions options;
-  options.rotate_degrees = f.rotate;
+  EvalOptions options = f.options;
   options.dense = !f.no_dense;
-  options.reference.target_rel_se = f.reference_se;
   options.glossy = GlossyOf(f.glossy, "eval");
   absl::StatusOr<EvalReport> report = Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
-  if (f.json) {
-    std::printf("%s\n", EvalReportJson(*report).dump().c_str());
-    return;
-  }
-  std::printf("reference  rel_se %.5f  %lld rays  %.1f s%s\n", report->reference_rel_se,
-              static_cast<long long>(report->reference_rays), report->reference_seconds,
-              report->reference_converged ? "" : "  (NOT converged)");
-  if (report->has_dense) PrintRow("dense T", report->dense);
-  PrintRow("compressed", report->compressed);
+  std::printf("%s", f.json ? (EvalReportJson(*report).dump() + "\n").c_str()
+                           : EvalReportText(*report).c_str());
 }
 
 }  // namespace
@@ -84,9 +68,10 @@ void AddEvalCommand(CLI::App& app) {
                 "trace the Monte-Carlo reference (importance-sampled environment, Embree)");
   cmd->add_option("--terms", flags->terms, "wavelet lights for the compressed relighting")
       ->capture_default_str();
-  cmd->add_option("--rotate", flags->rotate, "rotate the environment about +Y, degrees")
+  cmd->add_option("--rotate", flags->options.rotate_degrees,
+                  "rotate the environment about +Y, degrees")
       ->capture_default_str();
-  cmd->add_option("--reference-se", flags->reference_se,
+  cmd->add_option("--reference-se", flags->options.reference.target_rel_se,
                   "target relative standard error of the reference")
       ->capture_default_str();
   AddGlossyFlags(*cmd, flags->glossy);

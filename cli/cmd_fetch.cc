@@ -6,7 +6,6 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/stderr_log.h"
 #include "driver/store_fetch.h"
 
 namespace wavebake::cli {
@@ -19,7 +18,6 @@ struct FetchFlags {
 };
 
 void Run(const FetchFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("fetch", client.status());
   absl::StatusOr<driver::FetchSummary> summary = driver::FetchStore(*client, f.job, f.out);

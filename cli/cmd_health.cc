@@ -4,9 +4,8 @@
 #include <cstdio>
 
 #include "cli/client_flags.h"
-#include "cli/commands.h"
 #include "cli/command_error.h"
-#include "cli/stderr_log.h"
+#include "cli/commands.h"
 #include "driver/health.h"
 
 namespace wavebake::cli {
@@ -19,7 +18,6 @@ struct HealthFlags {
 };
 
 void Run(const HealthFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client, /*connect_seconds=*/0);
   if (!client.ok()) Fail("health", client.status());
   const absl::Status s = driver::CheckHealth(*client, f.client.coordinator, f.service,

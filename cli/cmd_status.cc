@@ -6,7 +6,6 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/stderr_log.h"
 #include "driver/job_query.h"
 #include "driver/job_text.h"
 
@@ -22,7 +21,6 @@ struct StatusFlags {
 };
 
 void Run(const StatusFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("status", client.status());
   if (!f.job.empty()) {

@@ -8,10 +8,8 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/stderr_log.h"
 #include "driver/job_query.h"
 #include "driver/job_submit.h"
-#include "driver/job_watch.h"
 #include "proto/bake_request.h"
 
 namespace wavebake::cli {
@@ -27,7 +25,6 @@ struct SubmitFlags {
 };
 
 void Run(const SubmitFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<BakeParams> params = ToParams(f.bake);
   if (!params.ok()) Fail("submit", params.status());
   v1::BakeRequest request = ToBakeRequest(*params);
@@ -40,13 +37,8 @@ void Run(const SubmitFlags& f) {
   std::printf("%s\n", job->id().c_str());
   std::fflush(stdout);
   if (!f.wait) return;
-  ProgressBar display(/*quiet=*/false);
-  absl::StatusOr<v1::Job> ended =
-      driver::WatchJob(*client, job->id(), {.on_event = display.Callback()});
-  display.Finish();
-  if (!ended.ok()) Fail("submit", ended.status());
-  if (ended->phase() != v1::PHASE_DONE) Fail("submit", driver::JobOutcome(*ended));
-  std::fprintf(stderr, "%s\n", driver::JobOutcome(*ended).c_str());
+  const v1::Job ended = FollowJob(*client, job->id(), "submit");
+  std::fprintf(stderr, "%s\n", driver::JobOutcome(ended).c_str());
 }
 
 }  // namespace

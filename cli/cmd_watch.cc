@@ -7,9 +7,7 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/stderr_log.h"
 #include "driver/job_query.h"
-#include "driver/job_watch.h"
 
 namespace wavebake::cli {
 namespace {
@@ -21,16 +19,10 @@ struct WatchFlags {
 };
 
 void Run(const WatchFlags& f) {
-  LogToStderr(spdlog::level::warn);
   absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
   if (!client.ok()) Fail("watch", client.status());
-  ProgressBar display(/*quiet=*/false);
-  absl::StatusOr<v1::Job> job = driver::WatchJob(
-      *client, f.job, {.patience_seconds = f.patience_seconds, .on_event = display.Callback()});
-  display.Finish();
-  if (!job.ok()) Fail("watch", job.status());
-  if (job->phase() != v1::PHASE_DONE) Fail("watch", driver::JobOutcome(*job));
-  std::printf("%s\n", driver::JobOutcome(*job).c_str());
+  const v1::Job job = FollowJob(*client, f.job, "watch", f.patience_seconds);
+  std::printf("%s\n", driver::JobOutcome(job).c_str());
 }
 
 }  // namespace

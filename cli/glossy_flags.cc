@@ -5,11 +5,11 @@
 namespace wavebake::cli {
 
 void AddGlossyFlags(CLI::App& cmd, GlossyFlags& f) {
-  cmd.add_option("--brdf", f.brdf,
+  cmd.add_option("--brdf", f.options.brdf,
                  "material (visibility stores; a diffuse store is lambert): lambert | phong:EXP "
                  "| blinn:EXP | ggx:ROUGHNESS")
       ->capture_default_str();
-  cmd.add_option("--brdf-terms", f.brdf_terms,
+  cmd.add_option("--brdf-terms", f.options.slices.terms,
                  "Haar coefficients kept per sample's BRDF slice (0: all)")
       ->capture_default_str();
   cmd.add_option("--view", f.view,
@@ -18,9 +18,7 @@ void AddGlossyFlags(CLI::App& cmd, GlossyFlags& f) {
 }
 
 GlossyOptions GlossyOf(const GlossyFlags& f, const char* command) {
-  GlossyOptions g;
-  g.brdf = f.brdf;
-  g.slices.terms = f.brdf_terms;
+  GlossyOptions g = f.options;
   if (!f.view.empty()) {
     absl::StatusOr<Vec3> eye = ParseView(f.view);
     if (!eye.ok()) Fail(command, eye.status());

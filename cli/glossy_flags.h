@@ -8,8 +8,8 @@
 namespace wavebake::cli {
 
 struct GlossyFlags {
-  std::string brdf = "lambert", view;
-  int brdf_terms = 256;
+  GlossyOptions options;
+  std::string view;
 };
 
 // --brdf, --brdf-terms, --view.

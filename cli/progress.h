@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "driver/client.h"
 #include "wavebake.pb.h"
 
 namespace wavebake::cli {
@@ -31,5 +32,10 @@ class ProgressBar {
   v1::Phase phase_ = v1::PHASE_UNSPECIFIED;
   bool drawn_ = false;
 };
+
+// Follows the job to its end under a progress bar (`watch`, `submit --wait`):
+// returns it if it ended DONE, else fails `command` with its outcome.
+v1::Job FollowJob(const driver::Client& client, const std::string& job_id, const char* command,
+                  double patience_seconds = 60);
 
 }  // namespace wavebake::cli

@@ -1,5 +1,6 @@
 #include "cli/web_flags.h"
 
+#include <cstdio>
 #include <span>
 
 #include "absl/strings/str_cat.h"
@@ -11,7 +12,7 @@ namespace wavebake::cli {
 void AddWebFlags(CLI::App& cmd, WebFlags& f, const std::string& listen_flag,
                  const std::string& listen_help) {
   f.flag = listen_flag;
-  CLI::Option* listen = cmd.add_option(listen_flag, f.listen, listen_help);
+  CLI::Option* listen = cmd.add_option(listen_flag, f.options.listen, listen_help);
   cmd.add_option(listen_flag + "-address-file", f.address_file,
                  "write the web monitor's address (host:port) to this file once serving")
       ->needs(listen);
@@ -19,30 +20,22 @@ void AddWebFlags(CLI::App& cmd, WebFlags& f, const std::string& listen_flag,
                  "directory of .hdr/.exr environments the relight view offers besides the "
                  "built-ins (clients choose by name, never by path)")
       ->needs(listen);
-  cmd.add_option(listen_flag + "-pages", f.pages_dir,
+  cmd.add_option(listen_flag + "-pages", f.options.pages_dir,
                  "serve the monitor's pages from this directory (files named as web/static/) "
                  "instead of the built-in copies")
       ->needs(listen);
 }
 
-std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, const WebFlags& f,
-                                                 const std::string& token,
-                                                 const std::filesystem::path& tls_cert,
-                                                 const std::filesystem::path& tls_key,
+std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, WebFlags f,
                                                  std::shared_ptr<web::JobSource> source) {
-  if (f.listen.empty()) return nullptr;
-  web::MonitorOptions options{.listen = f.listen,
-                              .token = token,
-                              .tls_cert = tls_cert,
-                              .tls_key = tls_key,
-                              .pages_dir = f.pages_dir};
+  if (f.options.listen.empty()) return nullptr;
   if (!f.probes.empty()) {
     absl::StatusOr<web::ProbeCatalogue> probes = web::ProbeCatalogue::Scan(f.probes);
     if (!probes.ok()) Fail(command, probes.status());
-    options.probes = *std::move(probes);
+    f.options.probes = *std::move(probes);
   }
   absl::StatusOr<std::unique_ptr<web::MonitorServer>> server =
-      web::MonitorServer::Start(std::move(options), std::move(source));
+      web::MonitorServer::Start(std::move(f.options), std::move(source));
   if (!server.ok()) Fail(command, server.status());
   if (!f.address_file.empty()) {
     const std::string address = (*server)->address() + "\n";
@@ -50,6 +43,7 @@ std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, con
         !s.ok())
       Fail(command, absl::StrCat(f.flag, "-address-file: ", s.message()));
   }
+  std::fprintf(stderr, "%s: web monitor at %s\n", command.c_str(), (*server)->url().c_str());
   return *std::move(server);
 }
 

@@ -12,11 +12,9 @@
 namespace wavebake::cli {
 
 struct WebFlags {
-  std::string flag;    // --http or --serve
-  std::string listen;  // empty: no monitor
-  std::string address_file;
-  std::string probes;
-  std::string pages_dir;
+  std::string flag;                           // --http or --serve
+  web::MonitorOptions options{.listen = ""};  // no listen address: no monitor
+  std::string address_file, probes;
 };
 
 // `listen_flag` is --http or --serve; the others are named after it
@@ -24,12 +22,10 @@ struct WebFlags {
 void AddWebFlags(CLI::App& cmd, WebFlags& f, const std::string& listen_flag,
                  const std::string& listen_help);
 
-// Starts the monitor (nullptr when no address was given) and writes its
-// address file; exits through Fail on bad flags.
-std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, const WebFlags& f,
-                                                 const std::string& token,
-                                                 const std::filesystem::path& tls_cert,
-                                                 const std::filesystem::path& tls_key,
+// Starts the monitor (nullptr when no address was given; the caller sets
+// the token and TLS files in f.options) and writes its address file; exits
+// through Fail on bad flags.
+std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, WebFlags f,
                                                  std::shared_ptr<web::JobSource> source);
 
 }  // namespace wavebake::cli

@@ -2,12 +2,29 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 
 namespace wavebake::driver {
 
 std::string PhaseName(v1::Phase phase) { return v1::Phase_Name(phase).substr(6); }
+
+std::string PhaseLabel(v1::Phase phase) {
+  switch (phase) {
+    case v1::PHASE_BAKING:
+      return "bake tiles";
+    case v1::PHASE_TRANSFORMING:
+      return "transform columns";
+    case v1::PHASE_FINALIZING:
+      return "finalize";
+    default:
+      return absl::AsciiStrToLower(PhaseName(phase));
+  }
+}
 
 std::string JobDetailText(const v1::Job& job) {
   std::string text = absl::StrFormat(
@@ -23,6 +40,21 @@ std::string JobDetailText(const v1::Job& job) {
   if (!job.error().empty()) absl::StrAppend(&text, "error      ", job.error(), "\n");
   if (!job.stats_json().empty()) absl::StrAppend(&text, "stats      ", job.stats_json(), "\n");
   return text;
+}
+
+std::string ProgressText(const v1::JobEvent& e, double elapsed) {
+  const int64_t done = e.phase_tasks_done(), total = e.phase_tasks_total();
+  const double frac = total > 0 ? double(done) / double(total) : 0;
+  const double mrays = e.rays_per_second() >= 0 ? e.rays_per_second() / 1e6
+                       : elapsed > 0            ? e.rays_traced() / elapsed / 1e6
+                                                : 0;
+  // The whole job's ETA from measured task times (coordinator/eta_model.h).
+  const std::string eta =
+      e.eta_seconds() >= 0 ? absl::StrCat(std::lround(e.eta_seconds()), "s") : "--";
+  std::string bar(30, '.');
+  std::fill_n(bar.begin(), static_cast<int>(frac * 30), '#');
+  return absl::StrFormat("%-18s [%s] %3d%% %d/%d  %.1f Mrays/s  ETA %s", PhaseLabel(e.phase()), bar,
+                         static_cast<int>(frac * 100), done, total, mrays, eta);
 }
 
 std::string JobTableHeader() {

@@ -7,6 +7,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "core/cubemap.h"
 #include "core/scene_hash.h"
 #include "runtime/dense_trace.h"
@@ -141,6 +142,18 @@ nlohmann::json EvalReportJson(const EvalReport& r) {
                     {"seconds", r.reference_seconds},
                     {"converged", r.reference_converged}};
   return j;
+}
+
+std::string EvalReportText(const EvalReport& r) {
+  auto row = [](const char* name, const ErrorStats& e) {
+    return absl::StrFormat("%-11s rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %.3f s\n", name,
+                           e.rel_rms, e.max_abs, e.psnr, e.seconds);
+  };
+  std::string text = absl::StrFormat("reference  rel_se %.5f  %d rays  %.1f s%s\n",
+                                     r.reference_rel_se, r.reference_rays, r.reference_seconds,
+                                     r.reference_converged ? "" : "  (NOT converged)");
+  if (r.has_dense) text += row("dense T", r.dense);
+  return text + row("compressed", r.compressed);
 }
 
 }  // namespace wavebake

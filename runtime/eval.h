@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "absl/status/statusor.h"
@@ -68,5 +69,8 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
 //  "compressed": {same keys}, "reference": {"rel_se", "rays", "seconds",
 //  "converged"}}; "dense" is null when not evaluated.
 nlohmann::json EvalReportJson(const EvalReport& report);
+// The same for a person: the reference's line, then dense T's and the
+// store's (rel_rms, max_abs, psnr, seconds), one line each.
+std::string EvalReportText(const EvalReport& report);
 
 }  // namespace wavebake

@@ -49,14 +49,43 @@ struct Receiver {
   Vec3 origin, normal;
 };
 
-// One batch of kBatch draws for one receiver: draw i takes its block-curve
-// uniform from the stratum [i, i+1)/kBatch (jittered), the rest at random.
-void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<const double> cdf,
-                const Receiver& r, Rng& rng, Estimate& e) {
+// A batch's traced directions and what each adds if unoccluded; TraceInto
+// adds the batch's mean (over all kBatch draws, the untraced ones being 0) to
+// the estimate.
+struct RayBatch {
   alignas(64) float x[kBatch], y[kBatch], z[kBatch];
   std::array<double, 3> f[kBatch];
   uint8_t occluded[kBatch];
   int count = 0;
+
+  void Add(Vec3 w, std::array<double, 3> value) {
+    x[count] = w.x, y[count] = w.y, z[count] = w.z;
+    f[count++] = value;
+  }
+  void TraceInto(const RayCaster& caster, Vec3 origin, Estimate& e) {
+    const size_t n = static_cast<size_t>(count);
+    caster.OccludedFan(origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
+                       {occluded, n});
+    std::array<double, 3> batch{};
+    for (int i = 0; i < count; ++i) {
+      if (occluded[i]) continue;
+      for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
+    }
+    for (int c = 0; c < 3; ++c) {
+      const double mean = batch[c] / kBatch;
+      e.sum[c] += mean;
+      e.sum_sq[c] += mean * mean;
+    }
+    ++e.batches;
+    e.traced += count;
+  }
+};
+
+// One batch of kBatch draws for one receiver: draw i takes its block-curve
+// uniform from the stratum [i, i+1)/kBatch (jittered), the rest at random.
+void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<const double> cdf,
+                const Receiver& r, Rng& rng, Estimate& e) {
+  RayBatch b;
   for (int i = 0; i < kBatch; ++i) {
     std::array<double, 5> u;
     for (double& v : u) v = rng.Next01();
@@ -64,25 +93,11 @@ void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<co
     const EnvSampler::Draw d = sampler.Sample(cdf, u);
     const double cosine = Dot(r.normal, d.direction);
     if (!(cosine > 0)) continue;  // f = 0: counted, not traced
-    x[count] = d.direction.x, y[count] = d.direction.y, z[count] = d.direction.z;
-    for (int c = 0; c < 3; ++c) f[count][c] = d.weight[c] * cosine / std::numbers::pi;
-    ++count;
+    b.Add(d.direction,
+          {d.weight[0] * cosine / std::numbers::pi, d.weight[1] * cosine / std::numbers::pi,
+           d.weight[2] * cosine / std::numbers::pi});
   }
-  const size_t n = static_cast<size_t>(count);
-  caster.OccludedFan(r.origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
-                     {occluded, n});
-  std::array<double, 3> batch{};
-  for (int i = 0; i < count; ++i) {
-    if (occluded[i]) continue;
-    for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
-  }
-  for (int c = 0; c < 3; ++c) {
-    const double mean = batch[c] / kBatch;
-    e.sum[c] += mean;
-    e.sum_sq[c] += mean * mean;
-  }
-  ++e.batches;
-  e.traced += count;
+  b.TraceInto(caster, r.origin, e);
 }
 
 // One batch for a glossy receiver: even draws from the environment, odd
@@ -90,10 +105,7 @@ void TraceBatch(const RayCaster& caster, const EnvSampler& sampler, std::span<co
 void TraceGlossyBatch(const RayCaster& caster, const EnvSampler& sampler,
                       std::span<const double> cdf, const Receiver& r, Vec3 view, const Brdf& brdf,
                       Rng& rng, Estimate& e) {
-  alignas(64) float x[kBatch], y[kBatch], z[kBatch];
-  std::array<double, 3> f[kBatch];
-  uint8_t occluded[kBatch];
-  int count = 0;
+  RayBatch b;
   constexpr int kHalf = kBatch / 2;
   for (int i = 0; i < kBatch; ++i) {
     std::array<double, 5> u;
@@ -120,25 +132,10 @@ void TraceGlossyBatch(const RayCaster& caster, const EnvSampler& sampler,
     const double fr = brdf.Eval(r.normal, view, w);
     const double p_mix = 0.5 * (p_env + p_brdf);
     if (!(fr > 0) || !(p_mix > 0)) continue;
-    x[count] = w.x, y[count] = w.y, z[count] = w.z;
-    for (int c = 0; c < 3; ++c) f[count][c] = radiance[c] * fr * cosine / p_mix;
-    ++count;
+    b.Add(w, {radiance[0] * fr * cosine / p_mix, radiance[1] * fr * cosine / p_mix,
+              radiance[2] * fr * cosine / p_mix});
   }
-  const size_t n = static_cast<size_t>(count);
-  caster.OccludedFan(r.origin, {{x, n}, {y, n}, {z, n}}, 0, std::numeric_limits<float>::infinity(),
-                     {occluded, n});
-  std::array<double, 3> batch{};
-  for (int i = 0; i < count; ++i) {
-    if (occluded[i]) continue;
-    for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
-  }
-  for (int c = 0; c < 3; ++c) {
-    const double mean = batch[c] / kBatch;
-    e.sum[c] += mean;
-    e.sum_sq[c] += mean * mean;
-  }
-  ++e.batches;
-  e.traced += count;
+  b.TraceInto(caster, r.origin, e);
 }
 
 template <typename Body>

@@ -2,10 +2,10 @@
 
 #include <string>
 
+#include "driver/job_text.h"
+
 namespace wavebake::web {
 namespace {
-
-std::string PhaseName(v1::Phase p) { return v1::Phase_Name(p).substr(6); }  // drop "PHASE_"
 
 std::string SceneName(const v1::BakeRequest& r) {
   if (r.scene().has_builtin()) return r.scene().builtin();
@@ -18,7 +18,7 @@ std::string SceneName(const v1::BakeRequest& r) {
 nlohmann::json JobJson(const v1::Job& job) {
   const bool ended = job.phase() >= v1::PHASE_DONE;
   return {{"id", job.id()},
-          {"phase", PhaseName(job.phase())},
+          {"phase", driver::PhaseName(job.phase())},
           {"scene", SceneName(job.request())},
           {"layout", job.request().layout()},
           {"light_res", job.request().light_res()},
@@ -50,7 +50,7 @@ nlohmann::json EventJson(const v1::JobEvent& e) {
   nlohmann::json j = {{"seq", e.seq()},
                       {"unix_ms", e.unix_ms()},
                       {"kind", v1::EventKind_Name(e.kind()).substr(6)},  // drop "EVENT_"
-                      {"phase", PhaseName(e.phase())},
+                      {"phase", driver::PhaseName(e.phase())},
                       {"worker", e.worker_id()},
                       {"message", e.message()},
                       {"tasks_done", e.tasks_done()},

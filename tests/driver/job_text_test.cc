@@ -52,6 +52,29 @@ TEST(JobTextTest, DetailShowsRateEtaAndError) {
   EXPECT_THAT(text, HasSubstr("error      tile 3: out of memory\n"));
 }
 
+TEST(JobTextTest, PhasesAsPeopleSayThem) {
+  EXPECT_EQ(PhaseName(v1::PHASE_TRANSFORMING), "TRANSFORMING");
+  EXPECT_EQ(PhaseLabel(v1::PHASE_BAKING), "bake tiles");
+  EXPECT_EQ(PhaseLabel(v1::PHASE_TRANSFORMING), "transform columns");
+  EXPECT_EQ(PhaseLabel(v1::PHASE_DONE), "done");
+}
+
+TEST(JobTextTest, ProgressLineOfAPhase) {
+  v1::JobEvent e;
+  e.set_phase(v1::PHASE_TRANSFORMING);
+  e.set_phase_tasks_done(3);
+  e.set_phase_tasks_total(12);
+  e.set_rays_traced(8'000'000);
+  e.set_rays_per_second(-1);
+  e.set_eta_seconds(-1);
+  EXPECT_EQ(ProgressText(e, 4.0),
+            "transform columns  [#######.......................]  25% 3/12"
+            "  2.0 Mrays/s  ETA --");
+  e.set_rays_per_second(5e6);
+  e.set_eta_seconds(41.6);
+  EXPECT_THAT(ProgressText(e, 4.0), ::testing::EndsWith("5.0 Mrays/s  ETA 42s"));
+}
+
 TEST(JobTextTest, TableRowLinesUpUnderTheHeader) {
   const std::string header = JobTableHeader(), row = JobTableRow(BakingJob());
   EXPECT_EQ(header.find("PHASE"), row.find("BAKING"));

@@ -1,10 +1,10 @@
-#include "cli/signal_watcher.h"
+#include "driver/signal_watcher.h"
 
 #include <pthread.h>
 
 #include <ctime>
 
-namespace wavebake::cli {
+namespace wavebake::driver {
 
 SignalWatcher::SignalWatcher(std::function<void(int)> on_signal) {
   sigemptyset(&set_);
@@ -26,4 +26,4 @@ SignalWatcher::~SignalWatcher() {
   if (thread_.joinable()) thread_.join();
 }
 
-}  // namespace wavebake::cli
+}  // namespace wavebake::driver

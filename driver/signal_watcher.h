@@ -8,7 +8,7 @@
 #include <functional>
 #include <thread>
 
-namespace wavebake::cli {
+namespace wavebake::driver {
 
 class SignalWatcher {
  public:
@@ -23,4 +23,4 @@ class SignalWatcher {
   std::jthread thread_;
 };
 
-}  // namespace wavebake::cli
+}  // namespace wavebake::driver

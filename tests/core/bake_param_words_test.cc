@@ -1,0 +1,69 @@
+// The bake parameters spelled in words (core/bake_param_words.h): every word
+// lands in its field, and a bad one is refused naming the field it was for.
+#include "core/bake_param_words.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace wavebake {
+namespace {
+
+using ::testing::StartsWith;
+
+TEST(BakeParamWordsTest, EveryWordLandsInItsField) {
+  BakeParamWords w;
+  w.row_filter = "daub4";
+  w.column_mode = "2d";
+  w.column_filter = "cdf97";
+  w.error_scope = "column";
+  w.bits = "12";
+  w.level_scaling = "paper";
+  w.refine = "off";
+  absl::StatusOr<BakeParams> p = ParseBakeParamWords(BakeParams{}, w);
+  ASSERT_TRUE(p.ok()) << p.status();
+  EXPECT_EQ(p->row_filter, WaveletFilter::kDaub4);
+  EXPECT_EQ(p->column_mode, ColumnMode::k2d);
+  EXPECT_EQ(p->column_filter, WaveletFilter::kCdf97);
+  EXPECT_EQ(p->error_scope, ErrorScope::kColumn);
+  EXPECT_EQ(p->bits, 12);
+  EXPECT_EQ(p->level_scaling, LevelScaling::kPaper);
+  EXPECT_FALSE(p->refine);
+  EXPECT_EQ(ParseBakeParamWords(BakeParams{}, BakeParamWords{})->bits, 0);  // auto
+}
+
+TEST(BakeParamWordsTest, ABadWordNamesItsField) {
+  const std::vector<std::pair<void (*)(BakeParamWords&), std::string>> cases = {
+      {[](BakeParamWords& w) { w.row_filter = "cdf97"; }, "row_filter: "},
+      {[](BakeParamWords& w) { w.column_filter = "daub9"; }, "column_filter: "},
+      {[](BakeParamWords& w) { w.column_mode = "fast"; }, "column_mode: "},
+      {[](BakeParamWords& w) { w.bits = "12x"; }, "bits: "},
+      {[](BakeParamWords& w) { w.bits = "0"; }, "bits: "},
+      {[](BakeParamWords& w) { w.refine = "maybe"; }, "refine: "},
+      {[](BakeParamWords& w) { w.transport = "glossy"; }, "transport: "},
+      {[](BakeParamWords& w) { w.light_domain = "plane:1"; }, "light_domain: "},
+  };
+  for (const auto& [spoil, field] : cases) {
+    BakeParamWords w;
+    spoil(w);
+    const absl::Status s = ParseBakeParamWords(BakeParams{}, w).status();
+    EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << field;
+    EXPECT_THAT(std::string(s.message()), StartsWith(field));
+  }
+}
+
+TEST(BakeParamWordsTest, TheWholeIsValidatedAndUvOverlapJoinsTheLayout) {
+  BakeParams numbers;
+  numbers.light_res = 12;  // not a power of two
+  EXPECT_THAT(std::string(ParseBakeParamWords(numbers, {}).status().message()),
+              StartsWith("light_res"));
+  numbers = BakeParams{};
+  numbers.layout = "uv:64x64";
+  BakeParamWords w;
+  w.allow_uv_overlap = true;
+  absl::StatusOr<BakeParams> p = ParseBakeParamWords(numbers, w);
+  ASSERT_TRUE(p.ok()) << p.status();
+  EXPECT_THAT(p->layout, ::testing::HasSubstr("allow-overlap"));
+}
+
+}  // namespace
+}  // namespace wavebake
