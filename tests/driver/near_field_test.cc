@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -33,8 +34,9 @@ using TempDir = test_support::ScratchDir;
 // the column compression.
 class NearFieldStoreTest : public ::testing::Test {
  protected:
+  // A failed bake fails every test (an ASSERT here would only skip them).
   static void SetUpTestSuite() {
-    dir_ = new TempDir("near_field");
+    dir_ = std::make_unique<TempDir>("near_field");
     BakeParams p;
     p.light_res = 16;
     p.layout = "camera:32x32";
@@ -44,16 +46,19 @@ class NearFieldStoreTest : public ::testing::Test {
     p.light_domain = *ParseLightDomain("plane:4");
     path_ = dir_->path() / "furnace_plane.wbk";
     absl::StatusOr<v1::Job> job = driver::EmbeddedBake("builtin:furnace", p, path_, {.workers = 2});
-    ASSERT_TRUE(job.ok()) << job.status();
-    ASSERT_EQ(job->phase(), v1::PHASE_DONE) << job->error();
+    if (!job.ok() || job->phase() != v1::PHASE_DONE) {
+      setup_error_ = job.ok() ? job->error() : job.status().ToString();
+      return;
+    }
     absl::StatusOr<NearFieldStore> s = OpenNearFieldStore(path_);
-    ASSERT_TRUE(s.ok()) << s.status();
-    store_ = new NearFieldStore(*std::move(s));
+    if (!s.ok()) setup_error_ = s.status().ToString();
+    if (s.ok()) store_ = std::make_unique<NearFieldStore>(*std::move(s));
   }
   static void TearDownTestSuite() {
-    delete store_;
-    delete dir_;
+    store_.reset();
+    dir_.reset();
   }
+  void SetUp() override { ASSERT_EQ(setup_error_, "") << "the suite's bake failed"; }
 
   static std::vector<float> Relight(const std::vector<AreaLight>& lights, double source = 1,
                                     double target = 1, int threads = 2) {
@@ -64,9 +69,10 @@ class NearFieldStoreTest : public ::testing::Test {
     return rgb;
   }
 
-  static inline TempDir* dir_ = nullptr;
+  static inline std::unique_ptr<TempDir> dir_;
   static inline std::filesystem::path path_;
-  static inline NearFieldStore* store_ = nullptr;
+  static inline std::unique_ptr<NearFieldStore> store_;
+  static inline std::string setup_error_;
 };
 
 AreaLight Square(double cx, double cz, double height, double size, Vec3 radiance) {
