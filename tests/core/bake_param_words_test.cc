@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 namespace wavebake {
 namespace {
 
@@ -32,19 +34,20 @@ TEST(BakeParamWordsTest, EveryWordLandsInItsField) {
 }
 
 TEST(BakeParamWordsTest, ABadWordNamesItsField) {
-  const std::vector<std::pair<void (*)(BakeParamWords&), std::string>> cases = {
-      {[](BakeParamWords& w) { w.row_filter = "cdf97"; }, "row_filter: "},
-      {[](BakeParamWords& w) { w.column_filter = "daub9"; }, "column_filter: "},
-      {[](BakeParamWords& w) { w.column_mode = "fast"; }, "column_mode: "},
-      {[](BakeParamWords& w) { w.bits = "12x"; }, "bits: "},
-      {[](BakeParamWords& w) { w.bits = "0"; }, "bits: "},
-      {[](BakeParamWords& w) { w.refine = "maybe"; }, "refine: "},
-      {[](BakeParamWords& w) { w.transport = "glossy"; }, "transport: "},
-      {[](BakeParamWords& w) { w.light_domain = "plane:1"; }, "light_domain: "},
+  using Word = std::string BakeParamWords::*;
+  const std::vector<std::tuple<Word, std::string, std::string>> cases = {
+      {&BakeParamWords::row_filter, "cdf97", "row_filter: "},
+      {&BakeParamWords::column_filter, "daub9", "column_filter: "},
+      {&BakeParamWords::column_mode, "fast", "column_mode: "},
+      {&BakeParamWords::bits, "12x", "bits: "},
+      {&BakeParamWords::bits, "0", "bits: "},
+      {&BakeParamWords::refine, "maybe", "refine: "},
+      {&BakeParamWords::transport, "glossy", "transport: "},
+      {&BakeParamWords::light_domain, "plane:1", "light_domain: "},
   };
-  for (const auto& [spoil, field] : cases) {
+  for (const auto& [word, value, field] : cases) {
     BakeParamWords w;
-    spoil(w);
+    w.*word = value;
     const absl::Status s = ParseBakeParamWords(BakeParams{}, w).status();
     EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << field;
     EXPECT_THAT(std::string(s.message()), StartsWith(field));

@@ -178,7 +178,9 @@ TEST_F(NearFieldStoreTest, BehindThePlaneNothingAndLightsAdd) {
   for (double h : {0.0, -0.5}) {
     const std::vector<float> rgb = Relight({Square(0, 0, h, 1, {1, 1, 1})});
     for (float v : rgb) {
-      if (!std::isnan(v)) ASSERT_EQ(v, 0.0f) << "height " << h;
+      if (!std::isnan(v)) {
+        ASSERT_EQ(v, 0.0f) << "height " << h;
+      }
     }
   }
   const AreaLight a = Square(-0.5, 0, 1.0, 0.6, {1, 0.2, 0.2});
@@ -215,7 +217,9 @@ TEST_F(NearFieldStoreTest, ATextureIsTheSumOfItsPixels) {
     blue.centre = {0.1 + 0.25 * c, 0.2 + 0.25 * s};
     const std::vector<float> whole = Relight({textured}), halves = Relight({red, blue});
     for (size_t i = 0; i < whole.size(); ++i) {
-      if (!std::isnan(whole[i])) ASSERT_NEAR(whole[i], halves[i], 2e-3) << "rotation " << rotation;
+      if (!std::isnan(whole[i])) {
+        ASSERT_NEAR(whole[i], halves[i], 2e-3) << "rotation " << rotation;
+      }
     }
 
     absl::StatusOr<RayCaster> caster = BuildBakedScene(store_->info);

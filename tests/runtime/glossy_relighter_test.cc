@@ -84,7 +84,9 @@ TEST(SampleRows, AreTheRowsTheColumnsCameFrom) {
       const auto values = rows->values(cell, face);
       for (size_t k = 0; k < terms.size(); ++k) {
         ASSERT_EQ(terms[k] / 64, static_cast<uint32_t>(face));
-        if (k > 0) ASSERT_GT(terms[k], terms[k - 1]);
+        if (k > 0) {
+          ASSERT_GT(terms[k], terms[k - 1]);
+        }
         row[terms[k]] = values[k];
       }
     }
