@@ -8,7 +8,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <thread>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -97,11 +96,7 @@ void Run(BakeCommandFlags f) {
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
-  if (!monitor) return;
-  std::fflush(stdout);
-  std::fprintf(stderr, "bake: serving the finished bake at %s; Ctrl-C to stop\n",
-               monitor.server().url().c_str());
-  while (!interrupted) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (monitor) ServeUntil("bake", monitor.server(), interrupted);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "cli/web_flags.h"
 
+#include <chrono>
 #include <cstdio>
 #include <span>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
@@ -45,6 +47,14 @@ std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, Web
   }
   std::fprintf(stderr, "%s: web monitor at %s\n", command.c_str(), (*server)->url().c_str());
   return *std::move(server);
+}
+
+void ServeUntil(const std::string& command, const web::MonitorServer& server,
+                const std::atomic<bool>& stop) {
+  std::fflush(stdout);
+  std::fprintf(stderr, "%s: serving the finished bake at %s; Ctrl-C to stop\n", command.c_str(),
+               server.url().c_str());
+  while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
 }  // namespace wavebake::cli

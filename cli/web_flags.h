@@ -3,6 +3,7 @@
 // --http ADDR` and `bake --serve ADDR`: where to listen, where to write the
 // bound address (port 0), the probe directory of the relight view.
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -27,5 +28,9 @@ void AddWebFlags(CLI::App& cmd, WebFlags& f, const std::string& listen_flag,
 // through Fail on bad flags.
 std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, WebFlags f,
                                                  std::shared_ptr<web::JobSource> source);
+
+// Tells where the finished job is served, then waits for `stop` (a signal).
+void ServeUntil(const std::string& command, const web::MonitorServer& server,
+                const std::atomic<bool>& stop);
 
 }  // namespace wavebake::cli

@@ -59,7 +59,7 @@ before=$(cd "$TMP/old.wbk" && find . -type f -exec md5sum {} + | sort)
 interrupt() {
   local signal=$1 phase=$2
   : >"$TMP/err.txt"
-  "$WB" bake builtin:cubes-wall --layout camera:64x64 --light-res 32 --supersample 16 \
+  "$WB" bake builtin:cubes-wall --layout camera:64x64 --light-res 32 --supersample 16 --refine off \
     --workers 2 --out "$TMP/old.wbk" 2>"$TMP/err.txt" >/dev/null &
   BAKE_PID=$!
   local deadline=$((SECONDS + 60))

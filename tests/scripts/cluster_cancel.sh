@@ -10,7 +10,7 @@ start_worker w1 "$TMP/data/store" --threads 2
 
 # Two tiles of 32×32 cells at N = 32, K = 64: tens of seconds each, so
 # the cancel surely lands inside them.
-job=$("$WB" submit builtin:sphere-plane --light-res 32 --supersample 64 --layout camera:64x32 \
+job=$("$WB" submit builtin:sphere-plane --light-res 32 --supersample 64 --refine off --layout camera:64x32 \
   --tile-size 32 --output-name big.wbk --coordinator "$ADDR")
 wait_until 30 "both tiles leased" job_at_least "$job" leased_tasks 2
 wait_until 30 "the tiles started" test -d "$TMP/data/store/.big.wbk.partial/staging"

@@ -5,7 +5,7 @@
 # resumes and completes, bit-identical to an embedded bake.
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 
-BAKE=(builtin:cylinder-bump --light-res 16 --supersample 64 --layout camera:32x32
+BAKE=(builtin:cylinder-bump --light-res 16 --supersample 64 --refine off --layout camera:32x32
       --tile-size 8 --column-group 512)
 port=$(free_port)
 

@@ -9,7 +9,7 @@ start_worker w1 "$TMP/data/store" --threads 1
 w1=$WORKER_PID
 
 # 4 tiles of 16×16 cells, ~40 Mrays each: long enough to be inside one.
-job=$("$WB" submit builtin:disk-over-plane --light-res 32 --supersample 64 --layout camera:32x32 \
+job=$("$WB" submit builtin:disk-over-plane --light-res 32 --supersample 64 --refine off --layout camera:32x32 \
   --tile-size 16 --output-name disk.wbk --coordinator "$ADDR")
 wait_until 30 "a tile leased" job_at_least "$job" leased_tasks 1
 kill -TERM "$w1"

@@ -12,7 +12,7 @@ source "$(dirname "$0")/cluster_lib.bash" "$1"
 # a second on one thread) that neither the gap between two tasks nor a status
 # poll on a loaded machine is likely to span the kill: the victim must hold a
 # lease when it dies, and the job must still be baking.
-BAKE=(builtin:cubes-wall --light-res 16 --supersample 256 --layout camera:32x32
+BAKE=(builtin:cubes-wall --light-res 16 --supersample 256 --refine off --layout camera:32x32
       --tile-size 8 --column-group 512)
 
 start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 2

@@ -7,7 +7,7 @@
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 source "$(dirname "$0")/slurm_lib.bash"
 SRC=${WB_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-BAKE=(builtin:sphere-plane --layout camera:64x32 --light-res 32 --supersample 36 --tile-size 8
+BAKE=(builtin:sphere-plane --layout camera:64x32 --light-res 32 --supersample 36 --refine off --tile-size 8
   --column-group 128)
 
 "$WB" bake "${BAKE[@]}" --out "$TMP/ref.wbk" >"$TMP/ref.log" 2>&1 || fail "embedded bake failed"
