@@ -1,5 +1,3 @@
-#include "cli/app.h"
-
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 

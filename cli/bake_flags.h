@@ -3,9 +3,7 @@
 // straight to BakeParams; names are parsed by core/bake_param_words.h, so the
 // command line, the RPC and the store refuse the same strings.
 #include <CLI/CLI.hpp>
-#include <string>
 
-#include "absl/status/statusor.h"
 #include "core/bake_param_words.h"
 
 namespace wavebake::cli {
@@ -16,8 +14,5 @@ struct BakeFlags {
 };
 
 void AddBakeFlags(CLI::App& cmd, BakeFlags& f);
-inline absl::StatusOr<BakeParams> ToParams(const BakeFlags& f) {
-  return ParseBakeParamWords(f.params, f.words);
-}
 
 }  // namespace wavebake::cli

@@ -9,6 +9,10 @@ namespace wavebake::cli {
 
 void AddClientFlags(CLI::App& cmd, driver::ClientConfig& config);
 
+// The client of --coordinator; one that cannot connect fails `command`.
+driver::Client ConnectOrFail(const driver::ClientConfig& config, const char* command,
+                             double connect_seconds = 5);
+
 // The token in a --token-file ("" for no file); an unreadable file fails `command`.
 std::string TokenOrFail(const std::string& token_file, const char* command);
 

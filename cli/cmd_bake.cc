@@ -74,7 +74,7 @@ void Run(BakeCommandFlags f) {
   f.out = out->string();
   std::atomic<bool> interrupted{false};
   driver::SignalWatcher signals([&](int) { interrupted = true; });
-  absl::StatusOr<BakeParams> params = ToParams(f.bake);
+  absl::StatusOr<BakeParams> params = ParseBakeParamWords(f.bake.params, f.bake.words);
   if (!params.ok()) Fail("bake", params.status());
   if (f.auto_mode) return RunAuto(f, *params, interrupted);
   const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,6 @@
 #include <future>
 #include <memory>
 #include <mutex>
-#include <span>
 
 #include "absl/strings/str_cat.h"
 #include "cli/client_flags.h"
@@ -50,10 +49,8 @@ void Run(CoordinatorFlags f) {
   std::unique_ptr<web::MonitorServer> monitor =
       StartMonitor("coordinator", f.web, web::CoordinatorSource(**coordinator, planner));
   // "host:port" for scripts that listen on port 0; appears whole (rename).
-  const std::string address = (*coordinator)->address() + "\n";
   if (!f.address_file.empty())
-    if (absl::Status s = AtomicWriteFile(f.address_file, std::as_bytes(std::span(address)));
-        !s.ok())
+    if (absl::Status s = AtomicWriteText(f.address_file, (*coordinator)->address() + "\n"); !s.ok())
       Fail("coordinator", absl::StrCat("--address-file: ", s.message()));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");

@@ -4,10 +4,9 @@
 // with --area-light, near-field lights over their area (runtime/area_eval.h).
 #include <cstdio>
 
-#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/glossy_flags.h"
+#include "cli/shading_flags.h"
 #include "runtime/eval.h"
 
 namespace wavebake::cli {
@@ -23,17 +22,11 @@ struct EvalFlags {
   GlossyFlags glossy;
 };
 
-void Run(const EvalFlags& f) {
-  if (!f.reference)
-    Fail("eval",
-         "--reference is required: the only ground truth eval knows is the "
-         "independently traced one",
-         kExitBadInput);
+void Run(EvalFlags f) {
   if (!f.area.lights.empty()) {
-    driver::AreaLightCommand area = f.area;
-    area.store = f.store;
+    f.area.store = f.store;
     absl::StatusOr<std::string> text =
-        driver::EvaluateWithAreaLights(area, f.reference_batches, f.json);
+        driver::EvaluateWithAreaLights(f.area, f.reference_batches, f.json);
     if (!text.ok()) Fail("eval", text.status());
     return (void)std::printf("%s\n", text->c_str());
   }
@@ -65,7 +58,9 @@ void AddEvalCommand(CLI::App& app) {
                   "area lights: batches of 16x16 points per light and sample")
       ->capture_default_str();
   cmd->add_flag("--reference", flags->reference,
-                "trace the Monte-Carlo reference (importance-sampled environment, Embree)");
+                "trace the Monte-Carlo reference (importance-sampled environment, Embree); "
+                "required: the only ground truth eval knows is the independently traced one")
+      ->required();
   cmd->add_option("--terms", flags->terms, "wavelet lights for the compressed relighting")
       ->capture_default_str();
   cmd->add_option("--rotate", flags->options.rotate_degrees,

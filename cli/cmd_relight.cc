@@ -9,11 +9,9 @@
 // near-field planar lights instead (driver/area_light_commands.h).
 #include <cstdio>
 
-#include "cli/area_light_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "cli/glossy_flags.h"
-#include "driver/area_light_commands.h"
+#include "cli/shading_flags.h"
 #include "driver/relight_command.h"
 
 namespace wavebake::cli {

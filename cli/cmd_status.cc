@@ -21,21 +21,18 @@ struct StatusFlags {
 };
 
 void Run(const StatusFlags& f) {
-  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
-  if (!client.ok()) Fail("status", client.status());
+  const driver::Client client = ConnectOrFail(f.client, "status");
   if (!f.job.empty()) {
-    absl::StatusOr<v1::Job> job = driver::GetJob(*client, f.job);
+    absl::StatusOr<v1::Job> job = driver::GetJob(client, f.job);
     if (!job.ok()) Fail("status", job.status());
-    std::printf("%s", f.json ? (driver::JobJson(*job) + "\n").c_str()
-                             : driver::JobDetailText(*job).c_str());
+    std::printf("%s", (f.json ? driver::JobJson(*job) : driver::JobDetailText(*job)).c_str());
     return;
   }
-  absl::StatusOr<std::vector<v1::Job>> jobs = driver::ListJobs(*client, f.limit, f.active);
+  absl::StatusOr<std::vector<v1::Job>> jobs = driver::ListJobs(client, f.limit, f.active);
   if (!jobs.ok()) Fail("status", jobs.status());
   if (!f.json) std::printf("%s", driver::JobTableHeader().c_str());
   for (const v1::Job& job : *jobs)
-    std::printf("%s",
-                f.json ? (driver::JobJson(job) + "\n").c_str() : driver::JobTableRow(job).c_str());
+    std::printf("%s", (f.json ? driver::JobJson(job) : driver::JobTableRow(job)).c_str());
 }
 
 }  // namespace

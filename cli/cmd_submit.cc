@@ -25,19 +25,18 @@ struct SubmitFlags {
 };
 
 void Run(const SubmitFlags& f) {
-  absl::StatusOr<BakeParams> params = ToParams(f.bake);
+  absl::StatusOr<BakeParams> params = ParseBakeParamWords(f.bake.params, f.bake.words);
   if (!params.ok()) Fail("submit", params.status());
   v1::BakeRequest request = ToBakeRequest(*params);
   request.set_output_name(f.output_name);
   request.set_max_attempts(f.max_attempts);
-  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client);
-  if (!client.ok()) Fail("submit", client.status());
-  absl::StatusOr<v1::Job> job = driver::SubmitScene(*client, request, f.scene);
+  const driver::Client client = ConnectOrFail(f.client, "submit");
+  absl::StatusOr<v1::Job> job = driver::SubmitScene(client, request, f.scene);
   if (!job.ok()) Fail("submit", job.status());
   std::printf("%s\n", job->id().c_str());
   std::fflush(stdout);
   if (!f.wait) return;
-  const v1::Job ended = FollowJob(*client, job->id(), "submit");
+  const v1::Job ended = FollowJob(client, job->id(), "submit");
   std::fprintf(stderr, "%s\n", driver::JobOutcome(ended).c_str());
 }
 

@@ -26,11 +26,10 @@ void Run(const WorkerFlags& f) {
   driver::WorkerRun run;
   driver::SignalWatcher signals([&](int) { run.Stop(); });
   // No waiting here: the loop registers as soon as the coordinator is up.
-  absl::StatusOr<driver::Client> client = driver::Client::Connect(f.client, /*connect_seconds=*/0);
-  if (!client.ok()) Fail("worker", client.status());
+  const driver::Client client = ConnectOrFail(f.client, "worker", 0);
   WorkerOptions options = f.options;
-  options.token = client->token();
-  const absl::Status status = run.Run(client->channel(), std::move(options));
+  options.token = client.token();
+  const absl::Status status = run.Run(client.channel(), std::move(options));
   if (!status.ok()) Fail("worker", status);
 }
 

@@ -1,11 +1,14 @@
 #pragma once
-// The subcommands of `wavebake` (DESIGN.md §5), one file each
-// (cli/cmd_<name>.cc): the embedded `bake`; the `coordinator` and `worker`
-// processes; the clients of a running coordinator; and the readers of a
-// finished store, `relight` and `eval`.
+// The subcommands of `wavebake` (DESIGN.md §5) in cli/cmd_*.cc: the embedded
+// `bake`; the `coordinator` and `worker` processes; `submit`, `status` and the
+// one-shot clients of a running coordinator (cmd_job_clients.cc); the readers
+// of a finished store, `relight` and `eval`.
 #include <CLI/CLI.hpp>
 
 namespace wavebake::cli {
+
+// Parses argv, runs one command, returns the process exit status (cli/app.cc).
+int Run(int argc, char** argv);
 
 void AddBakeCommand(CLI::App& app);
 void AddCoordinatorCommand(CLI::App& app);

@@ -27,8 +27,8 @@ void ProgressBar::Show(const v1::JobEvent& e) {
   }
   const int64_t done = e.phase_tasks_done(), total = e.phase_tasks_total();
   const bool last = total > 0 && done == total;
-  if (!tty_ && !new_phase && !last && now - last_print_ < std::chrono::seconds(3)) return;
-  if (tty_ && !new_phase && !last && now - last_print_ < std::chrono::milliseconds(100)) return;
+  const auto every = tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(3000);
+  if (!new_phase && !last && now - last_print_ < every) return;
   last_print_ = now;
 
   const double elapsed = std::chrono::duration<double>(now - start_).count();

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <span>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
@@ -39,12 +38,9 @@ std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, Web
   absl::StatusOr<std::unique_ptr<web::MonitorServer>> server =
       web::MonitorServer::Start(std::move(f.options), std::move(source));
   if (!server.ok()) Fail(command, server.status());
-  if (!f.address_file.empty()) {
-    const std::string address = (*server)->address() + "\n";
-    if (absl::Status s = AtomicWriteFile(f.address_file, std::as_bytes(std::span(address)));
-        !s.ok())
+  if (!f.address_file.empty())
+    if (absl::Status s = AtomicWriteText(f.address_file, (*server)->address() + "\n"); !s.ok())
       Fail(command, absl::StrCat(f.flag, "-address-file: ", s.message()));
-  }
   std::fprintf(stderr, "%s: web monitor at %s\n", command.c_str(), (*server)->url().c_str());
   return *std::move(server);
 }

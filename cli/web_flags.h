@@ -4,7 +4,6 @@
 // bound address (port 0), the probe directory of the relight view.
 #include <CLI/CLI.hpp>
 #include <atomic>
-#include <filesystem>
 #include <memory>
 #include <string>
 

@@ -75,7 +75,7 @@ std::string JobJson(const v1::Job& job) {
   options.preserve_proto_field_names = true;
   // Serializing a well-formed message cannot fail.
   (void)google::protobuf::util::MessageToJsonString(job, &json, options);
-  return json;
+  return json + "\n";
 }
 
 }  // namespace wavebake::driver

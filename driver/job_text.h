@@ -25,7 +25,8 @@ std::string ProgressText(const v1::JobEvent& event, double elapsed_seconds);
 std::string JobTableHeader();
 std::string JobTableRow(const v1::Job& job);
 
-// The Job message as one line of JSON with every field (proto names).
+// The Job message as one line of JSON with every field (proto names), and
+// its newline.
 std::string JobJson(const v1::Job& job);
 
 }  // namespace wavebake::driver

@@ -85,9 +85,7 @@ absl::StatusOr<AreaSequenceSummary> RelightAreaSequence(
         !s.ok())
       return s;
   }
-  if (absl::Status s = AtomicWriteFile(out_dir / "timing.csv", std::as_bytes(std::span(csv)));
-      !s.ok())
-    return s;
+  if (absl::Status s = AtomicWriteText(out_dir / "timing.csv", csv); !s.ok()) return s;
   AreaSequenceSummary sum;
   sum.frames = seq->frames;
   for (double s : seconds) sum.mean_seconds += s / seconds.size();

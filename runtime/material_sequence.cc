@@ -75,7 +75,7 @@ absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
   std::string csv = "frame,brdf,rel_rms,seconds\n";
   for (const MaterialFrame& f : frames)
     csv += absl::StrCat(f.index, ",", f.brdf, ",", f.rel_rms, ",", f.seconds, "\n");
-  return AtomicWriteFile(dir / "errors.csv", std::as_bytes(std::span(csv)));
+  return AtomicWriteText(dir / "errors.csv", csv);
 }
 
 }  // namespace

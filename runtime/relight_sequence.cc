@@ -36,7 +36,7 @@ absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
   std::string csv = "frame,degrees,rel_rms,seconds\n";
   for (const SequenceFrame& f : frames)
     csv += absl::StrCat(f.index, ",", f.degrees, ",", f.rel_rms, ",", f.seconds, "\n");
-  return AtomicWriteFile(dir / "errors.csv", std::as_bytes(std::span(csv)));
+  return AtomicWriteText(dir / "errors.csv", csv);
 }
 
 }  // namespace

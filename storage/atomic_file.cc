@@ -161,6 +161,10 @@ absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& pat
   return data;
 }
 
+absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text) {
+  return AtomicWriteFile(path, std::as_bytes(std::span(text)));
+}
+
 absl::Status RemoveAbandonedTempFiles(const std::filesystem::path& dir) {
   std::error_code ec;
   for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);

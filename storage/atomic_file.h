@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -18,6 +19,8 @@ namespace wavebake {
 // Errors name `path`; a full disk or quota (ENOSPC, EDQUOT) is ResourceExhausted
 // ("No space left on device"), as it is for CreateDirectories.
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data);
+// The same for text (CSV, JSON, an address file).
+absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text);
 
 // Removes, under `dir` and its subdirectories, the temp files of AtomicWriteFile
 // calls whose writer died between write and rename (a worker killed mid-task).

@@ -14,7 +14,7 @@ absl::Status WriteJsonFile(const std::filesystem::path& path, const nlohmann::js
   } catch (const nlohmann::json::exception& e) {  // e.g. invalid UTF-8 in a string
     return absl::InvalidArgumentError(absl::StrCat("cannot write ", path.string(), ": ", e.what()));
   }
-  return AtomicWriteFile(path, std::as_bytes(std::span(text)));
+  return AtomicWriteText(path, text);
 }
 
 absl::StatusOr<nlohmann::json> ReadJsonFile(const std::filesystem::path& path) {

@@ -85,7 +85,7 @@ TEST(JobTextTest, TableRowLinesUpUnderTheHeader) {
 TEST(JobTextTest, JsonIsTheWholeMessageOnOneLine) {
   const v1::Job job = BakingJob();
   const std::string json = JobJson(job);
-  EXPECT_EQ(json.find('\n'), std::string::npos);
+  EXPECT_EQ(json.find('\n'), json.size() - 1);
   EXPECT_THAT(json, HasSubstr("\"store_path\":\"cubes.wbk\""));
   EXPECT_THAT(json, HasSubstr("\"error\":\"\""));  // empty fields printed too
   v1::Job back;

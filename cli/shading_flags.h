@@ -1,8 +1,10 @@
 #pragma once
-// The BRDF flags `relight` and `eval` share (runtime/glossy_store.h).
+// The flags `relight` and `eval` share: the material (runtime/glossy_store.h)
+// and the near-field lights (driver/area_light_commands.h).
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "driver/area_light_commands.h"
 #include "runtime/glossy_store.h"
 
 namespace wavebake::cli {
@@ -16,5 +18,8 @@ struct GlossyFlags {
 void AddGlossyFlags(CLI::App& cmd, GlossyFlags& f);
 // As GlossyOptions; a bad --view fails `command`.
 GlossyOptions GlossyOf(const GlossyFlags& f, const char* command);
+
+// --area-light (repeatable), --source-fraction, --target-fraction.
+void AddAreaLightFlags(CLI::App& cmd, driver::AreaLightCommand& c);
 
 }  // namespace wavebake::cli
