@@ -86,8 +86,9 @@ def main():
             assert status == 401, (path, status)
         assert http(base + "/healthz") == (200, "ok\n")
 
+        # Brute force (refinement would finish it before the page could watch it advance).
         slow = cli("submit", "builtin:cubes-wall", "--light-res", "32", "--layout", "camera:64x64",
-                   "--tile-size", "16", *client).strip()
+                   "--tile-size", "16", "--refine", "off", "--supersample", "16", *client).strip()
         queued = cli("submit", "builtin:sphere-plane", "--light-res", "8", "--layout", "camera:16x16", *client).strip()
 
         options = webdriver.ChromeOptions()
