@@ -6,10 +6,10 @@
 #include <tuple>
 
 #include "core/depth_search.h"
+#include "core/filled_depth.h"
 #include "core/nla.h"
 #include "core/subband.h"
 #include "core/wavelet2d.h"
-#include "core/filled_depth.h"
 
 namespace wavebake {
 namespace {

@@ -71,9 +71,9 @@ absl::StatusOr<SampleSet> HilbertLayout(const Scene& scene, int width, int heigh
 // sample is the point of its nearest triangle closest to the texel centre
 // (the centre itself when inside), with position, normal and albedo
 // interpolated barycentrically there. Sample ids follow the meshes in order,
-// and each mesh's texels row by row within its rectangle. Errors name the mesh: no such UV channel (suggesting
-// hilbert), overlapping UVs (texel centres inside two triangles; the fraction
-// is given) unless spec.allow_uv_overlap, no texel covered.
+// and each mesh's texels row by row within its rectangle. Errors name the mesh: no such UV channel
+// (suggesting hilbert), overlapping UVs (texel centres inside two triangles; the fraction is given)
+// unless spec.allow_uv_overlap, no texel covered.
 absl::StatusOr<SampleSet> UvLayout(const Scene& scene, const LayoutSpec& spec);
 
 }  // namespace wavebake

@@ -121,7 +121,8 @@ absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::sp
                         float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   const int w = samples.width, h = samples.height;
-  if (!samples.uv_charts.empty()) return WriteLightmapOutput(info, samples, rgb, exposure_stops, out);
+  if (!samples.uv_charts.empty())
+    return WriteLightmapOutput(info, samples, rgb, exposure_stops, out);
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});
   if (ext == ".exr") return WriteExr(out, w, h, rgb);
   if (ext == ".ply") return WriteMeshColours(info, samples, rgb, exposure_stops, out);

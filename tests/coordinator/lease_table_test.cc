@@ -217,7 +217,8 @@ TEST_F(LeaseTableTest, APermanentFailureFailsTheJobAndSparesTheWorker) {
   ASSERT_TRUE(*table_->Fail(w, g.key, "scene: NaN vertex 3", LeaseTable::Failure::kPermanent));
   auto info = table_->Get(bad_job);
   EXPECT_EQ(info->record.phase, Phase::kFailed);
-  EXPECT_THAT(info->record.error, HasSubstr("failed, not retried (its input, or a full disk): worker"));
+  EXPECT_THAT(info->record.error,
+              HasSubstr("failed, not retried (its input, or a full disk): worker"));
   EXPECT_THAT(info->record.error, HasSubstr("NaN vertex 3"));
   // Twice the exclusion limit of permanent failures, and the worker still works.
   for (int i = 0; i < 6; ++i) {

@@ -23,8 +23,8 @@
 #include "tests/testing/scratch_dir.h"
 #include "worker/bake_context.h"
 #include "worker/bake_tile.h"
-#include "worker/publish_store.h"
 #include "worker/finalize.h"
+#include "worker/publish_store.h"
 #include "worker/staging.h"
 #include "worker/transform_columns.h"
 
