@@ -62,6 +62,9 @@ class ByteReader {
       ok_ = false;
       return;
     }
+    // An empty vector's data() may be null, which memcpy may not be given
+    // even for 0 bytes (a group whose columns kept nothing).
+    if (out.empty()) return;
     std::memcpy(out.data(), bytes_.data() + pos_, out.size());
     pos_ += out.size();
   }
