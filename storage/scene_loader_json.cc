@@ -208,6 +208,8 @@ absl::StatusOr<json> ParseSceneFile(const Reader& r) {
     j = json::parse(text.str());
   } catch (const json::parse_error& e) {  // the library's only way to say where
     return r.Error("", "is not valid JSON: ", e.what());
+  } catch (const json::exception& e) {  // e.g. a number too large for any type (tests/fuzz/json)
+    return r.Error("", "is not usable JSON: ", e.what());
   }
   if (absl::Status s = r.CheckKeys(j, "", {"meshes", "camera"}); !s.ok()) return s;
   const auto meshes = j.find("meshes");

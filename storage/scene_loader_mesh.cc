@@ -116,6 +116,22 @@ absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
     const aiMesh& m = *scene.mMeshes[i];
     // assimp's post-processing trusts face indices: an out-of-range one in a
     // PLY crashed it (tests/fuzz/ply). Its readers do not all check them.
+    // Triangulation trusts the mesh's primitive-type flags too: flags that
+    // claim polygons no face has made Debian's assimp abort (tests/fuzz/ply).
+    unsigned types = 0;
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const unsigned n = m.mFaces[f].mNumIndices;
+      if (n == 0) return error("mesh '", MeshName(scene, i, path), "': face ", f, " is empty");
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    if ((types & ~m.mPrimitiveTypes) != 0 ||
+        ((m.mPrimitiveTypes & aiPrimitiveType_POLYGON) && !(types & aiPrimitiveType_POLYGON)))
+      return error("mesh '", MeshName(scene, i, path),
+                   "': its faces do not match its declared "
+                   "primitive types (a malformed file)");
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
       for (unsigned k = 0; k < face.mNumIndices; ++k)
