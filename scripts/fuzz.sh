@@ -10,6 +10,9 @@ set -euo pipefail
 BUILD=${1:?usage: bash scripts/fuzz.sh BUILD_DIR [SECONDS_EACH] [AT_ONCE]}
 SECONDS_EACH=${2:-30}
 AT_ONCE=${3:-2}
+# A fixed seed makes CI's runs repeat the same mutations (a new finding then
+# means a change, not luck); FUZZ_SEED=0 lets libFuzzer pick one, to explore.
+SEED=${FUZZ_SEED:-1}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 OUT=$(mktemp -d "${TMPDIR:-/tmp}/wb_fuzz_run.XXXXXX")
 export LSAN_OPTIONS="suppressions=$SRC/tests/lsan.supp"
@@ -21,7 +24,7 @@ mapfile -t harnesses < <(find "$BUILD/tests/fuzz" -maxdepth 1 -name 'fuzz_*' -ty
 run_one() {  # run_one BINARY: its log is $OUT/NAME.log, its verdict $OUT/NAME.rc
   local bin=$1 name=${1##*/fuzz_} rc=0
   mkdir -p "$OUT/$name.corpus"
-  "$bin" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2560 -print_final_stats=1 \
+  "$bin" -seed="$SEED" -max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2560 -print_final_stats=1 \
     -artifact_prefix="$OUT/$name-" "$OUT/$name.corpus" "$SRC/tests/fuzz/$name/corpus" \
     >"$OUT/$name.log" 2>&1 || rc=$?
   echo "$rc" >"$OUT/$name.rc"
