@@ -177,6 +177,7 @@ absl::Status CheckPlyHeader(const std::filesystem::path& path, const FileErrors&
     const bool known = line == 1 ? word == "ply"
                                  : word == "format" || word == "comment" || word == "obj_info" ||
                                        word == "element" || word == "property";
+    if (!known && head.find("\nend_header") == std::string::npos) break;
     if (!known) return error("PLY header line ", line, " is not a header keyword");
     at = end + 1;
   }
