@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 #include "storage/atomic_file.h"
 
@@ -80,7 +81,7 @@ absl::StatusOr<AreaSequenceSummary> RelightAreaSequence(
     seconds.push_back(stats.seconds);
     absl::StrAppendFormat(&csv, "%d,%.6f,%d,%d\n", f, stats.seconds, stats.lit_samples,
                           stats.targets);
-    const std::filesystem::path frame = out_dir / absl::StrFormat("frame_%04d%s", f, ext);
+    const std::filesystem::path frame = SequenceFramePath(out_dir, f, ext);
     if (absl::Status s = WriteRelit(store->info, store->samples, *rgb, o.exposure_stops, frame);
         !s.ok())
       return s;

@@ -9,6 +9,7 @@
 #include "absl/strings/str_split.h"
 #include "runtime/eval.h"
 #include "runtime/lighting.h"
+#include "runtime/relight_sequence.h"
 #include "runtime/store_relight.h"
 #include "storage/atomic_file.h"
 
@@ -62,12 +63,6 @@ BrdfSlices DeltaAndUpdate(const BrdfSlices& target, BrdfSlices& approx, int n) {
   }
   approx = std::move(next);
   return delta;
-}
-
-std::filesystem::path FramePath(const MaterialSequenceOptions& o, int i) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d", i);
-  return o.out_dir / (name + o.frame_extension);
 }
 
 absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
@@ -161,8 +156,8 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
     f.rel_rms = CompareToReference(frame, exact).rel_rms;
     frames.push_back(f);
     if (!o.out_dir.empty()) {
-      if (absl::Status s =
-              WriteRelit(g.info(), g.samples(), frame, o.exposure_stops, FramePath(o, i));
+      if (absl::Status s = WriteRelit(g.info(), g.samples(), frame, o.exposure_stops,
+                                      SequenceFramePath(o.out_dir, i, o.frame_extension));
           !s.ok())
         return s;
     }

@@ -9,6 +9,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "runtime/env_map.h"
 #include "runtime/eval.h"
@@ -25,12 +26,6 @@ absl::Status BadSequence(std::string_view spec, const char* why) {
       absl::StrCat("rotate-sequence: '", std::string(spec), "' ", why, " (START:END:FRAMES)"));
 }
 
-std::filesystem::path FramePath(const SequenceOptions& o, int i) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d", i);
-  return o.out_dir / (name + o.frame_extension);
-}
-
 absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
                             const std::vector<SequenceFrame>& frames) {
   std::string csv = "frame,degrees,rel_rms,seconds\n";
@@ -40,6 +35,11 @@ absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
 }
 
 }  // namespace
+
+std::filesystem::path SequenceFramePath(const std::filesystem::path& dir, int index,
+                                        std::string_view extension) {
+  return dir / absl::StrFormat("frame_%04d%s", index, extension);
+}
 
 absl::StatusOr<RotateSequence> ParseRotateSequence(std::string_view spec) {
   const std::vector<std::string> parts = absl::StrSplit(std::string(spec), ':');
@@ -102,7 +102,9 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
     f.rel_rms = CompareToReference(frame, best).rel_rms;
     frames.push_back(f);
     if (!o.out_dir.empty()) {
-      if (absl::Status s = WriteRelit(*opened, frame, o.exposure_stops, FramePath(o, i)); !s.ok())
+      if (absl::Status s = WriteRelit(*opened, frame, o.exposure_stops,
+                                      SequenceFramePath(o.out_dir, i, o.frame_extension));
+          !s.ok())
         return s;
     }
   }

@@ -44,6 +44,11 @@ struct SequenceOptions {
   std::string frame_extension = ".png";
 };
 
+// Every sequence's frame i in `dir`: frame_0007.png, ... (the same names for
+// rotations, material edits and moving area lights).
+std::filesystem::path SequenceFramePath(const std::filesystem::path& dir, int index,
+                                        std::string_view extension);
+
 // Over a sequence's frames: what `relight` prints and the charts plot.
 struct SequenceSummary {
   double mean_rel_rms = 0, max_rel_rms = 0;
