@@ -85,7 +85,11 @@ job_at_least() {
 }
 
 # log_has FILE PATTERN N: at least N lines of FILE match PATTERN.
-log_has() { (($(grep -c -- "$2" "$1" || true) >= $3)); }
+log_has() {  # a log not written yet has no lines
+  local n
+  n=$(grep -c -- "$2" "$1" 2>/dev/null) || true
+  ((${n:-0} >= $3))
+}
 
 # job_is JOB FIELD VALUE
 job_is() { [[ $(job_field "$1" "$2") == "$3" ]]; }
