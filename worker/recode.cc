@@ -109,8 +109,8 @@ absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesys
   const std::filesystem::path partial = PartialBeside(dir, "tracing");
   std::error_code ec;
   std::filesystem::remove_all(partial, ec);
-  std::atomic<uint64_t> rays{0};
-  std::atomic<int> tiles{0};
+  uint64_t rays = 0;  // guarded by progress
+  int tiles = 0;      // guarded by progress
   std::mutex progress;
   absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx));
   if (s.ok()) {
@@ -118,12 +118,11 @@ absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesys
       TileStats stats;
       if (absl::Status b = BakeTile(ctx, partial, t, &stats, {.cancel = options.cancel}); !b.ok())
         return b;
-      const uint64_t total = rays += stats.rays_traced;
-      const int done = ++tiles;
-      if (options.on_tile) {
-        std::lock_guard lock(progress);
-        options.on_tile(done, total);
-      }
+      // Counted under the lock so that on_tile sees the counts in order.
+      std::lock_guard lock(progress);
+      rays += stats.rays_traced;
+      ++tiles;
+      if (options.on_tile) options.on_tile(tiles, rays);
       return absl::OkStatus();
     });
   }
@@ -135,7 +134,7 @@ absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesys
     std::filesystem::remove_all(partial, ec);
     return s;
   }
-  return rays.load();
+  return rays;
 }
 
 absl::Status Recode(const BakeContext& ctx, const std::filesystem::path& traced,

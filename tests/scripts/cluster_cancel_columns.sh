@@ -7,7 +7,7 @@ source "$(dirname "$0")/cluster_lib.bash" "$1"
 
 start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 3  # heartbeat every ~1 s
 start_worker w1 "$TMP/data/store" --threads 1
-JOB=(builtin:cubes-wall --layout camera:128x64 --light-res 32 --supersample 1 --column-group 6144 --column-terms 4096)
+JOB=(builtin:cubes-wall --layout camera:128x128 --light-res 32 --supersample 1 --column-group 6144 --column-terms 4096)
 ref=$("$WB" submit "${JOB[@]}" --output-name whole.wbk --coordinator "$ADDR")
 timeout 120 "$WB" watch "$ref" --coordinator "$ADDR" >/dev/null 2>&1 || fail "the reference job failed"
 full=$(sed -n 's/.*TRANSFORM_COLUMNS 0: done in \([0-9.]*\) s.*/\1/p' "$TMP/w1.log")
