@@ -100,15 +100,19 @@ class Walker {
         if (absl::Status s = Channels(attr, size); !s.ok()) return s;
       } else if (type == "preview") {
         const uint64_t w = size >= 8 ? U32(pos_) : 0, h = size >= 8 ? U32(pos_ + 4) : 0;
-        if (size < 8 || 8 + 4 * w * h != static_cast<uint64_t>(size))
+        if (size < 8 || w > uint64_t(size) || h > uint64_t(size) ||
+            8 + 4 * w * h != static_cast<uint64_t>(size))
           return Bad("attribute '", attr, "': a preview image that is not its size");
       } else if (attr == "dataWindow" && type == "box2i") {
         const int64_t x0 = int32_t(U32(pos_)), y0 = int32_t(U32(pos_ + 4));
         const int64_t x1 = int32_t(U32(pos_ + 8)), y1 = int32_t(U32(pos_ + 12));
         const int64_t w = x1 - x0 + 1, h = y1 - y0 + 1;
-        if (w <= 0 || h <= 0 || w * h > ExrPixelLimit(file_.size()))
-          return Bad("data window of ", w, "x", h, " pixels (at most ", ExrPixelLimit(file_.size()),
-                     " for a file of ", file_.size(), " bytes)");
+        // Each side against the limit first: w·h of two 32-bit sides can
+        // overflow 64 bits.
+        const int64_t limit = ExrPixelLimit(file_.size());
+        if (w <= 0 || h <= 0 || w > limit || h > limit || w * h > limit)
+          return Bad("data window of ", w, "x", h, " pixels (at most ", limit, " for a file of ",
+                     file_.size(), " bytes)");
       }
       pos_ += static_cast<size_t>(size);
     }

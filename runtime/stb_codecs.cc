@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 
+#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 
 // Debian's headers, compiled here with internal linkage and only the two
@@ -111,6 +112,29 @@ absl::Status CheckHdrSize(std::span<const std::byte> file, const std::string& na
   return absl::OkStatus();
 }
 
+// stb trusts a chunk's declared length: it grows its IDAT buffer to that
+// length and then asks for the bytes, so a 168-byte file declaring a 2 GB
+// IDAT made it allocate and fill 2 GB (tests/fuzz/png). Every chunk up to
+// IEND must fit in the file (PNG spec §5.3: length, type, data, CRC).
+absl::Status CheckPngChunks(std::span<const std::byte> file, const std::string& name) {
+  static constexpr unsigned char kSignature[8] = {137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
+  if (file.size() < 8 || std::memcmp(file.data(), kSignature, 8) != 0)
+    return absl::InvalidArgumentError(absl::StrCat(name, ": not a PNG file (no PNG signature)"));
+  const auto u8 = [&](size_t i) { return std::to_integer<uint32_t>(file[i]); };
+  size_t at = 8;
+  while (at + 12 <= file.size()) {
+    const uint64_t length = u8(at) << 24 | u8(at + 1) << 16 | u8(at + 2) << 8 | u8(at + 3);
+    const std::string type(reinterpret_cast<const char*>(file.data()) + at + 4, 4);
+    if (length > file.size() - at - 12)
+      return absl::InvalidArgumentError(absl::StrCat(
+          name, ": truncated PNG: chunk '", absl::CEscape(type), "' at byte ", at, " declares ",
+          length, " bytes, the file has ", file.size() - at - 12, " left"));
+    if (type == "IEND") return absl::OkStatus();
+    at += 12 + length;
+  }
+  return absl::InvalidArgumentError(absl::StrCat(name, ": truncated PNG (no IEND chunk)"));
+}
+
 void Append(void* context, void* data, int size) {
   auto* out = static_cast<std::vector<std::byte>*>(context);
   const auto* p = static_cast<const std::byte*>(data);
@@ -171,6 +195,7 @@ absl::StatusOr<Rgb8Image> DecodePng(std::span<const std::byte> file, const std::
                                                      " pixels in a file of ", file.size(),
                                                      " bytes (at most ", limit, ")"));
   }
+  if (absl::Status s = CheckPngChunks(file, name); !s.ok()) return s;
   Source source(file);
   Rgb8Image image;
   int channels = 0;

@@ -8,9 +8,12 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "storage/atomic_file.h"
+#include "storage/ply_rewrite.h"
 #include "storage/scene_loader_parts.h"
 
 namespace wavebake {
@@ -149,39 +152,23 @@ absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
   return absl::OkStatus();
 }
 
-// assimp's PLY reader never returns on a header without its "end_header"
-// line (it reads on at the end of the file; found by tests/fuzz/ply): refuse
-// such a file first. Checked by extension and by content, as assimp picks
-// PLY by either (its content test takes "ply" followed by anything: a file
-// starting "ply?" hung it too).
-absl::Status CheckPlyHeader(const std::filesystem::path& path, const FileErrors& error) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(1 << 20, '\0');  // a PLY header is text, far shorter than this
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
+// PLY by extension or by content, as assimp picks it by either (its content
+// test takes "ply" followed by anything).
+bool IsPly(const std::filesystem::path& path, std::string_view head) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  if (!head.starts_with("ply") && ext != ".ply") return absl::OkStatus();
-  // Every header line is one of the format's keywords up to end_header: a
-  // header of other lines, even with an end_header after them, made assimp's
-  // reader hang or abort (tests/fuzz/ply).
-  size_t at = 0;
-  for (int line = 1; at < head.size(); ++line) {
-    size_t end = head.find('\n', at);
-    if (end == std::string::npos) end = head.size();
-    std::string_view text(head.data() + at, end - at);
-    if (text.ends_with('\r')) text.remove_suffix(1);
-    const std::string_view word = text.substr(0, text.find(' '));
-    if (word == "end_header" && word.size() == text.size()) return absl::OkStatus();
-    const bool known = line == 1 ? word == "ply"
-                                 : word == "format" || word == "comment" || word == "obj_info" ||
-                                       word == "element" || word == "property";
-    if (!known && head.find("\nend_header") == std::string::npos) break;
-    if (!known) return error("PLY header line ", line, " is not a header keyword");
-    at = end + 1;
-  }
-  return error("a PLY header without its end_header line");
+  return ext == ".ply" || head.starts_with("ply");
+}
+
+// A PLY reaches assimp only as storage/ply_rewrite.h writes it back.
+absl::StatusOr<std::string> ReadPly(const std::filesystem::path& path, const FileErrors& error) {
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
+  if (!bytes.ok()) return error("cannot read: ", bytes.status().message());
+  absl::StatusOr<std::string> text =
+      RewritePly(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+  if (!text.ok()) return error(text.status().message());
+  return text;
 }
 
 }  // namespace
@@ -192,13 +179,21 @@ absl::StatusOr<std::vector<Mesh>> ReadMeshFile(const std::filesystem::path& path
   std::error_code ec;
   if (!files.Open(path) || !std::filesystem::is_regular_file(path, ec))
     return error("no such file");
-  if (absl::Status s = CheckPlyHeader(path, error); !s.ok()) return s;
+  std::string head(3, '\0');
+  std::ifstream(path, std::ios::binary).read(head.data(), 3);
+  std::optional<std::string> ply;
+  if (IsPly(path, head)) {
+    absl::StatusOr<std::string> text = ReadPly(path, error);
+    if (!text.ok()) return text.status();
+    ply = std::move(*text);
+  }
   Assimp::Importer importer;
   importer.SetIOHandler(std::make_unique<ScopedIOSystem>(files).release());  // importer owns it
   // Read raw first: JoinIdenticalVertices silently merges a NaN vertex into
   // another one, so non-finite input must be caught before it runs.
-  if (importer.ReadFile(path.string(), 0) == nullptr)
-    return error("cannot read: ", importer.GetErrorString());
+  const aiScene* raw = ply ? importer.ReadFileFromMemory(ply->data(), ply->size(), 0, "ply")
+                           : importer.ReadFile(path.string(), 0);
+  if (raw == nullptr) return error("cannot read: ", importer.GetErrorString());
   if (absl::Status s = CheckRaw(*importer.GetScene(), path, error); !s.ok()) return s;
   // PreTransformVertices bakes the node hierarchy into world space, so a mesh
   // is a Mesh; JoinIdenticalVertices makes vertices (the hilbert layout's

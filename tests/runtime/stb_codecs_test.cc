@@ -125,5 +125,20 @@ TEST(StbCodecsTest, APngHeaderPromisingMoreThanItsSizeIsRefused) {
   EXPECT_THAT(image.status().message(), HasSubstr("big.png: PNG of 8000x8000 pixels"));
 }
 
+// A chunk declaring more bytes than the file has left is refused before stb
+// grows its buffer to the declared length (a 168-byte file made it fill 2 GB).
+TEST(StbCodecsTest, AChunkLongerThanTheFileIsRefusedByName) {
+  absl::StatusOr<std::vector<std::byte>> png = EncodePng(2, 2, 3, std::vector<uint8_t>(12, 7));
+  ASSERT_TRUE(png.ok());
+  std::vector<std::byte> bad = *png;
+  const size_t idat = 8 + 12 + 13;  // signature, then IHDR with its 13 bytes
+  ASSERT_EQ(std::string(reinterpret_cast<const char*>(bad.data()) + idat + 4, 4), "IDAT");
+  bad[idat] = std::byte{0x7c};  // its length → ~2 GB
+  EXPECT_THAT(DecodePng(bad, "long.png").status().message(),
+              HasSubstr("long.png: truncated PNG: chunk 'IDAT' at byte 33 declares"));
+  EXPECT_THAT(DecodePng(std::vector<std::byte>(20, std::byte{'x'}), "text.png").status().message(),
+              HasSubstr("text.png: not a PNG file"));
+}
+
 }  // namespace
 }  // namespace wavebake

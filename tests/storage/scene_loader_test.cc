@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -205,6 +206,45 @@ end_header
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_NEAR(testing_util::MeshArea(s.meshes[0]), 6, 1e-6);
   for (Vec3 n : s.meshes[0].normals) EXPECT_NEAR(Length(n - Vec3{0, 0, 1}), 0, 1e-6);
+}
+
+// Binary PLY reaches assimp rewritten (storage/ply_rewrite.h): data whose
+// first byte is a line end is read in place, and s/t become UV channel 0.
+TEST_F(SceneLoaderTest, ReadsBinaryPlyWhoseDataStartsWithALineEnd) {
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nproperty float s\nproperty float t\n"
+      "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  const float v[15] = {std::bit_cast<float>(0x3f80000au),
+                       0,
+                       0,
+                       0.5f,
+                       0,  // x y z s t
+                       0,
+                       2,
+                       0,
+                       0,
+                       0,
+                       0,
+                       0,
+                       0,
+                       0,
+                       1};
+  ply.append(reinterpret_cast<const char*>(v), sizeof v);
+  ASSERT_EQ(ply[ply.find("end_header\n") + 11], '\n');
+  ply += std::string("\3\2\0\0\0\1\0\0\0\0\0\0\0", 13);
+  const fs::path path = dir_ / "lf.ply";
+  std::ofstream(path, std::ios::binary) << ply;
+  const Scene s = LoadOk(path.string());
+  ASSERT_EQ(s.meshes.size(), 1u);
+  const Mesh& m = s.meshes[0];
+  EXPECT_NEAR(testing_util::MeshArea(m), 0.5 * std::bit_cast<float>(0x3f80000au) * 2, 1e-6);
+  ASSERT_EQ(m.uv_channels.size(), 1u);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const Vec3 p = m.positions[i];
+    const Vec2 st = p.x > 1 ? Vec2{0.5f, 0} : p.y == 2 ? Vec2{0, 0} : Vec2{0, 1};
+    EXPECT_EQ(m.uv_channels[0][i], st);
+  }
 }
 
 // assimp never returned on this (tests/fuzz/ply found it); the time limit is

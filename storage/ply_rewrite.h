@@ -1,0 +1,31 @@
+#pragma once
+// A PLY file walked in full, and rewritten, before assimp reads it. Debian's
+// assimp PLY reader trusts what a file says: a header without end_header hung
+// it; a second vertex element, or a face list longer than its face, overflows
+// its buffers (upstream assimp issues 5729 and 5738, PR 6704); binary data
+// beginning with a line-end byte is read shifted (assimp issue 5692); an
+// out-of-range index crashed its post-processing. So assimp never sees the
+// user's bytes: only the subset of PLY a mesh needs passes, checked value by
+// value, and assimp reads it back rewritten as plain ASCII PLY.
+//
+// Accepted: "ply", a format line (ascii / binary_little_endian /
+// binary_big_endian 1.0), comment and obj_info lines, exactly one "vertex"
+// element (scalar properties, x y z among them) and one "face" element
+// (scalar properties and one integer list named vertex_indices or
+// vertex_index), end_header; then every instance, inside the file, every
+// value a finite number of its type (ASCII: one instance per line), every
+// face of 3..255 indices, each below the vertex count. The rewrite keeps
+// every vertex property and each face's indices (face scalars are dropped:
+// nothing here reads them).
+#include <string>
+#include <string_view>
+
+#include "absl/status/statusor.h"
+
+namespace wavebake {
+
+// The checked file as ASCII PLY, or InvalidArgument saying what is wrong and
+// where (a header line, or an element instance); the caller adds the name.
+absl::StatusOr<std::string> RewritePly(std::string_view file);
+
+}  // namespace wavebake
