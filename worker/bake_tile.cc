@@ -11,6 +11,7 @@
 #include "storage/zarr_array.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
+#include "worker/task_buffer.h"
 
 namespace wavebake {
 namespace {
@@ -108,6 +109,13 @@ void TransposeTileRow(std::span<const float> rows, const JobPlan& plan, int cy,
   }
 }
 
+// The padding columns past M, zeroed: the block holds what the last task
+// left (worker/task_buffer.h), and the tile rows write only m < M. (Tiles are
+// whole, core/job_plan.cc: every cell of the tile is written.)
+void ZeroPadding(const JobPlan& plan, std::span<float> block) {
+  std::fill(block.begin() + size_t(plan.columns) * plan.tile_cells(), block.end(), 0.0f);
+}
+
 absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> index,
                                std::span<const float> data, TileStats& stats) {
   if (absl::Status s = array.WriteChunk<float>(index, data); !s.ok()) return s;
@@ -145,9 +153,9 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   absl::StatusOr<StagingArrays> staging = OpenStaging(plan, store);
   if (!staging.ok()) return staging.status();
 
-  // Padded to whole groups: Zarr chunks are full size, the padding stays 0.
+  // Padded to whole groups: Zarr chunks are full size, the padding is 0.
   const size_t padded_columns = static_cast<size_t>(plan.groups) * plan.group_size;
-  std::vector<float> block(padded_columns * plan.tile_cells(), 0.0f);
+  const std::span<float> block = TaskBuffer(padded_columns * plan.tile_cells());
   std::vector<float> rows(plan.tile_w * RowStride(plan));
   const TileRect rect = plan.Tile(tile);
   TileStats local;
@@ -161,6 +169,7 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
     TransposeTileRow(rows, plan, cy, block);
   }
+  ZeroPadding(plan, block);
   absl::Status written = WriteTile(*staging, plan, tile, block, energy, local);
   if (stats) {
     stats->rays_traced += local.rays_traced;

@@ -10,6 +10,7 @@
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/group_result.h"
+#include "worker/task_buffer.h"
 
 namespace wavebake {
 namespace {
@@ -44,13 +45,13 @@ absl::Status Cancelled(int group) {
 }
 
 // Reads chunk (group, t) of every tile and scatters it into `images`: column
-// c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H).
+// c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H). The
+// tiles cover the image, so every element is written.
 absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging, int group,
-                             std::vector<float>& images, GroupStats* stats,
+                             std::span<float> images, GroupStats* stats,
                              const TaskSignals& signals) {
   const int count = plan.GroupCount(group);
   const size_t cells = size_t(plan.width) * plan.height;
-  images.assign(count * cells, 0.0f);
   std::vector<float> chunk(size_t(plan.group_size) * plan.tile_cells());
   for (int t = 0; t < plan.tiles(); ++t) {
     if (Stopped(signals)) return Cancelled(group);
@@ -119,7 +120,8 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   if (!matrix_energy.ok()) return matrix_energy.status();
 
   GroupStats local;
-  std::vector<float> images;
+  const std::span<float> images =
+      TaskBuffer(size_t(plan.GroupCount(group)) * plan.width * plan.height);
   if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local, signals); !s.ok())
     return s;
 
@@ -138,7 +140,7 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   CodedColumn coded;
   for (int c = 0; c < plan.GroupCount(group); ++c) {
     if (Stopped(signals)) return Cancelled(group);
-    CodeColumn(params, std::span(images).subspan(c * cells, cells), &coded);
+    CodeColumn(params, images.subspan(c * cells, cells), &coded);
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);
   }

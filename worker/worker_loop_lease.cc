@@ -11,6 +11,7 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
+#include "worker/task_buffer.h"
 #include "worker/worker_loop.h"
 
 namespace wavebake {
@@ -45,6 +46,7 @@ void WorkerLoop::LeaseLoop() {
       if (seat.task) {
         finished = RunLeased(*seat.task);
       } else {
+        ReleaseTaskBuffer();  // idle: the last task's buffer is not kept for the next job
         SleepUnlessDraining(std::max<int64_t>(1, seat.wait_ms));
       }
       continue;

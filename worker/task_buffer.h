@@ -1,0 +1,22 @@
+#pragma once
+// One float buffer per thread, reused by the tasks a worker thread runs one
+// after another (BAKE_TILE's tile block, TRANSFORM_COLUMNS' column images).
+// A fresh zero-filled buffer per task — 100 MB for a 32² tile at N = 64,
+// 400 MB at N = 128 — cost a memset and a page fault per 4 KiB page: the
+// N = 64 tile's transpose took 75 ms into a fresh block against 31 ms into a
+// reused one (a stand-alone timing). The thread keeps the largest buffer
+// asked for (one per thread, not one per phase) until ReleaseTaskBuffer.
+#include <cstddef>
+#include <span>
+
+namespace wavebake {
+
+// `floats` floats of this thread's buffer. Their contents are unspecified
+// (what the last task left): the caller writes every element it reads. One
+// span per thread at a time: the next call may move the buffer.
+std::span<float> TaskBuffer(size_t floats);
+
+// Frees this thread's buffer (a worker thread with no task to run).
+void ReleaseTaskBuffer();
+
+}  // namespace wavebake
