@@ -14,9 +14,12 @@
 // (scalar properties and one integer list named vertex_indices or
 // vertex_index), end_header; then every instance, inside the file, every
 // value a finite number of its type (ASCII: one instance per line), every
-// face of 3..255 indices, each below the vertex count. The rewrite keeps
-// every vertex property and each face's indices (face scalars are dropped:
-// nothing here reads them).
+// face of 3..255 indices, each below the vertex count. Names are plain
+// identifiers (assimp would take a '\r' in one for a line end) and a header
+// line is at most 1024 bytes, with at most 64 properties per element. The
+// rewrite keeps every vertex property (floating-point ones as float, as
+// assimp stores them) and each face's indices; face scalars are dropped,
+// nothing here reads them.
 #include <string>
 #include <string_view>
 

@@ -57,10 +57,24 @@ TEST(PlyRewriteTest, KeepsVertexPropertiesAndDropsFaceScalars) {
   absl::StatusOr<std::string> text = RewritePly(file);
   ASSERT_TRUE(text.ok()) << text.status();
   EXPECT_EQ(*text,
-            "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-            "property double z\nproperty float s\nproperty float t\nelement face 1\n"
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nproperty float s\nproperty float t\nelement face 1\n"
             "property list uchar int vertex_indices\nend_header\n"
             "0 0 0 0.25 0.5\n1 0 0 1 0.5\n0 1 0 0 1\n3 2 1 0\n");
+}
+
+// Every float is written as a float in its shortest form: a double with 17
+// digits would print as 21 fixed digits, which assimp's 64-bit integer-part
+// parser wraps. A trailing space after end_header is still the header's end.
+TEST(PlyRewriteTest, LargeDoublesAreWrittenInAFormAssimpReads) {
+  const std::string file =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header \n"
+      "1.2345678901234567e20 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  absl::StatusOr<std::string> text = RewritePly(file);
+  ASSERT_TRUE(text.ok()) << text.status();
+  EXPECT_EQ(text->substr(text->find("end_header\n") + 11),
+            "1.2345679e+20 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
 }
 
 TEST(PlyRewriteTest, EachLieIsRefusedNamingWhere) {
@@ -71,7 +85,7 @@ TEST(PlyRewriteTest, EachLieIsRefusedNamingWhere) {
   const std::pair<std::string, std::string> cases[] = {
       {a + v, "without its end_header"},
       {"ply?\nformat ascii 1.0\n" + v + f + body + "3 0 1 2\n", "line 1 is not 'ply'"},
-      {"ply\nformat ascii 2.0\n" + v + f + body + "3 0 1 2\n", "line 2 is not a format line"},
+      {"ply\nformat ascii 2.0\n" + v + f + body + "3 0 1 2\n", "line 2: not a format line"},
       {a + v + v + f + body + "3 0 1 2\n", "line 7: not the one vertex or face element"},
       {a + "element edge 1\nproperty int a\n" + v + f, "line 3: not the one vertex"},
       {a + "element vertex z\n" + f, "element count 'z' is not a number"},
@@ -87,22 +101,51 @@ TEST(PlyRewriteTest, EachLieIsRefusedNamingWhere) {
        "needs integer types"},
       {a + v + "element face 1\nproperty int flags\nend_header\n", "without a face element"},
       {a + "element vertex 3\nproperty float x\nproperty float z\n" + f, "without property 'y'"},
-      {a + v + "bogus\n" + f, "line 7 is not a header keyword"},
+      {a + v + "bogus\n" + f, "line 7: not a header keyword"},
       {a + v + f + body, "PLY ends at face 0 of 1"},
       {a + v + f + body + "3 0 1 3\n", "PLY face 0: vertex index 3 of 3 vertices"},
       {a + v + f + body + "3 0 1 -1\n", "vertex index -1 of 3"},
       {a + v + f + body + "2 0 1\n", "PLY face 0: a face of 2 indices (3 to 255 are read)"},
-      {a + v + f + body + "3 0 1\n", "PLY face 0: its line has too few values"},
-      {a + v + f + body + "3 0 1 2 0\n", "PLY face 0: its line has 1 values too many"},
+      {a + v + f + body + "3 0 1\n",
+       "PLY face 0: property 'vertex_indices': its line has too few values"},
+      {a + v + f + body + "3 0 1 2 0\n",
+       "PLY face 0: its line has more values than its properties"},
       {a + v + f + body + "3 0 1 2\n3 0 1 2\n", "lines after its last face"},
       {a + v + f + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "vertex 1: property 'y': a value that"},
       {a + v + f + "0 0 0\n1 1e99 0\n0 1 0\n3 0 1 2\n", "vertex 1: property 'y': a value that"},
-      {a + v + f + "0 0 0\n1 0x1 0\n0 1 0\n3 0 1 2\n", "vertex 1: '0x1' is not a float"},
-      {a + v + f + body + "3 0 1 2.5\n", "'2.5' is not a int"},
-      {a + v + f + body + "256 0 1 2\n", "value 256 does not fit a uchar"},
-      {Binary(false).substr(0, Binary(false).size() - 1), "PLY face 0: the file ends inside it"},
+      {a + v + f + "0 0 0\n1 0x1 0\n0 1 0\n3 0 1 2\n",
+       "vertex 1: property 'y': '0x1' is not a valid float"},
+      {a + v + f + body + "3 0 1 2.5\n", "'2.5' is not a valid int"},
+      {a + v + f + body + "256 0 1 2\n", "value 256 does not fit in a uchar"},
+      {Binary(false).substr(0, Binary(false).size() - 1),
+       "PLY face 0: property 'vertex_indices': the file ends inside it"},
       {Binary(true) + "x", "PLY with 1 bytes after its last face"},
+      // A name is written back into the header assimp reads, which takes
+      // '\r' for a line end: this one would declare a second vertex element.
+      {a + v + "property float a\relement\tvertex\t100000\rproperty\tfloat\tw\n" + f,
+       "line 7: property name 'a\\relement"},
+      {a + "element face 1\nproperty list uchar int vertex_indices\n" + v + "end_header\n",
+       "line 3: the face element before the vertex element"},
+      {a + "element vertex\n" + f, "line 3: a malformed element line"},
+      {a + v + "comment " + std::string(2000, 'c') + "\n" + f, "line 7: longer than 1024 bytes"},
+      {a + v + std::string(1100, 'x') + "\n" + f, "line 7: longer than 1024 bytes"},
+      {a + v + f.substr(0, 15) + "property list uchar uchar vertex_indices\nend_header\n" + body +
+           "3 0 1 44\n",
+       "vertex index 44 of 3"},
+      {a + v + f.substr(0, 15) + "property list uchar uchar vertex_indices\nend_header\n" + body +
+           "3 0 1 299\n",
+       "value 299 does not fit in a uchar"},
+      {a + v + "element face 0\nproperty list uchar int vertex_indices\nend_header\n" + body,
+       "PLY without a face element, its index list and a face"},
+      {a + "element vertex 3\nproperty double x\nproperty double y\nproperty double z\n" + f +
+           "0 0 0\n1 0 0\n0 1e39 0\n3 0 1 2\n",
+       "vertex 2: property 'y': a value that is not a finite float"},
+      {a + v + f.substr(0, f.size() - 1), "PLY ends at vertex 0 of 3"},  // no newline after it
   };
+  std::string many = a + v;
+  for (int k = 0; k < 62; ++k) many += "property uchar p" + std::to_string(k) + "\n";
+  const absl::StatusOr<std::string> wide = RewritePly(many + f);
+  EXPECT_THAT(wide.status().message(), HasSubstr("line 68: more than 64 properties of element"));
   for (const auto& [file, message] : cases) {
     const absl::StatusOr<std::string> text = RewritePly(file);
     ASSERT_FALSE(text.ok()) << file;
