@@ -1,12 +1,14 @@
 #pragma once
 // A PLY file walked in full, and rewritten, before assimp reads it. Debian's
 // assimp PLY reader trusts what a file says: a header without end_header hung
-// it; a second vertex element, or a face list longer than its face, overflows
-// its buffers (upstream assimp issues 5729 and 5738, PR 6704); binary data
-// beginning with a line-end byte is read shifted (assimp issue 5692); an
-// out-of-range index crashed its post-processing. So assimp never sees the
-// user's bytes: only the subset of PLY a mesh needs passes, checked value by
-// value, and assimp reads it back rewritten as plain ASCII PLY.
+// it; a second vertex element, or a face list longer than the face's index
+// list, makes it write or read past buffers sized by the other count;
+// binary data beginning with a line-end byte is misread, the reader taking
+// it for one more line end after end_header (a binary triangle here came
+// back without its UVs); an out-of-range index crashed its post-processing.
+// So assimp never sees the user's bytes: only the subset of PLY a mesh needs
+// passes, checked value by value, and assimp reads it back rewritten as
+// plain ASCII PLY.
 //
 // Accepted: "ply", a format line (ascii / binary_little_endian /
 // binary_big_endian 1.0), comment and obj_info lines, exactly one "vertex"

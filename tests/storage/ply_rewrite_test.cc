@@ -19,8 +19,8 @@ const std::string kHeader =
     "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
 
 // What every encoding of the triangle below rewrites to. Its first x has
-// the float bits 0x3f80000a, whose little-endian first byte is '\n': assimp
-// skips that byte as a line end (assimp issue 5692).
+// the float bits 0x3f80000a, whose little-endian first byte is '\n', which
+// assimp's reader would skip as one more line end after end_header.
 const std::string kRewritten =
     "ply\nformat ascii 1.0\n" + kHeader + "1.0000012 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
 
