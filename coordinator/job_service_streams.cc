@@ -49,6 +49,11 @@ grpc::Status JobServiceImpl::Watch(grpc::ServerContext* context, const v1::JobId
       if (events->size() < 256) break;
     }
     if (IsTerminal(info->record.phase)) return grpc::Status::OK;
+    // Progress from the job as it is now: `info` was read before the events
+    // just sent and may hold a phase older than theirs.
+    info = deps_.table->Get(*id);
+    if (!info.ok()) return Reply(info.status());
+    if (IsTerminal(info->record.phase)) continue;  // its last events come first
     const int64_t now = SystemClock::Get()->NowMs();
     const bool changed = info->rays_traced != sent_rays || info->bytes_written != sent_bytes ||
                          info->tasks_done != sent_done;
