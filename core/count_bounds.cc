@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/zero_quads.h"
+
 namespace wavebake {
 namespace {
 
@@ -24,55 +26,43 @@ EnergyHistogram::EnergyHistogram(double budget)
     : budget_(budget),
       base_key_(budget > 0 ? std::max<int64_t>(0, KeyOf(budget) - (kBins - 1)) : 0) {}
 
-int EnergyHistogram::BinOf(double e) const {
-  const int64_t rel = KeyOf(e) - base_key_;  // ≤ kBins − 1 since e ≤ budget
-  return rel <= 0 ? 0 : static_cast<int>(rel);
-}
-
 double EnergyHistogram::Lo(int bin) const { return bin == 0 ? 0.0 : FromKey(base_key_ + bin); }
 
 double EnergyHistogram::Hi(int bin) const {
   return std::min(budget_, FromKey(base_key_ + bin + 1));
 }
 
-void EnergyHistogram::AddTo(int lane, double e, int sign) {
-  int b = BinOf(e);
+// The body of every add and remove: inlined into the loops below, which
+// run over every coefficient of a column at every depth.
+template <int kSign>
+[[gnu::always_inline]] inline void EnergyHistogram::AddTo(int lane, double e) {
+  const int64_t rel = KeyOf(e) - base_key_;  // ≤ kBins − 1 when e ≤ budget
+  int b = rel <= 0 ? 0 : static_cast<int>(rel);
   b = e > budget_ ? kAboveSlot : b;
   b = e == 0 ? kZeroSlot : b;
-  count_[lane][b] += sign;
-  energy_[lane][b] += sign * e;
+  count_[lane][b] += kSign;
+  energy_[lane][b] += kSign * e;  // exact for kSign = ±1
 }
 
-void EnergyHistogram::Update(std::span<const float> v, std::span<const float> w, int sign) {
+template <int kSign>
+void EnergyHistogram::Update(std::span<const float> v, std::span<const float> w) {
   const size_t n = v.size();
   if (!w.empty()) {
     for (size_t i = 0; i < n; ++i) {
       const double m = double(v[i]) * w[i];
-      AddTo(i & 1, m * m, sign);
+      AddTo<kSign>(i & 1, m * m);
     }
     return;
   }
-  // Most coefficients of a transport column are exactly 0 and come in runs:
-  // four at a time are skipped when their bits, sign aside, are all 0.
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    uint32_t bits[4];
-    std::memcpy(bits, &v[i], sizeof bits);
-    if (((bits[0] | bits[1] | bits[2] | bits[3]) & 0x7fffffffu) == 0) continue;
-    for (size_t j = i; j < i + 4; ++j) {
-      const double m = v[j];
-      AddTo(j & 1, m * m, sign);
-    }
-  }
-  for (; i < n; ++i) {
+  ForNonzeroQuads(v.data(), n, [&](size_t i) {
     const double m = v[i];
-    AddTo(i & 1, m * m, sign);
-  }
+    AddTo<kSign>(i & 1, m * m);
+  });
 }
 
-void EnergyHistogram::Add(std::span<const float> v, std::span<const float> w) { Update(v, w, 1); }
+void EnergyHistogram::Add(std::span<const float> v, std::span<const float> w) { Update<1>(v, w); }
 void EnergyHistogram::Remove(std::span<const float> v, std::span<const float> w) {
-  Update(v, w, -1);
+  Update<-1>(v, w);
 }
 
 void EnergyHistogram::Merge(std::array<int64_t, kBins>& count,

@@ -39,12 +39,14 @@ class EnergyHistogram {
   // Two more slots, so that every entry lands in one without a branch: exact
   // zeros (never counted) and entries above the budget (always kept).
   static constexpr int kZeroSlot = kBins, kAboveSlot = kBins + 1, kSlots = kBins + 2;
-  void Update(std::span<const float> v, std::span<const float> w, int sign);
-  // Adds entry energy e to lane `lane` (two lanes: consecutive entries in
-  // the same bin do not wait for each other's store).
-  void AddTo(int lane, double e, int sign);
+  template <int kSign>
+  void Update(std::span<const float> v, std::span<const float> w);
+  // Adds (kSign = 1) or removes (−1) entry energy e in lane `lane` (two
+  // lanes: consecutive entries in the same bin do not wait for each other's
+  // store).
+  template <int kSign>
+  void AddTo(int lane, double e);
   void Merge(std::array<int64_t, kBins>& count, std::array<double, kBins>& energy) const;
-  int BinOf(double e) const;
   double Lo(int bin) const;
   double Hi(int bin) const;
   // How many least important entries fit in `budget`: whole bins, then

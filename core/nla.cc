@@ -5,6 +5,8 @@
 #include <bit>
 #include <cmath>
 
+#include "core/zero_quads.h"
+
 namespace wavebake {
 namespace {
 
@@ -76,14 +78,15 @@ size_t DropWithinBin(std::vector<Entry>& entries, double budget, double& dropped
 // exactly 0 (two thirds on the bunny), and every pass after the first runs
 // over the compact list. Zeros add nothing to any sum and are never kept, so
 // the results are those of passes over every entry. Per thread, reused
-// column after column.
+// column after column; the bins hold zeros between calls.
 struct CutScratch {
   std::vector<uint32_t> index;  // the nonzero entries, increasing
   std::vector<double> mag;      // Magnitude(v, w, index[k])
   std::vector<uint16_t> bin;    // BinOf(mag[k])
   std::array<double, kBins> energy{};
   std::array<uint32_t, kBins> count{};
-  std::vector<Entry> entries;  // the cut bin's entries
+  std::array<uint64_t, kBins / 64> occupied{};  // bit b: count[b] > 0
+  std::vector<Entry> entries;                   // the cut bin's entries
 };
 
 CutScratch& ThreadCutScratch() {
@@ -93,27 +96,34 @@ CutScratch& ThreadCutScratch() {
 
 // The nonzero entries with their magnitudes, their largest magnitude and
 // Σ magnitude² (in index order, as a pass over every entry would add them).
+// Quads of zeros are skipped, the rest compacted without a branch per entry:
+// whether an entry is 0 follows no pattern a predictor learns.
 void Gather(std::span<const float> v, std::span<const float> w, CutScratch& s, double& max_mag,
             double& total) {
   const size_t n = v.size();
-  s.index.resize(n);
-  s.mag.resize(n);
+  s.index.resize(n + 1);
+  s.mag.resize(n + 1);
   uint32_t* index = s.index.data();
   double* mag = s.mag.data();
   size_t count = 0;
-  double max_m = 0, sum = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (v[i] == 0) continue;
+  auto add = [&](size_t i) {
     const double m = Magnitude(v, w, i);
-    if (m == 0) continue;  // a zero weight
     index[count] = static_cast<uint32_t>(i);
     mag[count] = m;
-    ++count;
-    max_m = std::max(max_m, m);
-    sum += m * m;
+    count += m != 0;  // a zero value or a zero weight
+  };
+  if (w.empty()) {
+    ForNonzeroQuads(v.data(), n, add);
+  } else {
+    for (size_t i = 0; i < n; ++i) add(i);
   }
   s.index.resize(count);
   s.mag.resize(count);
+  double max_m = 0, sum = 0;
+  for (size_t k = 0; k < count; ++k) {
+    max_m = std::max(max_m, mag[k]);
+    sum += mag[k] * mag[k];
+  }
   max_mag = max_m;
   total = sum;
 }
@@ -135,11 +145,24 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, C
     s.bin[k] = static_cast<uint16_t>(b);
     s.energy[b] += m * m;
     ++s.count[b];
+    s.occupied[b / 64] |= uint64_t{1} << (b % 64);
   }
-  // Whole bins go while they fit; the first that does not is the cut bin.
+  // Whole bins go while they fit (empty ones add nothing, so only occupied
+  // ones are visited); the first that does not is the cut bin.
   double dropped = 0;
-  int b = 0;
-  while (b < kBins && dropped + s.energy[b] <= budget) dropped += s.energy[b++];
+  size_t below = 0;  // entries in the bins dropped whole
+  int b = kBins;
+  for (int word = 0; word < kBins / 64 && b == kBins; ++word) {
+    for (uint64_t bits = s.occupied[word]; bits != 0; bits &= bits - 1) {
+      const int k = word * 64 + std::countr_zero(bits);
+      if (dropped + s.energy[k] > budget) {
+        b = k;
+        break;
+      }
+      dropped += s.energy[k];
+      below += s.count[k];
+    }
+  }
   cut.bin = b;  // < kBins, since total > budget
   s.entries.clear();
   for (size_t k = 0; k < n; ++k) {
@@ -150,11 +173,17 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, C
   if (cut.kept_in_bin > 0) {
     cut.least_kept = *std::min_element(s.entries.begin() + lo, s.entries.end(), LessImportant);
   }
-  cut.kept = cut.kept_in_bin;
-  for (int k = b + 1; k < kBins; ++k) cut.kept += s.count[k];
+  cut.kept = n - below - s.entries.size() + cut.kept_in_bin;
   cut.dropped_energy = dropped;
-  s.energy.fill(0);  // ready for the next column
-  s.count.fill(0);
+  // Ready for the next column: only the occupied bins hold anything.
+  for (int word = 0; word < kBins / 64; ++word) {
+    for (uint64_t bits = s.occupied[word]; bits != 0; bits &= bits - 1) {
+      const int k = word * 64 + std::countr_zero(bits);
+      s.energy[k] = 0;
+      s.count[k] = 0;
+    }
+    s.occupied[word] = 0;
+  }
   return cut;
 }
 
@@ -181,15 +210,25 @@ Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
   if (cut.kept == 0) return sel;
   // Kept: every entry in a bin above the cut bin, and those of the cut bin at
   // least as important as its least important kept entry. Scanning in index
-  // order gives the list sorted without a sort.
-  sel.kept.reserve(cut.kept);
-  for (size_t k = 0; k < s.index.size(); ++k) {
-    const Entry e{s.mag[k], s.index[k]};
-    const int b = s.bin[k];
-    if (b > cut.bin || (b == cut.bin && cut.kept_in_bin > 0 && !LessImportant(e, cut.least_kept))) {
-      sel.kept.push_back(e.index);
-    }
+  // order gives the list sorted without a sort; written without a branch
+  // per entry (kept or not follows no pattern), through raw pointers (the
+  // output would otherwise make the compiler reload the scratch's).
+  const size_t n = s.index.size();
+  sel.kept.resize(n + 1);
+  uint32_t* out = sel.kept.data();
+  const uint32_t* index = s.index.data();
+  const double* mag = s.mag.data();
+  const uint16_t* bin = s.bin.data();
+  const bool any_in_bin = cut.kept_in_bin > 0;
+  size_t count = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const int b = bin[k];
+    const bool keep = b > cut.bin || (b == cut.bin && any_in_bin &&
+                                      !LessImportant({mag[k], index[k]}, cut.least_kept));
+    out[count] = index[k];
+    count += keep;
   }
+  sel.kept.resize(count);
   return sel;
 }
 

@@ -1,0 +1,31 @@
+#pragma once
+// Most values of a transport column are exactly 0 and come in runs (masked
+// cells, directions below the horizon, occluded ones): passes that only
+// accumulate over nonzero values skip them four at a time. A zero adds
+// nothing to a sum of squares or to a histogram, so skipping changes no
+// result, while a dependent chain of adds over every value (a double add per
+// value, ~4 cycles) would cost as much as the rest of the pass.
+#include <cstdint>
+#include <cstring>
+
+namespace wavebake {
+
+// v[0..3] are all ±0.
+inline bool ZeroQuad(const float* v) {
+  uint32_t bits[4];
+  std::memcpy(bits, v, sizeof bits);
+  return ((bits[0] | bits[1] | bits[2] | bits[3]) & 0x7fffffffu) == 0;
+}
+
+// f(i) for every i in [0, n) except those in quads of zeros.
+template <class F>
+void ForNonzeroQuads(const float* v, size_t n, F f) {
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    if (ZeroQuad(v + i)) continue;
+    f(i), f(i + 1), f(i + 2), f(i + 3);
+  }
+  for (; i < n; ++i) f(i);
+}
+
+}  // namespace wavebake
