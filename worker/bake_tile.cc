@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/refined_row.h"
 #include "core/transport_row.h"
+#include "core/zero_quads.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/row_transform.h"
@@ -43,32 +44,32 @@ absl::StatusOr<StagingArrays> OpenStaging(const JobPlan& plan, const std::filesy
   return StagingArrays{*std::move(transport), *std::move(energy)};
 }
 
-// Distance between consecutive rows in the tile-row buffer. M·4 bytes is a
+// Distance between consecutive rows in the tile's row buffer. M·4 bytes is a
 // multiple of 4 KiB (M = 6N², N ≥ 8), so unpadded, the transpose's reads of
 // one m across the rows would all fall into one L1 set; one extra cache line
 // per row spreads them out (a stand-alone timing of the N=32, 32×32 tile
 // transpose: 21–31 ms unpadded, 6–8 ms padded).
 size_t RowStride(const JobPlan& plan) { return static_cast<size_t>(plan.columns) + 16; }
 
-// Σ v² in double, in index order.
+// Σ v² in double, in index order (quads of zeros add nothing and are skipped).
 double SumOfSquares(std::span<const float> row) {
   double sum = 0;
-  for (float v : row) sum += double{v} * v;
+  ForNonzeroQuads(row.data(), row.size(), [&](size_t i) { sum += double{row[i]} * row[i]; });
   return sum;
 }
 
-// Row-transformed rows of the cells of tile row `cy`, cell cx at
-// cx*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
-// row is still in cache (a pass over the whole block afterwards cost ~10 ms
-// per N=32 tile, memory-bound); the fixed order (cell, then m) makes the sum
-// the same bits on every worker.
+// Row-transformed rows of the cells of tile row `cy`, cell c of the tile at
+// c*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
+// row is still in cache; the fixed order (cell, then m) makes the sum the
+// same bits on every worker.
 void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::span<float> rows,
                   double& energy, TileStats& stats, RefineScratch& scratch) {
   const int m_count = ctx.plan.columns;
   const int y = rect.y0 + cy;
   TransportStats traced;
   for (int cx = 0; cx < rect.width; ++cx) {
-    const std::span<float> row = rows.subspan(cx * RowStride(ctx.plan), m_count);
+    const size_t cell = size_t(cy) * rect.width + cx;
+    const std::span<float> row = rows.subspan(cell * RowStride(ctx.plan), m_count);
     const int32_t id = ctx.samples.grid[static_cast<size_t>(y) * ctx.samples.width + rect.x0 + cx];
     if (id < 0) {
       std::fill(row.begin(), row.end(), 0.0f);
@@ -95,25 +96,25 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
   stats.rays_traced += traced.rays_traced;
 }
 
-// The blocked transpose (DESIGN.md §2): block is [padded M, tile_cells] row
-// major, so column m of T over the tile is contiguous and chunk (g, t) is the
-// slice of rows [GroupFirst(g), +group_size). Writing a tile row at a time
-// keeps the writes contiguous (rect.width floats per column).
-void TransposeTileRow(std::span<const float> rows, const JobPlan& plan, int cy,
-                      std::span<float> block) {
-  const size_t m_count = plan.columns, cells = plan.tile_cells(), stride = RowStride(plan);
-  const size_t first_cell = static_cast<size_t>(cy) * plan.tile_w;
-  for (size_t m = 0; m < m_count; ++m) {
-    float* out = &block[m * cells + first_cell];
-    for (int cx = 0; cx < plan.tile_w; ++cx) out[cx] = rows[cx * stride + m];
+// The blocked transpose (DESIGN.md §2) of one column group: chunk (g, tile)
+// is [group_size, tile_cells] row major, column m of T over the tile
+// contiguous; the rows past the last column (the last group's padding) are 0.
+// Sixteen cells at a time, so that every write fills a whole cache line of
+// the chunk (which stays in cache until it is compressed) and the sixteen
+// rows read are reused for sixteen consecutive m.
+void TransposeGroup(std::span<const float> rows, const JobPlan& plan, int g,
+                    std::span<float> chunk) {
+  const size_t cells = plan.tile_cells(), stride = RowStride(plan);
+  const int first = plan.GroupFirst(g), count = plan.GroupCount(g);
+  for (size_t c0 = 0; c0 < cells; c0 += 16) {
+    const size_t width = std::min<size_t>(16, cells - c0);
+    const float* in = rows.data() + c0 * stride + first;
+    for (int j = 0; j < count; ++j) {
+      float* out = chunk.data() + j * cells + c0;
+      for (size_t i = 0; i < width; ++i) out[i] = in[i * stride + j];
+    }
   }
-}
-
-// The padding columns past M, zeroed: the block holds what the last task
-// left (worker/task_buffer.h), and the tile rows write only m < M. (Tiles are
-// whole, core/job_plan.cc: every cell of the tile is written.)
-void ZeroPadding(const JobPlan& plan, std::span<float> block) {
-  std::fill(block.begin() + size_t(plan.columns) * plan.tile_cells(), block.end(), 0.0f);
+  std::fill(chunk.begin() + size_t(count) * cells, chunk.end(), 0.0f);
 }
 
 absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> index,
@@ -125,16 +126,16 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
   return absl::OkStatus();
 }
 
+// Every group's chunk of the tile, each transposed just before it is
+// compressed, then the tile's energy.
 absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int tile,
-                       std::span<const float> block, double energy, TileStats& stats) {
-  const size_t chunk = static_cast<size_t>(plan.group_size) * plan.tile_cells();
+                       std::span<const float> rows, double energy, TileStats& stats) {
+  std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
   for (int g = 0; g < plan.groups; ++g) {
+    TransposeGroup(rows, plan, g, chunk);
     const int64_t index[] = {g, tile};
-    if (absl::Status s =
-            WriteChunkCounted(staging.transport, index, block.subspan(g * chunk, chunk), stats);
-        !s.ok()) {
+    if (absl::Status s = WriteChunkCounted(staging.transport, index, chunk, stats); !s.ok())
       return s;
-    }
   }
   const float tile_energy[] = {static_cast<float>(energy)};
   const int64_t index[] = {tile};
@@ -153,11 +154,8 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   absl::StatusOr<StagingArrays> staging = OpenStaging(plan, store);
   if (!staging.ok()) return staging.status();
 
-  // Padded to whole groups: Zarr chunks are full size, the padding is 0.
-  const size_t padded_columns = static_cast<size_t>(plan.groups) * plan.group_size;
-  const std::span<float> block = TaskBuffer(padded_columns * plan.tile_cells());
-  std::vector<float> rows(plan.tile_w * RowStride(plan));
   const TileRect rect = plan.Tile(tile);
+  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
   TileStats local;
   double energy = 0;
   RefineScratch scratch;
@@ -167,10 +165,8 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     TraceTileRow(ctx, rect, cy, rows, energy, local, scratch);
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
-    TransposeTileRow(rows, plan, cy, block);
   }
-  ZeroPadding(plan, block);
-  absl::Status written = WriteTile(*staging, plan, tile, block, energy, local);
+  absl::Status written = WriteTile(*staging, plan, tile, rows, energy, local);
   if (stats) {
     stats->rays_traced += local.rays_traced;
     stats->bytes_written += local.bytes_written;

@@ -1,8 +1,8 @@
 #pragma once
 // BAKE_TILE, the map half of the bake (DESIGN.md §2): for one spatial tile,
 // trace every sample's row of T (core/transport_row.h), row-transform it
-// (worker/row_transform.h), transpose the tile's samples × M block in memory
-// and write one staging chunk per column group, plus the tile's energy.
+// (worker/row_transform.h), then transpose it group by group and write one
+// staging chunk per column group, plus the tile's energy.
 #include <cstdint>
 #include <filesystem>
 
@@ -26,8 +26,8 @@ struct TileStats {
 // out; masked cells and the last group's padding rows are 0. The energy is
 // Σ staged², summed in double in a fixed order and stored as float32.
 //
-// Memory: one tile (M × tile_cells floats) and one tile row of rows, never
-// S×M. Single-threaded; tiles may run concurrently on one context, in any
+// Memory: the tile's rows (tile_cells × M floats, worker/task_buffer.h) and
+// one chunk, never S×M. Single-threaded; tiles may run concurrently on one context, in any
 // order, and a retried tile rewrites the same bytes: the chunks depend only on
 // (context, tile). `tile` outside [0, plan.tiles()) is InvalidArgument naming
 // "tile". stats (may be null) is added to. Between tile rows BakeTile

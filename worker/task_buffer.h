@@ -1,6 +1,6 @@
 #pragma once
 // One float buffer per thread, reused by the tasks a worker thread runs one
-// after another (BAKE_TILE's tile block, TRANSFORM_COLUMNS' column images).
+// after another (BAKE_TILE's tile rows, TRANSFORM_COLUMNS' column images).
 // A fresh zero-filled buffer per task — 100 MB for a 32² tile at N = 64,
 // 400 MB at N = 128 — cost a memset and a page fault per 4 KiB page: the
 // N = 64 tile's transpose took 75 ms into a fresh block against 31 ms into a
