@@ -60,7 +60,9 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& flags) {
   cmd.add_option("--tile-size", p.tile_size,
                  "spatial tile edge of one BAKE_TILE task (power of two)")
       ->capture_default_str();
-  cmd.add_option("--column-group", p.column_group, "columns per TRANSFORM_COLUMNS task")
+  cmd.add_option("--column-group", p.column_group,
+                 "columns per TRANSFORM_COLUMNS task (0: up to 1024, as many as fit 256 MiB of "
+                 "column images)")
       ->capture_default_str();
 }
 

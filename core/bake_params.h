@@ -38,7 +38,7 @@ struct BakeParams {
   Transport transport = Transport::kDiffuse;
   uint64_t seed = 1;
   int tile_size = 32;      // spatial tile edge (cells) of BAKE_TILE
-  int column_group = 256;  // columns per TRANSFORM_COLUMNS task
+  int column_group = 0;    // columns per TRANSFORM_COLUMNS task; 0: the plan's (core/job_plan.h)
   float ray_epsilon = 0;   // 0 = 1e-4 × scene bounding-box diagonal
   // Visibility refinement (core/refined_row.h): trace only where visibility
   // changes. false = brute force, every texel's K rays (core/transport_row.h).

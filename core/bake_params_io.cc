@@ -110,8 +110,8 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
     return bad("bits", p.bits, " is outside 2..16 (or auto)");
   if (!IsPowerOfTwo(p.tile_size) || p.tile_size > 256)
     return bad("tile_size", p.tile_size, " is not a power of two up to 256");
-  if (p.column_group < 1 || p.column_group > 65536)
-    return bad("column_group", p.column_group, " is outside 1..65536");
+  if (p.column_group < 0 || p.column_group > 65536)
+    return bad("column_group", p.column_group, " is outside 1..65536 (or 0: the plan's)");
   if (!(p.ray_epsilon >= 0)) return bad("ray_epsilon", p.ray_epsilon, " is negative");
   return absl::OkStatus();
 }

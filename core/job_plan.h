@@ -16,6 +16,18 @@ struct TileRect {
 // chunk layout *is* the transpose. Its second axis enumerates grid cells tile
 // by tile (tile t = ty*tiles_x + tx), row-major inside a tile, so chunk (g, t)
 // holds exactly the columns of group g restricted to tile t.
+// Columns per TRANSFORM_COLUMNS task when the parameters leave it to the
+// plan (column_group 0): the most, a power of two up to kMaxAutoGroup, whose
+// column images fit in kAutoGroupImageBytes. Every staging chunk and every
+// group result is a file of its own, and creating a file is not cheap: 0.5–
+// 0.9 ms of system time each on the ext4 the bakes were measured on
+// (docs/RESULTS.md), against ~2 ms of coding work for a 1024-column chunk of
+// a 32² tile. Larger groups mean fewer, larger files; the bound keeps two
+// tasks' images well inside a 2 GiB worker (256 columns at 512² samples).
+inline constexpr int kMaxAutoGroup = 1024;
+inline constexpr int64_t kAutoGroupImageBytes = int64_t{256} << 20;
+int AutoGroupSize(int columns, int cells);
+
 struct JobPlan {
   int width = 0, height = 0;  // sample grid W×H
   int tile_w = 0, tile_h = 0;

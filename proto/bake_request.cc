@@ -99,9 +99,9 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
   if (!IsPowerOfTwo(r.tile_size()) || r.tile_size() < 4 || r.tile_size() > 256) {
     return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..256"));
   }
-  if (r.column_group() == 0) r.set_column_group(256);
-  if (r.column_group() < 1 || r.column_group() > 65536) {
-    return Bad("column_group", absl::StrCat(r.column_group(), " is not in 1..65536"));
+  if (r.column_group() < 0 || r.column_group() > 65536) {  // 0: the plan's
+    return Bad("column_group",
+               absl::StrCat(r.column_group(), " is not in 1..65536 (or 0: the plan's)"));
   }
   if (r.max_attempts() == 0) r.set_max_attempts(kDefaultMaxAttempts);
   if (r.max_attempts() < 1 || r.max_attempts() > 100) {

@@ -10,7 +10,9 @@ namespace wavebake {
 absl::Status WriteJsonFile(const std::filesystem::path& path, const nlohmann::json& value) {
   std::string text;
   try {
-    text = value.dump(4) + "\n";
+    // ASCII only (\uXXXX escapes): Debian's zarr 2 decodes .zattrs as ASCII
+    // and cannot open the attributes of a file holding a "×".
+    text = value.dump(4, ' ', /*ensure_ascii=*/true) + "\n";
   } catch (const nlohmann::json::exception& e) {  // e.g. invalid UTF-8 in a string
     return absl::InvalidArgumentError(absl::StrCat("cannot write ", path.string(), ": ", e.what()));
   }

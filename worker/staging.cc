@@ -12,6 +12,7 @@ ArraySpec StagingTransportSpec(const JobPlan& plan) {
   spec.chunks = {plan.group_size, plan.tile_cells()};
   spec.dtype = DType::kFloat32;
   spec.fill_value = 0;
+  spec.zstd_level = -3;
   return spec;
 }
 

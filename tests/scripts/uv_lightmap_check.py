@@ -21,6 +21,7 @@ import zarr
 d = sys.argv[1]
 root = zarr.open(d + "/s.wbk", mode="r")
 attrs = json.load(open(d + "/s.wbk/.zattrs"))
+assert root.attrs.asdict() == attrs  # zarr's own reader decodes the attributes (ASCII)
 W, H = attrs["W"], attrs["H"]
 grid = np.asarray(root["samples/grid"])
 rects = np.asarray(root["samples/uv_rects"])
