@@ -38,6 +38,26 @@ inline constexpr int kMaxStoredCode = 32767;
 //   u = (h >> 40) · 2^−24 − 0.5                           (24 bits: exact in float)
 float DitherAt(uint64_t seed, uint64_t column, uint32_t position);
 
+// DitherAt of one column, its first two mixes done once (inline: the
+// quantizer and the decoder call it once per value).
+class ColumnDither {
+ public:
+  ColumnDither(uint64_t seed, uint64_t column) : base_(Mix(Mix(seed) ^ column)) {}
+  float At(uint32_t position) const {
+    const uint64_t h = Mix(base_ ^ position);
+    return static_cast<float>(static_cast<double>(h >> 40) * 0x1p-24 - 0.5);
+  }
+  static uint64_t Mix(uint64_t z) {  // the splitmix64 step above
+    z += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+
+ private:
+  uint64_t base_;
+};
+
 // k_i as a power-of-two exponent: −l for kPaper, 0 for kUniform.
 inline int LevelExponent(LevelScaling s, int level) {
   return s == LevelScaling::kPaper ? -level : 0;
@@ -55,6 +75,16 @@ float StepForMax(double max_abs, int max_code);
 std::vector<int16_t> Quantize(std::span<const float> values, std::span<const uint32_t> positions,
                               std::span<const uint8_t> levels, LevelScaling scaling, float step,
                               int max_code, uint64_t seed, uint64_t column);
+// The same into q (values.size() long), allocating nothing.
+void QuantizeInto(std::span<const float> values, std::span<const uint32_t> positions,
+                  std::span<const uint8_t> levels, LevelScaling scaling, float step, int max_code,
+                  uint64_t seed, uint64_t column, std::span<int16_t> q);
+// QuantizeInto, returning the error energy Σ ((v̂_i − v_i)·w_i)² of the
+// codes as Dequantize decodes them (w = weights[positions[i]]).
+double QuantizeWithError(std::span<const float> values, std::span<const uint32_t> positions,
+                         std::span<const uint8_t> levels, LevelScaling scaling, float step,
+                         int max_code, uint64_t seed, uint64_t column,
+                         std::span<const float> weights, std::span<int16_t> q);
 // Writes v̂ into out (same length as q).
 void Dequantize(std::span<const int16_t> q, std::span<const uint32_t> positions,
                 std::span<const uint8_t> levels, LevelScaling scaling, float step, uint64_t seed,

@@ -50,10 +50,18 @@ RefinePlan::RefinePlan(const Cubemap& cubemap, const JitterPattern& pattern,
     for (int k = 0; k < per_texel_; ++k)
       texel_rays_[size_t(MortonSlot(0, m)) * per_texel_ + k] = pattern.Direction(m, k);
   edges_.resize(start_level_ + 1);
+  anchors_.resize(start_level_ + 1);
   probe_direction_.resize(start_level_ + 1);
   for (int l = 0; l <= start_level_; ++l) {
     const Cubemap blocks(BlocksPerEdge(l));
     const int n = blocks.n();
+    if (l > 0) {
+      anchors_[l].resize(blocks.size());
+      for (int b = 0; b < blocks.size(); ++b) {
+        const Texel t = blocks.TexelOf(b);
+        anchors_[l][b] = AnchorAt(l, t.face, t.x, t.y);
+      }
+    }
     if (l > 0) {
       probe_direction_[l].resize(blocks.size());
       for (int b = 0; b < blocks.size(); ++b)

@@ -64,10 +64,9 @@ class RefinePlan {
     const int x = (bx << level) + (ox & size_mask), y = (by << level) + (oy & size_mask);
     return (((face << log2_n_) + y) << log2_n_) + x;
   }
-  int32_t Anchor(int level, int block) const {
-    const int log2 = log2_n_ - level, r = block & ((1 << 2 * log2) - 1);
-    return AnchorAt(level, block >> 2 * log2, r & ((1 << log2) - 1), r >> log2);
-  }
+  // The same, from a table (level 0: the texel itself): the refinement looks
+  // up the anchors of every block it visits and of their 8 neighbours.
+  int32_t Anchor(int level, int block) const { return level == 0 ? block : anchors_[level][block]; }
   // f(anchor) for the anchors of the block's 8 neighbours at its own level,
   // across face edges too (a cube-corner block has one neighbour twice: the
   // diagonal beyond the corner maps onto an edge neighbour), until f returns
@@ -75,13 +74,14 @@ class RefinePlan {
   template <class F>
   bool AllNeighbourAnchors(int level, int block, F f) const {
     const int log2 = log2_n_ - level, n = 1 << log2, r = block & ((1 << 2 * log2) - 1);
-    const int face = block >> 2 * log2, bx = r & (n - 1), by = r >> log2;
+    const int bx = r & (n - 1), by = r >> log2;
     if (bx > 0 && by > 0 && bx < n - 1 && by < n - 1) {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx)
-          if ((dx | dy) != 0 && !f(AnchorAt(level, face, bx + dx, by + dy))) return false;
+          if ((dx | dy) != 0 && !f(Anchor(level, block + dy * n + dx))) return false;
       return true;
     }
+    const int face = block >> 2 * log2;
     const int32_t* across = &edges_[level][(size_t(face) * 4 * n + EdgeSlot(bx, by, n)) * 8];
     for (int i = 0; i < 8; ++i)
       if (!f(across[i])) return false;
@@ -137,6 +137,8 @@ class RefinePlan {
   int start_level_ = 0;
   // Per level: the 8 neighbour anchors of every edge block, [face][slot][8].
   std::vector<std::vector<int32_t>> edges_;
+  // Per level ≥ 1: AnchorAt of every block, by block index.
+  std::vector<std::vector<int32_t>> anchors_;
   // Per level ≥ 1: ray 0 of every block's anchor, Z order.
   std::vector<std::vector<Vec3>> probe_direction_;
   std::vector<Vec3> texel_rays_;  // the pattern's directions, texels in Z order

@@ -81,10 +81,12 @@ class RowRefiner {
   void Run() {
     s_.state.assign(cubemap_.size(), kOpen);
     s_.probe.assign(cubemap_.size(), kUntraced);
+    s_.vote.assign(cubemap_.size(), -1);
     // Raw pointers: byte stores may alias anything, and would make the
     // compiler reload vector data pointers in every loop.
     state_ = s_.state.data();
     probe_ = s_.probe.data();
+    vote_ = s_.vote.data();
     std::fill(row_.begin(), row_.end(), 0.0f);
     s_.active.assign(plan_.StartBlocks().begin(), plan_.StartBlocks().end());
     for (int level = plan_.start_level(); level >= 0; --level) RefineLevel(level);
@@ -133,6 +135,7 @@ class RowRefiner {
     const Vec3 n = n_;
     ForRows(level, block, [&](int first, int count) {
       std::memset(state_ + first, visible ? kDecidedVisible : kDecidedOccluded, count);
+      std::memset(vote_ + first, visible ? 1 : 0, count);
       if (visible)
         for (int m = first; m < first + count; ++m) row[m] = plan.IrradianceAt(m, n);
     });
@@ -144,7 +147,7 @@ class RowRefiner {
     if (p < 0) return false;
     // An open neighbour is refined at this same level: its probe is traced.
     return plan_.AllNeighbourAnchors(level, block, [&](int32_t a) {
-      const int q = state_[a] == kOpen ? probe_[a] : ClassOf(state_[a]);
+      const int q = vote_[a];
       return q < 0 || q == p;
     });
   }
@@ -157,8 +160,10 @@ class RowRefiner {
     for (int32_t b : s_.active) {
       const Horizon h = HorizonOf(level, b);
       if (h == Horizon::kBelow) {
-        ForRows(level, b,
-                [&](int first, int count) { std::memset(state_ + first, kBelow, count); });
+        ForRows(level, b, [&](int first, int count) {
+          std::memset(state_ + first, kBelow, count);
+          std::memset(vote_ + first, -1, count);
+        });
         stats.texels_culled += size_t(1) << (2 * level);
       } else {
         s_.active[kept++] = b;
@@ -181,9 +186,10 @@ class RowRefiner {
         Decide(level, b, probe_[plan_.Anchor(level, b)] == 1);
       } else if (level == 0) {
         s_.to_trace.push_back(b);
-      } else {
-        const int n = plan_.BlocksPerEdge(level), per_face = n * n, r = b % per_face;
-        const int face = b / per_face, x = r % n, y = r / n, child_n = 2 * n;
+      } else {  // the 4 children, by shifts (blocks per edge is 2^log2)
+        const int log2 = plan_.log2_n() - level, r = b & ((1 << 2 * log2) - 1);
+        const int face = b >> 2 * log2, x = r & ((1 << log2) - 1), y = r >> log2;
+        const int child_n = 2 << log2;
         for (int dy = 0; dy < 2; ++dy)
           for (int dx = 0; dx < 2; ++dx)
             s_.next.push_back((face * child_n + 2 * y + dy) * child_n + 2 * x + dx);
@@ -239,7 +245,8 @@ class RowRefiner {
   void FlushProbes() {
     if (rays_.count == 0) return;
     Trace();
-    for (int i = 0; i < rays_.count; ++i) probe_[rays_.owner[i]] = rays_.occluded[i] ? 0 : 1;
+    for (int i = 0; i < rays_.count; ++i)
+      probe_[rays_.owner[i]] = vote_[rays_.owner[i]] = rays_.occluded[i] ? 0 : 1;
     rays_.count = 0;
   }
 
@@ -351,6 +358,11 @@ class RowRefiner {
   RefineScratch& s_;
   uint8_t* state_ = nullptr;
   int8_t* probe_ = nullptr;
+  // While the levels are refined: what texel a says to a neighbouring block's
+  // uniformity test — its probe while it is open, its class once decided, -1
+  // (nothing) below the horizon or untraced. Kept beside state_ and probe_ so
+  // that the test reads one byte per neighbour.
+  int8_t* vote_ = nullptr;
   float inv_k_pi_;
   struct HorizonLine {
     double a, b, c;  // n·p at texel corner (x, y) of a face: a + b·x + c·y

@@ -58,6 +58,7 @@ struct RefineSlot {
 struct RefineScratch {
   std::vector<uint8_t> state;  // per texel, refined_row.cc's TexelState
   std::vector<int8_t> probe;   // per texel: its ray 0, -1 untraced, -2 below the horizon
+  std::vector<int8_t> vote;    // per texel: refined_row.cc's RowRefiner::vote_
   std::vector<int32_t> active, next, to_trace, frontier;
   std::vector<uint8_t> crossing;  // per active block: the horizon crosses it
   std::vector<RefineSlot> slots;

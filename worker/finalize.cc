@@ -119,9 +119,10 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
 
 // One column quantized (DESIGN.md §1 "Scaling and quantization"), its
 // achieved quantization error energy, weighted like the selection, and the
-// bits its largest code needs.
+// bits its largest code needs. The codes are a view of per-thread scratch,
+// valid until the next call on this thread.
 struct QuantizedOutcome {
-  std::vector<int16_t> q;
+  std::span<const int16_t> q;
   double error_energy = 0;
   int bits = 0;  // 0 for a column without codes
 };
@@ -130,23 +131,21 @@ QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, floa
                              int max_code, std::span<const uint32_t> positions,
                              std::span<const float> values) {
   const JobPlan& plan = ctx.plan;
-  const LevelScaling scaling = ctx.params.level_scaling;
+  thread_local std::vector<uint8_t> levels;
+  thread_local std::vector<int16_t> q;
   const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, depth);
-  std::vector<uint8_t> levels(positions.size());
+  levels.resize(positions.size());
   for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
-  QuantizedOutcome out;
-  out.q = Quantize(values, positions, levels, scaling, step, max_code, ctx.params.seed, column);
-  std::vector<float> decoded(positions.size());
-  Dequantize(out.q, positions, levels, scaling, step, ctx.params.seed, column, decoded);
-  int largest = 0;
-  for (int16_t q : out.q) largest = std::max(largest, std::abs(int{q}));
-  out.bits = positions.empty() ? 0 : BitsForCode(largest);
+  q.resize(positions.size());
   const std::vector<float>& w =
       SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, depth);
-  for (size_t i = 0; i < positions.size(); ++i) {
-    const double e = (double{decoded[i]} - double{values[i]}) * w[positions[i]];
-    out.error_energy += e * e;
-  }
+  QuantizedOutcome out;
+  out.error_energy = QuantizeWithError(values, positions, levels, ctx.params.level_scaling, step,
+                                       max_code, ctx.params.seed, column, w, q);
+  out.q = q;
+  int largest = 0;
+  for (int16_t v : q) largest = std::max(largest, std::abs(int{v}));
+  out.bits = positions.empty() ? 0 : BitsForCode(largest);
   return out;
 }
 
