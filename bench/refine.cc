@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/refined_row.h"
+#include "core/texel_irradiance.h"
 #include "core/transport_row.h"
 #include "worker/bake_context.h"
 
@@ -75,19 +76,18 @@ Case& GetCase(int scene, int light_res) {
   return c;
 }
 
-// A traced texel's value from brute force's rays (core/refined_row.h): exact
-// integral times the cosine-weighted visible fraction, above the horizon.
+// A traced texel's value from brute force's rays (core/refined_row.h): the
+// exact integral of its part above the horizon times the cosine-weighted
+// visible fraction of its rays there.
 std::vector<float> ExactFromBrute(const BakeContext& ctx, const std::vector<float>& brute, Vec3 n) {
   std::vector<float> out = brute;
   const JitterPattern& p = ctx.jitter;
   for (int m = 0; m < ctx.cubemap.size(); ++m) {
-    bool above = true;
-    for (int c = 0; c < 4; ++c) above &= Dot(n, p.corners[size_t(m) * 4 + c]) > 0;
-    if (!above || brute[m] == 0) continue;
+    if (brute[m] == 0) continue;
     double sum_c = 0;
-    for (int k = 0; k < p.per_texel; ++k) sum_c += Dot(n, p.Direction(m, k));
+    for (int k = 0; k < p.per_texel; ++k) sum_c += std::max(0.0f, Dot(n, p.Direction(m, k)));
     const double all_visible = p.solid_angle[m] * sum_c / (p.per_texel * std::numbers::pi);
-    out[m] = static_cast<float>(ctx.refine->IrradianceAt(m, n) * brute[m] / all_visible);
+    out[m] = static_cast<float>(ClippedTexelIrradiance(ctx.cubemap, m, n) * brute[m] / all_visible);
   }
   return out;
 }

@@ -6,7 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <numbers>
+
+#include "core/texel_irradiance.h"
 
 namespace wavebake {
 namespace {
@@ -66,8 +67,7 @@ class RowRefiner {
         origin_(origin),
         n_(normal),
         row_(row),
-        s_(scratch),
-        inv_k_pi_(static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi))) {
+        s_(scratch) {
     const double nd[3] = {normal.x, normal.y, normal.z};
     auto dot = [&](const std::array<double, 3>& v) {
       return nd[0] * v[0] + nd[1] * v[1] + nd[2] * v[2];
@@ -129,7 +129,8 @@ class RowRefiner {
     for (int y = b.y0; y < b.y0 + b.size; ++y) f(TexelIndex(b.face, b.x0, y), b.size);
   }
 
-  void Decide(int level, int block, bool visible) {
+  void Decide(int level, int block, bool visible, bool crossing) {
+    if (crossing) return DecideCrossing(level, block, visible);
     float* row = row_.data();
     const RefinePlan& plan = plan_;
     const Vec3 n = n_;
@@ -139,6 +140,32 @@ class RowRefiner {
       if (visible)
         for (int m = first; m < first + count; ++m) row[m] = plan.IrradianceAt(m, n);
     });
+  }
+
+  // A uniform block the horizon crosses, texel by texel: those below it are
+  // 0 (and culled, as brute force culls them), the others get the block's
+  // class and, if visible, I_m(n) — n·Φ_m entirely above the horizon, the
+  // integral over the part above it where the horizon crosses the texel.
+  void DecideCrossing(int level, int block, bool visible) {
+    ForRows(level, block, [&](int first, int count) {
+      for (int m = first; m < first + count; ++m) {
+        const Horizon h = HorizonOf(0, m);
+        if (h == Horizon::kBelow) {
+          state_[m] = kBelow;
+          vote_[m] = -1;
+          ++stats.texels_culled;
+          continue;
+        }
+        state_[m] = visible ? kDecidedVisible : kDecidedOccluded;
+        vote_[m] = visible ? 1 : 0;
+        if (visible) row_[m] = h == Horizon::kAbove ? plan_.IrradianceAt(m, n_) : Clipped(m);
+      }
+    });
+  }
+
+  // I_m(n) of a texel the horizon crosses (core/texel_irradiance.h).
+  float Clipped(int m) const {
+    return static_cast<float>(ClippedTexelIrradiance(cubemap_, m, n_, plan_.Irradiance(m)));
   }
 
   // Probe, neighbours' probes (or decided values): all the same.
@@ -181,9 +208,8 @@ class RowRefiner {
     FlushProbes();
     for (size_t i = 0; i < s_.active.size(); ++i) {
       const int32_t b = s_.active[i];
-      const bool split = s_.crossing[i] || !Uniform(level, b);
-      if (!split) {
-        Decide(level, b, probe_[plan_.Anchor(level, b)] == 1);
+      if (Uniform(level, b)) {
+        Decide(level, b, probe_[plan_.Anchor(level, b)] == 1, s_.crossing[i]);
       } else if (level == 0) {
         s_.to_trace.push_back(b);
       } else {  // the 4 children, by shifts (blocks per edge is 2^log2)
@@ -299,13 +325,11 @@ class RowRefiner {
                                                 : kTracedMixed;
     if (slot.visible == 0) {
       row_[m] = 0;
-    } else if (!slot.above) {  // brute force's estimate, with its per-ray clamp
-      row_[m] = slot.sum_vc * (p_.solid_angle[m] * inv_k_pi_);
-    } else if (slot.visible == slot.rays_above) {
-      row_[m] = plan_.IrradianceAt(m, n_);
-    } else {
-      row_[m] = plan_.IrradianceAt(m, n_) * (slot.sum_vc / slot.sum_c);
+      return;
     }
+    // I_m(n) times the cosine-weighted visible fraction of the rays above the horizon.
+    const float exact = slot.above ? plan_.IrradianceAt(m, n_) : Clipped(m);
+    row_[m] = slot.visible == slot.rays_above ? exact : exact * (slot.sum_vc / slot.sum_c);
   }
 
   // --- silhouette following ------------------------------------------------
@@ -363,7 +387,6 @@ class RowRefiner {
   // (nothing) below the horizon or untraced. Kept beside state_ and probe_ so
   // that the test reads one byte per neighbour.
   int8_t* vote_ = nullptr;
-  float inv_k_pi_;
   struct HorizonLine {
     double a, b, c;  // n·p at texel corner (x, y) of a face: a + b·x + c·y
   };

@@ -10,8 +10,10 @@
 //  1. One ray probes each start block (the jittered ray 0 of its anchor texel).
 //  2. A block whose probe agrees with the probes (or decided values) of its 8
 //     neighbours is uniform: every texel in it gets its value without rays.
-//     Any other block, and every block the horizon crosses, is split in 4
-//     and its children probed, down to single texels.
+//     Any other block is split in 4 and its children probed, down to single
+//     texels. Blocks entirely below the horizon are 0 and dropped; one the
+//     horizon crosses is refined like any other, its probe permitting (a
+//     probe below the horizon says nothing: that block is split).
 //  3. A texel still undecided there traces its K jittered rays (ray 0 was
 //     its probe).
 //  4. Silhouette following (RefineOptions::follow): a traced texel whose rays
@@ -20,19 +22,20 @@
 //     repeated until nothing changes.
 //
 // Values (V the visibility, c_k = n·ω_k, I_m = (1/π)∫_m max(0, n·ω) dω the
-// exact integral of core/texel_irradiance.h):
+// exact integral of core/texel_irradiance.h: n·Φ_m for a texel entirely
+// above the horizon, the clipped polygon's integral for one it crosses):
 //   * a decided occluded texel, or one below the horizon: 0;
-//   * a decided visible texel (always entirely above the horizon, because
-//     blocks the horizon crosses are split to texels and traced): I_m;
-//   * a traced texel entirely above the horizon: I_m · Σ V_k c_k / Σ c_k,
-//     the cosine-weighted visible fraction of its K rays times the exact
-//     integral — so a fully visible texel is I_m whether it was traced or
-//     decided, and blocks meet without seams in the row's Haar coefficients;
-//   * a traced texel the horizon crosses: Ω_m/(Kπ) Σ_{c_k>0} V_k c_k, brute
-//     force's estimate with its per-ray clamp.
-// With nothing occluding, the row sums to 1 up to float rounding (brute
-// force: up to its quadrature error). The result depends only on (scene,
-// cubemap, pattern, plan, sample, ε): deterministic, like brute force.
+//   * a decided visible texel: I_m;
+//   * a traced texel: I_m · Σ V_k c_k / Σ c_k over its rays above the
+//     horizon, the cosine-weighted visible fraction of its rays times the
+//     exact integral — so a fully visible texel is I_m whether it was traced
+//     or decided, and blocks meet without seams in the row's Haar
+//     coefficients; 0 if none of its rays is above the horizon (a sliver no
+//     ray samples, as brute force).
+// With nothing occluding, the row sums to 1 up to float rounding and those
+// slivers (brute force: up to the quadrature error of the horizon band and
+// elsewhere). The result depends only on (scene, cubemap, pattern, plan,
+// sample, ε): deterministic, like brute force.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -80,15 +80,19 @@ std::vector<Vec3> TexelIrradianceVectors(const Cubemap& cubemap) {
 }
 
 double ClippedTexelIrradiance(const Cubemap& cubemap, int m, Vec3 n) {
-  const D3 nd{n.x, n.y, n.z};
-  const Polygon texel = TexelQuad(cubemap, m);
   // The orientation is the whole texel's: a clipped sliver may be too thin
   // for its own centroid test.
-  const D3 whole = LambertVector(texel);
-  const Polygon clipped = ClipToHemisphere(texel, nd);
+  const D3 whole = LambertVector(TexelQuad(cubemap, m));
+  return ClippedTexelIrradiance(cubemap, m, n,
+                                Vec3{float(whole[0]), float(whole[1]), float(whole[2])});
+}
+
+double ClippedTexelIrradiance(const Cubemap& cubemap, int m, Vec3 n, Vec3 into) {
+  const D3 nd{n.x, n.y, n.z};
+  const Polygon clipped = ClipToHemisphere(TexelQuad(cubemap, m), nd);
   if (clipped.n < 3) return 0;
   D3 part = LambertVector(clipped);
-  if (Dot(part, whole) < 0) part = Scale(part, -1);
+  if (Dot(part, D3{into.x, into.y, into.z}) < 0) part = Scale(part, -1);
   return std::max(0.0, Dot(nd, part)) / std::numbers::pi;
 }
 

@@ -27,5 +27,8 @@ std::vector<Vec3> TexelIrradianceVectors(const Cubemap& cubemap);
 // I_m(n) for any unit n: the texel clipped to n·ω ≥ 0, then Lambert's formula,
 // in double. 0 for a texel entirely below the horizon.
 double ClippedTexelIrradiance(const Cubemap& cubemap, int m, Vec3 n);
+// The same, half the work: `into` is any direction inside the texel (Φ_m
+// will do), which orients the clipped part's Lambert vector.
+double ClippedTexelIrradiance(const Cubemap& cubemap, int m, Vec3 n, Vec3 into);
 
 }  // namespace wavebake
