@@ -65,44 +65,44 @@ void EnergyHistogram::Remove(std::span<const float> v, std::span<const float> w)
   Update<-1>(v, w);
 }
 
-void EnergyHistogram::Merge(std::array<int64_t, kBins>& count,
-                            std::array<double, kBins>& energy) const {
-  for (int b = 0; b < kBins; ++b) {
-    count[b] = count_[0][b] + count_[1][b];
-    energy[b] = energy_[0][b] + energy_[1][b];
-  }
+namespace {
+
+// How many of a bin's `count` entries fit in what is left of a budget,
+// `left`, when each may weigh `per_entry` (Lo or Hi of the bin).
+int64_t Partial(double left, double per_entry, int64_t count) {
+  const int64_t fit = per_entry > 0 ? static_cast<int64_t>(std::floor(left / per_entry)) : count;
+  return std::min(count, fit);
 }
 
-int64_t EnergyHistogram::Droppable(const std::array<int64_t, kBins>& count,
-                                   const std::array<double, kBins>& energy, double budget,
-                                   bool optimistic) const {
-  double dropped = 0;
-  int64_t k = 0;
-  for (int b = 0; b < kBins; ++b) {
-    if (count[b] == 0) continue;
-    if (dropped + energy[b] <= budget) {
-      dropped += energy[b];
-      k += count[b];
-      continue;
-    }
-    const double left = std::max(0.0, budget - dropped);
-    const double per_entry = optimistic ? Lo(b) : Hi(b);
-    const int64_t partial =
-        per_entry > 0 ? static_cast<int64_t>(std::floor(left / per_entry)) : count[b];
-    return k + std::min(count[b], partial);
-  }
-  return k;
-}
+}  // namespace
 
 CountBounds EnergyHistogram::Bounds() const {
-  std::array<int64_t, kBins> count;
-  std::array<double, kBins> energy;
-  Merge(count, energy);
   int64_t nonzero = count_[0][kAboveSlot] + count_[1][kAboveSlot];
-  for (int64_t c : count) nonzero += c;
+  for (int b = 0; b < kBins; ++b) nonzero += count_[0][b] + count_[1][b];
   if (budget_ <= 0) return {static_cast<int>(nonzero), static_cast<int>(nonzero)};
-  return {static_cast<int>(nonzero - Droppable(count, energy, budget_ * (1 + kSlack), true)),
-          static_cast<int>(nonzero - Droppable(count, energy, budget_ * (1 - kSlack), false))};
+  // The least important entries that fit, for the budget narrowed (the
+  // upper bound on the count: whole bins, then Hi per entry in the cut bin)
+  // and widened (the lower bound: Lo per entry). One walk serves both: the
+  // bins dropped whole are the same prefix, the wider budget may go on.
+  const double narrow = budget_ * (1 - kSlack), wide = budget_ * (1 + kSlack);
+  double dropped = 0;
+  int64_t k = 0, fit_narrow = -1, fit_wide = -1;
+  for (int b = 0; b < kBins; ++b) {
+    const int64_t count = count_[0][b] + count_[1][b];
+    if (count == 0) continue;
+    const double energy = energy_[0][b] + energy_[1][b];
+    if (fit_narrow < 0 && dropped + energy > narrow)
+      fit_narrow = k + Partial(std::max(0.0, narrow - dropped), Hi(b), count);
+    if (dropped + energy > wide) {
+      fit_wide = k + Partial(std::max(0.0, wide - dropped), Lo(b), count);
+      break;
+    }
+    dropped += energy;
+    k += count;
+  }
+  if (fit_narrow < 0) fit_narrow = k;
+  if (fit_wide < 0) fit_wide = k;
+  return {static_cast<int>(nonzero - fit_wide), static_cast<int>(nonzero - fit_narrow)};
 }
 
 }  // namespace wavebake

@@ -46,13 +46,8 @@ class EnergyHistogram {
   // store).
   template <int kSign>
   void AddTo(int lane, double e);
-  void Merge(std::array<int64_t, kBins>& count, std::array<double, kBins>& energy) const;
   double Lo(int bin) const;
   double Hi(int bin) const;
-  // How many least important entries fit in `budget`: whole bins, then
-  // `per_entry` (Lo or Hi of the cut bin) decides the partial bin.
-  int64_t Droppable(const std::array<int64_t, kBins>& count,
-                    const std::array<double, kBins>& energy, double budget, bool optimistic) const;
 
   double budget_;
   int64_t base_key_;  // bit key of bin 1's lower edge

@@ -81,7 +81,10 @@ size_t DropWithinBin(std::vector<Entry>& entries, double budget, double& dropped
 // the results are those of passes over every entry. Per thread, reused
 // column after column; the bins hold zeros between calls.
 struct CutScratch {
-  std::vector<uint32_t> index;  // the nonzero entries, increasing
+  // The nonzero entries [0, nonzero): the buffers only grow (a resize up
+  // would zero-fill them for every column).
+  size_t nonzero = 0;
+  std::vector<uint32_t> index;  // increasing
   std::vector<double> mag;      // Magnitude(v, w, index[k])
   std::vector<uint16_t> bin;    // BinOf(mag[k])
   std::array<double, kBins> energy{};
@@ -100,8 +103,11 @@ CutScratch& ThreadCutScratch() {
 // whether an entry is 0 follows no pattern a predictor learns.
 void Gather(std::span<const float> v, std::span<const float> w, CutScratch& s, double& max_mag) {
   const size_t n = v.size();
-  s.index.resize(n + 1);
-  s.mag.resize(n + 1);
+  if (s.index.size() < n + 1) {
+    s.index.resize(n + 1);
+    s.mag.resize(n + 1);
+    s.bin.resize(n + 1);
+  }
   uint32_t* index = s.index.data();
   double* mag = s.mag.data();
   size_t count = 0;
@@ -116,8 +122,7 @@ void Gather(std::span<const float> v, std::span<const float> w, CutScratch& s, d
   } else {
     for (size_t i = 0; i < n; ++i) add(i);
   }
-  s.index.resize(count);
-  s.mag.resize(count);
+  s.nonzero = count;
   double max_m = 0;
   for (size_t k = 0; k < count; ++k) max_m = std::max(max_m, mag[k]);
   max_mag = max_m;
@@ -145,13 +150,13 @@ Cut FindCut(std::span<const float> v, std::span<const float> w, double budget, C
   Cut cut;
   double max_mag = 0;
   Gather(v, w, s, max_mag);
-  if (const std::optional<double> total = TotalIfWithin(s.mag, budget)) {
+  if (const std::optional<double> total =
+          TotalIfWithin(std::span(s.mag).first(s.nonzero), budget)) {
     cut.dropped_energy = *total;
     return cut;
   }
   cut.max_top = std::bit_cast<uint64_t>(max_mag) >> 48;
-  const size_t n = s.index.size();
-  s.bin.resize(n);
+  const size_t n = s.nonzero;
   for (size_t k = 0; k < n; ++k) {
     const double m = s.mag[k];
     const int b = BinOf(m, cut.max_top);
@@ -234,8 +239,8 @@ Selection SelectForBudget(std::span<const float> v, std::span<const float> w,
   // order gives the list sorted without a sort; written without a branch
   // per entry (kept or not follows no pattern), through raw pointers (the
   // output would otherwise make the compiler reload the scratch's).
-  const size_t n = s.index.size();
-  sel.kept.resize(n + 1);
+  const size_t n = s.nonzero;
+  sel.kept.resize(cut.kept + 1);  // one past: the branch-free writes
   uint32_t* out = sel.kept.data();
   const uint32_t* index = s.index.data();
   const double* mag = s.mag.data();
