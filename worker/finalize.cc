@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -16,6 +17,7 @@
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
 #include "worker/group_result.h"
+#include "worker/ordered_parallel.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
 
@@ -49,26 +51,55 @@ absl::Status Stopped(const FinalizeOptions& options, int group) {
   return absl::CancelledError(absl::StrCat("FINALIZE: cancelled at group ", group));
 }
 
+// Threads of FINALIZE's own: it runs alone at the end of a job.
+int Threads(const FinalizeOptions& options) {
+  return options.threads > 0 ? options.threads
+                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// Group g's result, checked against the plan; FailedPrecondition if it is
+// missing (FINALIZE ran too early).
+absl::StatusOr<GroupResult> ReadCheckedGroup(const JobPlan& plan,
+                                             const std::filesystem::path& store,
+                                             const FinalizeOptions& options, int g) {
+  if (absl::Status s = Stopped(options, g); !s.ok()) return s;
+  absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
+  if (absl::IsNotFound(r.status()))
+    return absl::FailedPreconditionError(
+        absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
+  if (!r.ok()) return r.status();
+  if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
+  return r;
+}
+
 absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
                         const FinalizeOptions& options, GroupScan* scan) {
   *scan = {};
-  for (int g = 0; g < plan.groups; ++g) {
-    if (absl::Status s = Stopped(options, g); !s.ok()) return s;
-    absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
-    if (absl::IsNotFound(r.status()))
-      return absl::FailedPreconditionError(
-          absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
-    if (!r.ok()) return r.status();
-    if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
-    scan->nnz += static_cast<int64_t>(r->positions.size());
-    for (const GroupColumn& c : r->columns) {
-      scan->columns.push_back({.max_abs = c.max_abs,
-                               .step_unit = c.step_unit,
-                               .reference_energy = c.reference_energy,
-                               .min_bits = c.min_bits});
-    }
-  }
-  return absl::OkStatus();
+  struct Columns {
+    int64_t kept = 0;
+    std::vector<ColumnQuantInput> columns;
+  };
+  const int threads = Threads(options);
+  return OrderedParallel<Columns>(
+      plan.groups, threads, 2 * threads,
+      [&](int g) -> absl::StatusOr<Columns> {
+        absl::StatusOr<GroupResult> r = ReadCheckedGroup(plan, store, options, g);
+        if (!r.ok()) return r.status();
+        Columns out;
+        out.kept = static_cast<int64_t>(r->positions.size());
+        for (const GroupColumn& c : r->columns) {
+          out.columns.push_back({.max_abs = c.max_abs,
+                                 .step_unit = c.step_unit,
+                                 .reference_energy = c.reference_energy,
+                                 .min_bits = c.min_bits});
+        }
+        return out;
+      },
+      [&](int, Columns& c) {
+        scan->nnz += c.kept;
+        scan->columns.insert(scan->columns.end(), c.columns.begin(), c.columns.end());
+        return absl::OkStatus();
+      });
 }
 
 struct CscArrays {
@@ -117,80 +148,90 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
                    *std::move(scale)};
 }
 
-// One column quantized (DESIGN.md §1 "Scaling and quantization"), its
-// achieved quantization error energy, weighted like the selection, and the
-// bits its largest code needs. The codes are a view of per-thread scratch,
-// valid until the next call on this thread.
-struct QuantizedOutcome {
-  std::span<const int16_t> q;
-  double error_energy = 0;
-  int bits = 0;  // 0 for a column without codes
+// A group's columns quantized (DESIGN.md §1 "Scaling and quantization"):
+// the codes, and per column its achieved quantization error energy
+// (weighted like the selection) and the bits its largest code needs (0 for
+// a column without codes).
+struct QuantizedGroup {
+  GroupResult result;
+  std::vector<int16_t> q;  // parallel to result.positions
+  std::vector<double> error_energy;
+  std::vector<int> bits;
 };
 
-QuantizedOutcome QuantizeOne(const BakeContext& ctx, int column, int depth, float step,
-                             int max_code, std::span<const uint32_t> positions,
-                             std::span<const float> values) {
+absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const StepPlan& steps,
+                                             const std::filesystem::path& store,
+                                             const FinalizeOptions& options, int g) {
+  absl::StatusOr<GroupResult> r = ReadCheckedGroup(ctx.plan, store, options, g);
+  if (!r.ok()) return r.status();
   const JobPlan& plan = ctx.plan;
-  thread_local std::vector<uint8_t> levels;
-  thread_local std::vector<int16_t> q;
-  const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, depth);
-  levels.resize(positions.size());
-  for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
-  q.resize(positions.size());
-  const std::vector<float>& w =
-      SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, depth);
-  QuantizedOutcome out;
-  out.error_energy = QuantizeWithError(values, positions, levels, ctx.params.level_scaling, step,
-                                       max_code, ctx.params.seed, column, w, q);
-  out.q = q;
-  int largest = 0;
-  for (int16_t v : q) largest = std::max(largest, std::abs(int{v}));
-  out.bits = positions.empty() ? 0 : BitsForCode(largest);
+  QuantizedGroup out;
+  out.q.resize(r->positions.size());
+  std::vector<uint8_t> levels;
+  size_t at = 0;
+  for (size_t c = 0; c < r->columns.size(); ++c) {
+    const GroupColumn& gc = r->columns[c];
+    const int m = r->first_column + static_cast<int>(c);
+    const auto positions = std::span<const uint32_t>(r->positions).subspan(at, gc.kept);
+    const auto values = std::span<const float>(r->values).subspan(at, gc.kept);
+    const auto q = std::span(out.q).subspan(at, gc.kept);
+    at += gc.kept;
+    const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, gc.depth);
+    levels.resize(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
+    const std::vector<float>& w =
+        SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, gc.depth);
+    out.error_energy.push_back(QuantizeWithError(values, positions, levels,
+                                                 ctx.params.level_scaling, steps.steps[m],
+                                                 steps.max_code, ctx.params.seed, m, w, q));
+    int largest = 0;
+    for (int16_t v : q) largest = std::max(largest, std::abs(int{v}));
+    out.bits.push_back(positions.empty() ? 0 : BitsForCode(largest));
+  }
+  out.result = *std::move(r);
   return out;
 }
 
-// Pass 2: groups in order → the CSC arrays, one group in memory at a time.
+// Pass 2: groups in order → the CSC arrays. Groups are read and quantized on
+// FINALIZE's threads, a few at a time, and appended here in order.
 absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store,
                             const StepPlan& steps, int64_t nnz, const FinalizeOptions& options,
                             StoreStats* stats) {
   const JobPlan& plan = ctx.plan;
   absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
   if (!arrays.ok()) return arrays.status();
-  ArrayAppender<uint32_t> indices(arrays->indices);
-  ArrayAppender<int16_t> data(arrays->data);
+  const int threads = Threads(options);
+  ArrayAppender<uint32_t> indices(arrays->indices, threads);
+  ArrayAppender<int16_t> data(arrays->data, threads);
   std::vector<int64_t> indptr(plan.columns + 1, 0);
   std::vector<uint8_t> depth(plan.columns, 0);
   std::vector<float> scale(plan.columns, 0.0f);
-  for (int g = 0; g < plan.groups; ++g) {
-    if (absl::Status s = Stopped(options, g); !s.ok()) return s;
-    absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
-    if (!r.ok()) return r.status();
-    if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
-    size_t at = 0;
-    for (size_t c = 0; c < r->columns.size(); ++c) {
-      const GroupColumn& gc = r->columns[c];
-      const int m = r->first_column + static_cast<int>(c);
-      const auto positions = std::span<const uint32_t>(r->positions).subspan(at, gc.kept);
-      const auto values = std::span<const float>(r->values).subspan(at, gc.kept);
-      at += gc.kept;
-      const QuantizedOutcome q =
-          QuantizeOne(ctx, m, gc.depth, steps.steps[m], steps.max_code, positions, values);
-      if (absl::Status s = indices.Append(positions); !s.ok()) return s;
-      if (absl::Status s = data.Append(q.q); !s.ok()) return s;
-      indptr[m + 1] = indptr[m] + gc.kept;
-      depth[m] = gc.depth;
-      scale[m] = steps.steps[m];
-      stats->Add({.column = m,
-                  .depth = gc.depth,
-                  .kept = gc.kept,
-                  .energy = gc.energy,
-                  .reference_energy = gc.reference_energy,
-                  .dropped_energy = gc.dropped_energy,
-                  .quantization_energy = q.error_energy,
-                  .min_bits = gc.min_bits,
-                  .bits = q.bits});
-    }
-  }
+  absl::Status appended = OrderedParallel<QuantizedGroup>(
+      plan.groups, threads, threads + 1,
+      [&](int g) { return QuantizeGroup(ctx, steps, store, options, g); },
+      [&](int, QuantizedGroup& qg) -> absl::Status {
+        const GroupResult& r = qg.result;
+        if (absl::Status s = indices.Append(r.positions); !s.ok()) return s;
+        if (absl::Status s = data.Append(qg.q); !s.ok()) return s;
+        for (size_t c = 0; c < r.columns.size(); ++c) {
+          const GroupColumn& gc = r.columns[c];
+          const int m = r.first_column + static_cast<int>(c);
+          indptr[m + 1] = indptr[m] + gc.kept;
+          depth[m] = gc.depth;
+          scale[m] = steps.steps[m];
+          stats->Add({.column = m,
+                      .depth = gc.depth,
+                      .kept = gc.kept,
+                      .energy = gc.energy,
+                      .reference_energy = gc.reference_energy,
+                      .dropped_energy = gc.dropped_energy,
+                      .quantization_energy = qg.error_energy[c],
+                      .min_bits = gc.min_bits,
+                      .bits = qg.bits[c]});
+        }
+        return absl::OkStatus();
+      });
+  if (!appended.ok()) return appended;
   for (absl::Status s :
        {indices.Close(), data.Close(), arrays->indptr.WriteAll<int64_t>(indptr),
         arrays->depth.WriteAll<uint8_t>(depth), arrays->scale.WriteAll<float>(scale)}) {

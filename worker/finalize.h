@@ -6,7 +6,8 @@
 // column, max_i |v_i/k_i| and the expected dither energy per unit step;
 // FINALIZE picks every column's step Δ_c (stored as `scale`) and quantizes.
 //
-// Memory: one group's coded columns plus O(M) column arrays, never S×M.
+// Memory: a few groups' coded columns (threads + 1) plus O(M) column arrays,
+// never S×M.
 // Idempotent: a retry rewrites the same bytes, and a retry after staging was
 // dropped finds the finished manifest and succeeds without work.
 #include <atomic>
@@ -22,6 +23,9 @@ struct FinalizeOptions {
   // Raised: stop between two groups with CANCELLED (a cancelled job; a large
   // store's FINALIZE runs far longer than the bound on ending a bake).
   const std::atomic<bool>* cancel = nullptr;
+  // Threads reading and quantizing groups (0: one per hardware thread).
+  // FINALIZE runs alone at the end of a job; the stores do not depend on it.
+  int threads = 0;
 };
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,

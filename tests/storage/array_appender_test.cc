@@ -1,4 +1,4 @@
-// ArrayAppender writes chunks on a helper thread while the caller fills the
+// ArrayAppender writes chunks on helper threads while the caller fills the
 // next: whatever the sizes of the pieces appended, the array reads back as
 // the values in order (through ZarrArray, the same bytes WriteAll writes),
 // and a wrong total length is an error naming the array.
@@ -24,7 +24,9 @@ ArraySpec Spec(int64_t length) {
   return {.shape = {length}, .chunks = {64}, .dtype = DTypeOf<uint32_t>(), .delta_filter = true};
 }
 
-TEST(ArrayAppender, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite) {
+class ArrayAppenderInFlight : public ::testing::TestWithParam<int> {};
+
+TEST_P(ArrayAppenderInFlight, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite) {
   TempDir tmp;
   const int64_t length = 64 * 9 + 17;  // nine full chunks and a partial one
   const std::vector<uint32_t> values = TestValues<uint32_t>(length, 7);
@@ -32,7 +34,7 @@ TEST(ArrayAppender, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite) {
   absl::StatusOr<ZarrArray> whole = ZarrArray::Create(tmp.path() / "whole", Spec(length));
   ASSERT_TRUE(appended.ok() && whole.ok());
   {
-    ArrayAppender<uint32_t> appender(*appended);
+    ArrayAppender<uint32_t> appender(*appended, /*in_flight=*/GetParam());
     size_t at = 0;
     for (size_t piece = 1; at < values.size(); piece = piece * 3 % 101 + 1) {
       const size_t n = std::min(piece, values.size() - at);
@@ -52,6 +54,9 @@ TEST(ArrayAppender, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite) {
         << "chunk " << c;
   }
 }
+
+// One chunk written at a time, and several at once: the same files.
+INSTANTIATE_TEST_SUITE_P(ChunksBeingWritten, ArrayAppenderInFlight, ::testing::Values(1, 3));
 
 TEST(ArrayAppender, AShortArrayIsAnErrorNamingIt) {
   TempDir tmp;
