@@ -13,6 +13,10 @@ namespace wavebake {
 namespace {
 
 constexpr char kMagic[8] = {'W', 'B', 'G', 'R', 'O', 'U', 'P', '2'};
+
+// Group results live until FINALIZE reads them (twice) and are dropped with
+// staging: a fast level. Their float values hardly compress at any level.
+constexpr int kGroupResultZstdLevel = -3;
 constexpr size_t kPreamble = sizeof kMagic + sizeof(uint64_t);
 
 // Appends plain values as their little-endian bytes (the host order, dtype.h).
@@ -142,7 +146,7 @@ std::filesystem::path GroupResultPath(const std::filesystem::path& store, int gr
 
 absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupResult& result) {
   const std::vector<std::byte> payload = Payload(result);
-  absl::StatusOr<std::vector<std::byte>> frame = ZstdCompress(payload);
+  absl::StatusOr<std::vector<std::byte>> frame = ZstdCompress(payload, kGroupResultZstdLevel);
   if (!frame.ok()) return frame.status();
   ByteWriter file;
   for (char c : kMagic) file.Put(c);
