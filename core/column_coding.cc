@@ -98,8 +98,7 @@ const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth) {
 
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out) {
   *out = CodedColumn{};
-  ForNonzeroQuads(image.data(), image.size(),
-                  [&](size_t i) { out->energy += static_cast<double>(image[i]) * image[i]; });
+  out->energy = SumOfSquares(image.data(), image.size());
   out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
   if (out->energy == 0) {  // an empty column keeps nothing (DESIGN.md §1)
     out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;

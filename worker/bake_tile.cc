@@ -51,13 +51,6 @@ absl::StatusOr<StagingArrays> OpenStaging(const JobPlan& plan, const std::filesy
 // transpose: 21–31 ms unpadded, 6–8 ms padded).
 size_t RowStride(const JobPlan& plan) { return static_cast<size_t>(plan.columns) + 16; }
 
-// Σ v² in double, in index order (quads of zeros add nothing and are skipped).
-double SumOfSquares(std::span<const float> row) {
-  double sum = 0;
-  ForNonzeroQuads(row.data(), row.size(), [&](size_t i) { sum += double{row[i]} * row[i]; });
-  return sum;
-}
-
 // Row-transformed rows of the cells of tile row `cy`, cell c of the tile at
 // c*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
 // row is still in cache; the fixed order (cell, then m) makes the sum the
@@ -90,7 +83,7 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
                    ctx.samples.normal[id], ctx.epsilon, row, &traced);
     }
     RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
-    energy += SumOfSquares(row);
+    energy += SumOfSquares(row.data(), row.size());
     ++stats.samples;
   }
   stats.rays_traced += traced.rays_traced;
