@@ -87,7 +87,8 @@ class RowRefiner {
     state_ = s_.state.data();
     probe_ = s_.probe.data();
     vote_ = s_.vote.data();
-    std::fill(row_.begin(), row_.end(), 0.0f);
+    // Every texel's value is written once it is culled, decided or traced:
+    // the row needs no clearing first.
     s_.active.assign(plan_.StartBlocks().begin(), plan_.StartBlocks().end());
     for (int level = plan_.start_level(); level >= 0; --level) RefineLevel(level);
     TraceTexels(s_.to_trace);
@@ -126,7 +127,7 @@ class RowRefiner {
   template <class F>
   void ForRows(int level, int block, F f) const {
     const Block b = BlockAt(level, block);
-    for (int y = b.y0; y < b.y0 + b.size; ++y) f(TexelIndex(b.face, b.x0, y), b.size);
+    for (int y = b.y0; y < b.y0 + b.size; ++y) f(TexelIndex(b.face, b.x0, y), size_t(b.size));
   }
 
   void Decide(int level, int block, bool visible, bool crossing) {
@@ -134,11 +135,15 @@ class RowRefiner {
     float* row = row_.data();
     const RefinePlan& plan = plan_;
     const Vec3 n = n_;
-    ForRows(level, block, [&](int first, int count) {
+    ForRows(level, block, [&](int first, size_t count) {
       std::memset(state_ + first, visible ? kDecidedVisible : kDecidedOccluded, count);
       std::memset(vote_ + first, visible ? 1 : 0, count);
-      if (visible)
-        for (int m = first; m < first + count; ++m) row[m] = plan.IrradianceAt(m, n);
+      if (visible) {
+        for (int m = first, end = first + int(count); m < end; ++m)
+          row[m] = plan.IrradianceAt(m, n);
+      } else {
+        std::fill_n(row + first, count, 0.0f);
+      }
     });
   }
 
@@ -147,18 +152,19 @@ class RowRefiner {
   // class and, if visible, I_m(n) — n·Φ_m entirely above the horizon, the
   // integral over the part above it where the horizon crosses the texel.
   void DecideCrossing(int level, int block, bool visible) {
-    ForRows(level, block, [&](int first, int count) {
-      for (int m = first; m < first + count; ++m) {
+    ForRows(level, block, [&](int first, size_t count) {
+      for (int m = first, end = first + int(count); m < end; ++m) {
         const Horizon h = HorizonOf(0, m);
         if (h == Horizon::kBelow) {
           state_[m] = kBelow;
           vote_[m] = -1;
+          row_[m] = 0;
           ++stats.texels_culled;
           continue;
         }
         state_[m] = visible ? kDecidedVisible : kDecidedOccluded;
         vote_[m] = visible ? 1 : 0;
-        if (visible) row_[m] = h == Horizon::kAbove ? plan_.IrradianceAt(m, n_) : Clipped(m);
+        row_[m] = !visible ? 0.0f : h == Horizon::kAbove ? plan_.IrradianceAt(m, n_) : Clipped(m);
       }
     });
   }
@@ -187,8 +193,9 @@ class RowRefiner {
     for (int32_t b : s_.active) {
       const Horizon h = HorizonOf(level, b);
       if (h == Horizon::kBelow) {
-        ForRows(level, b, [&](int first, int count) {
+        ForRows(level, b, [&](int first, size_t count) {
           std::memset(state_ + first, kBelow, count);
+          std::fill_n(row_.data() + first, count, 0.0f);
           std::memset(vote_ + first, -1, count);
         });
         stats.texels_culled += size_t(1) << (2 * level);
