@@ -11,7 +11,8 @@
 // Baseline is the speed-up per row that batching and culling buy; "traced/s"
 // counts the rays really handed to Embree; TransportRow's x_fastest_kernel is
 // its traced/s over the fastest kernel's (target ≥ 0.85: the row loop adds
-// little to what Embree itself costs).
+// little to what Embree itself costs), and BM_TransportRowPaired measures the
+// same ratio pairwise, row by row, which the machine's load does not move.
 #include <benchmark/benchmark.h>
 #include <time.h>
 
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -160,23 +162,20 @@ int ZOrderKey(const Cubemap& c, int m) {
   return t.face << 16 | z;
 }
 
-// What each RayCaster::OccludedFan kernel does with the rays a row really
-// traces (the upper hemisphere of each sample, in texel order, or with
-// z_order in Z order); this is how RayCaster::kDefaultFanKernel was chosen.
-void BM_Fan(benchmark::State& state) {
-  const Fixture& f = GetFixture();
-  const auto kernel = static_cast<FanKernel>(state.range(0));
-  const bool z_order = state.range(1) != 0;
+struct Fan {
+  Vec3 origin;
+  std::vector<float> x, y, z;
+};
+
+// The rays a row really traces, per sample (its upper hemisphere, in texel
+// order, or with z_order in Z order).
+std::vector<Fan> RowFans(const Fixture& f, bool z_order) {
   std::vector<int> texels(f.cubemap.size());
   for (int m = 0; m < f.cubemap.size(); ++m) texels[m] = m;
   if (z_order)
     std::sort(texels.begin(), texels.end(),
               [&](int a, int b) { return ZOrderKey(f.cubemap, a) < ZOrderKey(f.cubemap, b); });
-  const float eps = f.caster->DefaultEpsilon(), inf = std::numeric_limits<float>::infinity();
-  struct Fan {
-    Vec3 origin;
-    std::vector<float> x, y, z;
-  };
+  const float eps = f.caster->DefaultEpsilon();
   std::vector<Fan> fans;
   for (const Sample& s : f.samples) {
     Fan fan{s.position + s.normal * eps, {}, {}, {}};
@@ -189,6 +188,16 @@ void BM_Fan(benchmark::State& state) {
     }
     fans.push_back(std::move(fan));
   }
+  return fans;
+}
+
+// What each RayCaster::OccludedFan kernel does with the rays a row really
+// traces; this is how RayCaster::kDefaultFanKernel was chosen.
+void BM_Fan(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  const auto kernel = static_cast<FanKernel>(state.range(0));
+  const std::vector<Fan> fans = RowFans(f, state.range(1) != 0);
+  const float inf = std::numeric_limits<float>::infinity();
   std::vector<uint8_t> occluded(f.rays_per_row());
   size_t i = 0, rays = 0;
   const double cpu_start = ThreadCpuSeconds();
@@ -231,6 +240,82 @@ void BM_TransportRow(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TransportRow)->Unit(benchmark::kMillisecond);
+
+// The row loop's own cost: the same rows against a scene every ray misses
+// at the root of the BVH (one small triangle far away), so that what is
+// left is building the batches, culling, and adding up the cosines.
+void BM_TransportRowNothingToHit(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  Mesh far;
+  far.name = "far";
+  far.positions = {{100, 100, 100}, {100.1f, 100, 100}, {100, 100.1f, 100}};
+  far.triangles = {{0, 1, 2}};
+  Scene scene;
+  scene.meshes = {far};
+  const absl::StatusOr<RayCaster> caster = RayCaster::Build(scene);
+  if (!caster.ok()) std::exit(1);
+  std::vector<float> row(f.cubemap.size());
+  TransportStats stats;
+  size_t i = 0;
+  for (auto _ : state) {
+    const Sample& s = f.samples[i++ % f.samples.size()];
+    TransportRow(*caster, f.cubemap, f.pattern, s.position, s.normal, 1e-4f, row, &stats);
+    benchmark::DoNotOptimize(row.data());
+  }
+  state.counters["ns/ray"] =
+      benchmark::Counter(static_cast<double>(stats.rays_traced),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_TransportRowNothingToHit)->Unit(benchmark::kMicrosecond);
+
+// The row loop's yardstick measured pairwise: each iteration traces one
+// sample's row with TransportRow and exactly its rays with the raw packet16
+// and stream kernels (Z order, the fastest in BM_Fan), the three in turn
+// first, timing each call with the thread's CPU clock. Whatever the machine does meanwhile
+// slows both alike, where the ratio of two separate benchmarks drifts by
+// ±0.05 from run to run. x_fastest_kernel_paired = the faster kernel's CPU
+// time over TransportRow's, for the same rays (target ≥ 0.85).
+void BM_TransportRowPaired(benchmark::State& state) {
+  const Fixture& f = GetFixture();
+  const std::vector<Fan> fans = RowFans(f, /*z_order=*/true);
+  const float eps = f.caster->DefaultEpsilon(), inf = std::numeric_limits<float>::infinity();
+  std::vector<float> row(f.cubemap.size());
+  std::vector<uint8_t> occluded(f.rays_per_row());
+  double row_cpu = 0, packet_cpu = 0, stream_cpu = 0;
+  size_t i = 0;
+  for (auto _ : state) {
+    const size_t at = i++ % f.samples.size();
+    const Sample& s = f.samples[at];
+    const Fan& fan = fans[at];
+    // Each call in turn goes first: the first of the three meets the cache
+    // the previous sample's calls left, the others the one it warmed.
+    auto run_row = [&] {
+      TransportRow(*f.caster, f.cubemap, f.pattern, s.position, s.normal, eps, row, nullptr);
+    };
+    auto run_packet = [&] {
+      f.caster->OccludedFan(fan.origin, {fan.x, fan.y, fan.z}, 0, inf, occluded,
+                            FanKernel::kPacket16);
+    };
+    auto run_stream = [&] {
+      f.caster->OccludedFan(fan.origin, {fan.x, fan.y, fan.z}, 0, inf, occluded,
+                            FanKernel::kStream);
+    };
+    std::pair<std::function<void()>, double*> calls[] = {
+        {run_row, &row_cpu}, {run_packet, &packet_cpu}, {run_stream, &stream_cpu}};
+    std::rotate(std::begin(calls), std::begin(calls) + (i / f.samples.size()) % 3, std::end(calls));
+    for (auto& [call, total] : calls) {
+      const double t0 = ThreadCpuSeconds();
+      call();
+      *total += ThreadCpuSeconds() - t0;
+    }
+    benchmark::DoNotOptimize(row.data());
+    benchmark::DoNotOptimize(occluded.data());
+  }
+  state.counters["x_packet16"] = packet_cpu / row_cpu;
+  state.counters["x_stream"] = stream_cpu / row_cpu;
+  state.counters["x_fastest_kernel_paired"] = std::min(packet_cpu, stream_cpu) / row_cpu;
+}
+BENCHMARK(BM_TransportRowPaired)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace wavebake

@@ -36,18 +36,30 @@ void FanPackets(RTCScene scene, Vec3 o, const RayFan& fan, float tnear, float tf
   for (int i = 0; i < W; ++i) {
     p.org_x[i] = o.x, p.org_y[i] = o.y, p.org_z[i] = o.z;
     p.time[i] = 0, p.mask[i] = kAllMask, p.id[i] = i, p.flags[i] = 0;
+    p.tnear[i] = tnear;  // Embree writes only tfar back
+    valid[i] = -1;
   }
-  for (size_t base = 0; base < fan.size(); base += W) {
-    const int lanes = static_cast<int>(std::min<size_t>(W, fan.size() - base));
+  const size_t full = fan.size() / W * W;
+  // Full packets: plain copies the compiler turns into vector moves.
+  for (size_t base = 0; base < full; base += W) {
     for (int i = 0; i < W; ++i) {
-      const size_t j = base + std::min(i, lanes - 1);  // unused lanes repeat a valid ray
-      valid[i] = i < lanes ? -1 : 0;
-      p.dir_x[i] = fan.x[j], p.dir_y[i] = fan.y[j], p.dir_z[i] = fan.z[j];
-      p.tnear[i] = tnear, p.tfar[i] = tfar;
+      p.dir_x[i] = fan.x[base + i], p.dir_y[i] = fan.y[base + i], p.dir_z[i] = fan.z[base + i];
+      p.tfar[i] = tfar;
     }
     kOccludedW(valid, scene, &ctx, &p);
-    for (int i = 0; i < lanes; ++i) occluded[base + i] = p.tfar[i] == kOccludedTfar;
+    for (int i = 0; i < W; ++i) occluded[base + i] = p.tfar[i] == kOccludedTfar;
   }
+  if (full == fan.size()) return;
+  // The tail: unused lanes are masked off and repeat a valid ray.
+  const int lanes = static_cast<int>(fan.size() - full);
+  for (int i = 0; i < W; ++i) {
+    const size_t j = full + std::min(i, lanes - 1);
+    valid[i] = i < lanes ? -1 : 0;
+    p.dir_x[i] = fan.x[j], p.dir_y[i] = fan.y[j], p.dir_z[i] = fan.z[j];
+    p.tfar[i] = tfar;
+  }
+  kOccludedW(valid, scene, &ctx, &p);
+  for (int i = 0; i < lanes; ++i) occluded[full + i] = p.tfar[i] == kOccludedTfar;
 }
 
 // Embree's stream interface: it regroups the rays into packets itself.

@@ -70,6 +70,16 @@ class HorizonTest {
                   (dot(Cubemap::FacePoint(f, 0, 1)) - o) / n};
     }
   }
+  // Whether a whole face is clearly above or below the horizon (n·p is
+  // affine on it, so its extremes are at the face's corners), which settles
+  // every texel of it without a test each; kCrossing otherwise.
+  enum class Face { kAbove, kBelow, kCrossing };
+  Face FaceClass(int face, int n) const {
+    const Line& l = line_[face];
+    const double lo = l.a + n * (std::min(l.b, 0.0) + std::min(l.c, 0.0));
+    const double hi = l.a + n * (std::max(l.b, 0.0) + std::max(l.c, 0.0));
+    return lo > 2 * kMargin ? Face::kAbove : hi < -2 * kMargin ? Face::kBelow : Face::kCrossing;
+  }
   bool Below(const JitterPattern& p, int m, Vec3 normal, int face, int x, int y) const {
     const Line& l = line_[face];
     const double hi = l.a + l.b * x + l.c * y + std::max(l.b, 0.0) + std::max(l.c, 0.0);
@@ -109,11 +119,21 @@ int AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
   return below;
 }
 
+// What a texel's sum is multiplied by once its rays are added, so that the
+// row needs no pass of its own for it: Ω_m · factor (the diffuse row), or 1.
+struct TexelScale {
+  const float* solid_angle = nullptr;  // null: 1
+  float factor = 1;
+  float At(int32_t m) const { return solid_angle ? solid_angle[m] * factor : 1.0f; }
+};
+
 // Traces the batch and adds the cosines of the unoccluded rays to their
-// texels (with `count_only`, 1 per unoccluded ray instead: visibility). A
-// texel's rays are added in k order, so the sum is deterministic.
+// texels (with `count_only`, 1 per unoccluded ray instead: visibility), then
+// scales each texel. A texel's rays are contiguous in the batch and added in
+// k order in a register (not through memory, where each add would wait for
+// the last one's store), so the sum is deterministic.
 void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> row,
-           TransportStats& stats, bool count_only = false) {
+           TransportStats& stats, TexelScale scale, bool count_only = false) {
   if (b.count == 0) return;
   const size_t n = static_cast<size_t>(b.count);
   caster.OccludedFan(origin, {{b.x, n}, {b.y, n}, {b.z, n}}, 0,
@@ -122,9 +142,14 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
   // adds +0, which leaves a sum of positive cosines bit for bit unchanged.
   float* out = row.data();
   uint64_t occluded = 0;
-  for (size_t i = 0; i < n; ++i) {
-    occluded += b.occluded[i];
-    out[b.texel[i]] += b.occluded[i] ? 0.0f : count_only ? 1.0f : b.cosine[i];
+  for (size_t i = 0; i < n;) {
+    const int32_t m = b.texel[i];
+    float sum = out[m];
+    for (; i < n && b.texel[i] == m; ++i) {
+      occluded += b.occluded[i];
+      sum += b.occluded[i] ? 0.0f : count_only ? 1.0f : b.cosine[i];
+    }
+    out[m] = sum * scale.At(m);
   }
   stats.rays_occluded += occluded;
   stats.rays_traced += n;
@@ -169,19 +194,19 @@ void TraceRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 positi
   TransportStats local;
   const Vec3 origin = position + normal * epsilon;  // DESIGN.md §1: rays start at x + ε n
   std::fill(row.begin(), row.end(), 0.0f);
+  // Ω_m · (1/K) · f_r with f_r = 1/π (albedo factored out, DESIGN.md §1),
+  // applied as each texel's rays are added up.
+  const TexelScale scale{pattern.solid_angle.data(),
+                         static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi))};
   RayBatch batch;
   for_each_texel(
       [&](int m) {
-        if (batch.count + pattern.per_texel > kBatch) Flush(caster, origin, batch, row, local);
+        if (batch.count + pattern.per_texel > kBatch)
+          Flush(caster, origin, batch, row, local, scale);
         AddTexel(pattern, m, normal, batch);
       },
       [&] { ++local.texels_culled; });
-  Flush(caster, origin, batch, row, local);
-
-  // Ω_m · (1/K) · f_r with f_r = 1/π (albedo factored out, DESIGN.md §1).
-  const float inv_k_pi = static_cast<float>(1.0 / (pattern.per_texel * std::numbers::pi));
-  const int texels = pattern.texels();
-  for (int m = 0; m < texels; ++m) row[m] *= pattern.solid_angle[m] * inv_k_pi;
+  Flush(caster, origin, batch, row, local, scale);
 
   if (stats) {
     stats->rays_traced += local.rays_traced;
@@ -204,9 +229,13 @@ void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterP
   const HorizonTest horizon(n, normal);
   TraceRow(caster, pattern, position, normal, epsilon, row, stats, [&](auto trace, auto cull) {
     for (int face = 0; face < 6; ++face) {
+      const HorizonTest::Face whole = horizon.FaceClass(face, n);
       for (int z = 0; z < n * n; ++z) {
         const int x = EvenBits(z), y = EvenBits(z >> 1), m = (face * n + y) * n + x;
-        if (horizon.Below(pattern, m, normal, face, x, y)) {
+        const bool below = whole == HorizonTest::Face::kCrossing
+                               ? horizon.Below(pattern, m, normal, face, x, y)
+                               : whole == HorizonTest::Face::kBelow;
+        if (below) {
           cull();
         } else {
           trace(m);
@@ -247,10 +276,11 @@ void VisibilityRow(const RayCaster& caster, const Cubemap& cubemap, const Jitter
       row[m] = static_cast<float>(pattern.per_texel);  // V := 1 below the horizon
       continue;
     }
-    if (batch.count + pattern.per_texel > kBatch) Flush(caster, origin, batch, row, local, true);
+    if (batch.count + pattern.per_texel > kBatch)
+      Flush(caster, origin, batch, row, local, TexelScale{}, true);
     row[m] += static_cast<float>(AddTexel(pattern, m, normal, batch));
   }
-  Flush(caster, origin, batch, row, local, true);
+  Flush(caster, origin, batch, row, local, TexelScale{}, true);
   const float inv_k = 1.0f / static_cast<float>(pattern.per_texel);
   for (float& v : row) v *= inv_k;
 
