@@ -1,5 +1,5 @@
 // One BAKE_TILE task (worker/bake_tile.h) on builtin:sphere-plane — camera
-// layout 64×64, N=32, K=4, the default 32×32 tile and 256-column groups —
+// layout 64×64, N=32, K=4, the default 32×32 tile and the plan's column groups —
 // beside, in the same run, the pure tracing cost of the same tile: the row
 // tracer alone for the same samples (no row transform, no transpose, no
 // store), and tracing plus the row transform. The tile is the one with the

@@ -1,5 +1,5 @@
 // The column stage (TRANSFORM_COLUMNS × groups, then FINALIZE) on a real
-// job traced by brute force, K=4, 32×32 tiles and 256-column groups —
+// job traced by brute force, K=4, 32×32 tiles and the plan's column groups —
 // --case=sphere-plane (default: camera 64×64, N=16, M = 1536), bunny
 // (hilbert 64×64, N=32) or cubes-wall (camera 256×256, N=64) — beside, in
 // the same run:
