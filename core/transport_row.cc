@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <numbers>
 
@@ -19,10 +20,14 @@ struct RayBatch {
   alignas(64) float x[kBatch];
   alignas(64) float y[kBatch];
   alignas(64) float z[kBatch];
-  float cosine[kBatch];   // n·ω_k > 0
-  int32_t texel[kBatch];  // m of each ray
+  float cosine[kBatch];  // n·ω_k > 0
   uint8_t occluded[kBatch];
   int count = 0;
+  // The batch's texels in order and how many rays each has in it, one run
+  // after another (a texel is never split between batches).
+  int32_t run_texel[kBatch];
+  int32_t run_length[kBatch];
+  int runs = 0;
 };
 
 // The even bits of z packed together: the x of Z-order index z (y is
@@ -96,13 +101,41 @@ class HorizonTest {
   std::array<Line, 6> line_;
 };
 
+// Four floats in one register (GCC/Clang vector extension; SSE on x86-64).
+using Float4 = float __attribute__((vector_size(16)));
+Float4 Load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+void Store4(float* p, Float4 v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
 // Appends texel m's directions that are above the horizon; the ones below
 // contribute max(0, n·ω) = 0 whatever V is, so they are not traced. Returns
 // how many were below.
-int AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
+[[gnu::always_inline]] inline int AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
   const size_t first = static_cast<size_t>(m) * p.per_texel;
-  int below = 0;
-  for (int k = 0; k < p.per_texel; ++k) {
+  int below = 0, k = 0;
+  // Four rays at a time while all four are above the horizon (nearly every
+  // texel the row traces): four-wide loads, products and stores, no branch
+  // per ray. Each lane is the same float expression as the loop below, so
+  // the row is the same bits.
+  for (; k + 4 <= p.per_texel; k += 4) {
+    const Float4 x = Load4(&p.x[first + k]), y = Load4(&p.y[first + k]),
+                 z = Load4(&p.z[first + k]);
+    const Float4 c = n.x * x + n.y * y + n.z * z;
+    const auto above = c > Float4{};  // lanes of -1 (true) or 0
+    if (!(above[0] & above[1] & above[2] & above[3])) break;
+    const int at = b.count;
+    Store4(&b.x[at], x);
+    Store4(&b.y[at], y);
+    Store4(&b.z[at], z);
+    Store4(&b.cosine[at], c);
+    b.count = at + 4;
+  }
+  for (; k < p.per_texel; ++k) {
     const size_t i = first + k;
     const float c = n.x * p.x[i] + n.y * p.y[i] + n.z * p.z[i];
     if (!(c > 0)) {
@@ -113,8 +146,12 @@ int AddTexel(const JitterPattern& p, int m, Vec3 n, RayBatch& b) {
     b.y[b.count] = p.y[i];
     b.z[b.count] = p.z[i];
     b.cosine[b.count] = c;
-    b.texel[b.count] = m;
     ++b.count;
+  }
+  if (below < p.per_texel) {
+    b.run_texel[b.runs] = m;
+    b.run_length[b.runs] = p.per_texel - below;
+    ++b.runs;
   }
   return below;
 }
@@ -142,10 +179,10 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
   // adds +0, which leaves a sum of positive cosines bit for bit unchanged.
   float* out = row.data();
   uint64_t occluded = 0;
-  for (size_t i = 0; i < n;) {
-    const int32_t m = b.texel[i];
+  for (int r = 0, i = 0; r < b.runs; ++r) {
+    const int32_t m = b.run_texel[r];
     float sum = out[m];
-    for (; i < n && b.texel[i] == m; ++i) {
+    for (const int end = i + b.run_length[r]; i < end; ++i) {
       occluded += b.occluded[i];
       sum += b.occluded[i] ? 0.0f : count_only ? 1.0f : b.cosine[i];
     }
@@ -154,6 +191,7 @@ void Flush(const RayCaster& caster, Vec3 origin, RayBatch& b, std::span<float> r
   stats.rays_occluded += occluded;
   stats.rays_traced += n;
   b.count = 0;
+  b.runs = 0;
 }
 
 }  // namespace
