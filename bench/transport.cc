@@ -270,11 +270,12 @@ BENCHMARK(BM_TransportRowNothingToHit)->Unit(benchmark::kMicrosecond);
 
 // The row loop's yardstick measured pairwise: each iteration traces one
 // sample's row with TransportRow and exactly its rays with the raw packet16
-// and stream kernels (Z order, the fastest in BM_Fan), the three in turn
-// first, timing each call with the thread's CPU clock. Whatever the machine does meanwhile
-// slows both alike, where the ratio of two separate benchmarks drifts by
-// ±0.05 from run to run. x_fastest_kernel_paired = the faster kernel's CPU
-// time over TransportRow's, for the same rays (target ≥ 0.85).
+// and stream kernels (Z order, the fastest in BM_Fan), in all six orders in
+// turn, timing each call with the thread's CPU clock. Whatever the machine
+// does meanwhile slows all three alike, where the ratio of two separate
+// benchmarks drifts by ±0.05 from run to run. x_fastest_kernel_paired = the
+// faster kernel's CPU time over TransportRow's, for the same rays (target
+// ≥ 0.85).
 void BM_TransportRowPaired(benchmark::State& state) {
   const Fixture& f = GetFixture();
   const std::vector<Fan> fans = RowFans(f, /*z_order=*/true);
@@ -302,7 +303,12 @@ void BM_TransportRowPaired(benchmark::State& state) {
     };
     std::pair<std::function<void()>, double*> calls[] = {
         {run_row, &row_cpu}, {run_packet, &packet_cpu}, {run_stream, &stream_cpu}};
-    std::rotate(std::begin(calls), std::begin(calls) + (i / f.samples.size()) % 3, std::end(calls));
+    // All six orders in turn, so that each call comes first, and right after
+    // each of the others, equally often (rotations alone would always put
+    // the packet kernel after the row and never the row after it).
+    const size_t order = (i / f.samples.size()) % 6;
+    if (order >= 3) std::swap(calls[1], calls[2]);
+    std::rotate(std::begin(calls), std::begin(calls) + order % 3, std::end(calls));
     for (auto& [call, total] : calls) {
       const double t0 = ThreadCpuSeconds();
       call();
