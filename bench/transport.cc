@@ -288,8 +288,6 @@ void BM_TransportRowPaired(benchmark::State& state) {
     const size_t at = i++ % f.samples.size();
     const Sample& s = f.samples[at];
     const Fan& fan = fans[at];
-    // Each call in turn goes first: the first of the three meets the cache
-    // the previous sample's calls left, the others the one it warmed.
     auto run_row = [&] {
       TransportRow(*f.caster, f.cubemap, f.pattern, s.position, s.normal, eps, row, nullptr);
     };
@@ -303,9 +301,10 @@ void BM_TransportRowPaired(benchmark::State& state) {
     };
     std::pair<std::function<void()>, double*> calls[] = {
         {run_row, &row_cpu}, {run_packet, &packet_cpu}, {run_stream, &stream_cpu}};
-    // All six orders in turn, so that each call comes first, and right after
-    // each of the others, equally often (rotations alone would always put
-    // the packet kernel after the row and never the row after it).
+    // All six orders in turn, so that each call comes first (meeting the
+    // cache the previous sample's calls left), and right after each of the
+    // others (over the same rays), equally often: rotations alone would
+    // always put the packet kernel after the row and never the row after it.
     const size_t order = (i / f.samples.size()) % 6;
     if (order >= 3) std::swap(calls[1], calls[2]);
     std::rotate(std::begin(calls), std::begin(calls) + order % 3, std::end(calls));

@@ -61,8 +61,6 @@ RefinePlan::RefinePlan(const Cubemap& cubemap, const JitterPattern& pattern,
         const Texel t = blocks.TexelOf(b);
         anchors_[l][b] = AnchorAt(l, t.face, t.x, t.y);
       }
-    }
-    if (l > 0) {
       probe_direction_[l].resize(blocks.size());
       for (int b = 0; b < blocks.size(); ++b)
         probe_direction_[l][MortonSlot(l, b)] = pattern.Direction(Anchor(l, b), 0);
