@@ -117,6 +117,31 @@ absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir
   }
 }
 
+// The whole of `path` into `data`, resized to the file's size.
+template <class Buffer>
+absl::Status ReadWholeFile(const std::filesystem::path& path, Buffer& data) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) return ErrnoError("cannot stat", path, errno);
+  if (!S_ISREG(st.st_mode))
+    return absl::InternalError(absl::StrCat(path.string(), ": not a regular file"));
+  data.resize(static_cast<size_t>(st.st_size));
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::read(fd.get(), data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return ErrnoError("cannot read", path, errno);
+    if (n == 0) break;  // the file shrank; report what we read as a short read below
+    done += static_cast<size_t>(n);
+  }
+  if (done != data.size()) {
+    return absl::InternalError(
+        absl::StrFormat("short read of %s: %d of %d bytes", path.string(), done, data.size()));
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data) {
@@ -139,26 +164,13 @@ absl::Status CreateDirectories(const std::filesystem::path& dir) {
 }
 
 absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
-  struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) return ErrnoError("cannot stat", path, errno);
-  if (!S_ISREG(st.st_mode))
-    return absl::InternalError(absl::StrCat(path.string(), ": not a regular file"));
-  std::vector<std::byte> data(static_cast<size_t>(st.st_size));
-  size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::read(fd.get(), data.data() + done, data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return ErrnoError("cannot read", path, errno);
-    if (n == 0) break;  // the file shrank; report what we read as a short read below
-    done += static_cast<size_t>(n);
-  }
-  if (done != data.size()) {
-    return absl::InternalError(
-        absl::StrFormat("short read of %s: %d of %d bytes", path.string(), done, data.size()));
-  }
+  std::vector<std::byte> data;
+  if (absl::Status s = ReadWholeFile(path, data); !s.ok()) return s;
   return data;
+}
+
+absl::Status ReadFileInto(const std::filesystem::path& path, ByteBuffer& data) {
+  return ReadWholeFile(path, data);
 }
 
 absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text) {

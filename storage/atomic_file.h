@@ -10,6 +10,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "storage/byte_buffer.h"
 
 namespace wavebake {
 
@@ -31,6 +32,9 @@ absl::Status RemoveAbandonedTempFiles(const std::filesystem::path& dir);
 // Reads a whole file. A missing file is NotFound (ZarrArray reads a missing
 // chunk as the fill value); other failures are Internal, naming the path.
 absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& path);
+// The same into `data`, resized to the file: a buffer reused file after file
+// keeps its pages (storage/byte_buffer.h).
+absl::Status ReadFileInto(const std::filesystem::path& path, ByteBuffer& data);
 
 // Creates `dir` and its parents; existing directories are fine (concurrent
 // workers create the same array directories).

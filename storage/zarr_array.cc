@@ -14,6 +14,14 @@ namespace {
 
 constexpr char kZarray[] = ".zarray";
 
+// Per-thread chunk buffers, reused chunk after chunk (storage/byte_buffer.h):
+// a chunk's zstd frame, and its filtered bytes before compression.
+enum ThreadBufferId { kFrame, kFiltered };
+ByteBuffer& ThreadBuffer(ThreadBufferId id) {
+  thread_local ByteBuffer buffers[2];
+  return buffers[id];
+}
+
 }  // namespace
 
 absl::StatusOr<ZarrArray> ZarrArray::Create(const std::filesystem::path& dir,
@@ -85,17 +93,19 @@ absl::Status ZarrArray::WriteChunk(std::span<const int64_t> chunk_index,
         absl::StrCat(ChunkPath(chunk_index).string(), ": chunk data is ", data.size(),
                      " bytes, a full chunk is ", chunk_bytes(), " (edge chunks are padded)"));
   }
-  absl::StatusOr<std::vector<std::byte>> frame;
+  ByteBuffer& frame = ThreadBuffer(kFrame);
+  absl::Status compressed;
   if (spec_.delta_filter || spec_.shuffle_filter) {
-    std::vector<std::byte> filtered(data.begin(), data.end());
+    ByteBuffer& filtered = ThreadBuffer(kFiltered);
+    filtered.assign(data.begin(), data.end());
     if (spec_.delta_filter) DeltaEncode(spec_.dtype, filtered);
     if (spec_.shuffle_filter) ShuffleEncode(ItemSize(spec_.dtype), filtered);
-    frame = ZstdCompress(filtered, spec_.zstd_level);
+    compressed = ZstdCompressInto(filtered, spec_.zstd_level, frame);
   } else {
-    frame = ZstdCompress(data, spec_.zstd_level);
+    compressed = ZstdCompressInto(data, spec_.zstd_level, frame);
   }
-  if (!frame.ok()) return frame.status();
-  return AtomicWriteFile(ChunkPath(chunk_index), *frame);
+  if (!compressed.ok()) return compressed;
+  return AtomicWriteFile(ChunkPath(chunk_index), frame);
 }
 
 absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
@@ -106,8 +116,9 @@ absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
                                                    " bytes, a chunk is ", chunk_bytes()));
   }
   const std::filesystem::path path = ChunkPath(chunk_index);
-  absl::StatusOr<std::vector<std::byte>> frame = ReadFile(path);
-  if (absl::IsNotFound(frame.status())) {
+  ByteBuffer& frame = ThreadBuffer(kFrame);
+  const absl::Status read = ReadFileInto(path, frame);
+  if (absl::IsNotFound(read)) {
     if (complete_)
       return absl::DataLossError(absl::StrCat(path.string(), ": chunk [",
                                               absl::StrJoin(chunk_index, ", "),
@@ -115,8 +126,8 @@ absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
     FillElements(spec_.dtype, spec_.fill_value, out);
     return absl::OkStatus();
   }
-  if (!frame.ok()) return frame.status();
-  if (absl::Status s = ZstdDecompressInto(*frame, out, path.string()); !s.ok()) return s;
+  if (!read.ok()) return read;
+  if (absl::Status s = ZstdDecompressInto(frame, out, path.string()); !s.ok()) return s;
   if (spec_.shuffle_filter) ShuffleDecode(ItemSize(spec_.dtype), out);
   if (spec_.delta_filter) DeltaDecode(spec_.dtype, out);
   return absl::OkStatus();

@@ -9,6 +9,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "storage/byte_buffer.h"
 
 namespace wavebake {
 
@@ -17,6 +18,9 @@ inline constexpr int kDefaultZstdLevel = 1;
 // Compresses `src` as a single frame at `level`. Thread-safe (per-thread context).
 absl::StatusOr<std::vector<std::byte>> ZstdCompress(std::span<const std::byte> src,
                                                     int level = kDefaultZstdLevel);
+// The same into `frame`, resized to the frame: a buffer reused chunk after
+// chunk keeps its pages (storage/byte_buffer.h).
+absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuffer& frame);
 
 // Decompresses a buffer that must be exactly one frame whose header declares
 // `expected_size` content bytes; the checksum is verified when the frame has

@@ -146,32 +146,36 @@ std::filesystem::path GroupResultPath(const std::filesystem::path& store, int gr
 
 absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupResult& result) {
   const std::vector<std::byte> payload = Payload(result);
-  absl::StatusOr<std::vector<std::byte>> frame = ZstdCompress(payload, kGroupResultZstdLevel);
-  if (!frame.ok()) return frame.status();
+  ByteBuffer frame;
+  if (absl::Status s = ZstdCompressInto(payload, kGroupResultZstdLevel, frame); !s.ok()) return s;
   ByteWriter file;
   for (char c : kMagic) file.Put(c);
   file.Put<uint64_t>(payload.size());
   std::vector<std::byte>& bytes = file.bytes();
-  bytes.insert(bytes.end(), frame->begin(), frame->end());
+  bytes.insert(bytes.end(), frame.begin(), frame.end());
   if (absl::Status s = CreateDirectories(GroupResultDir(store)); !s.ok()) return s;
   return AtomicWriteFile(GroupResultPath(store, result.group), bytes);
 }
 
 absl::StatusOr<GroupResult> ReadGroupResult(const std::filesystem::path& store, int group) {
   const std::filesystem::path path = GroupResultPath(store, group);
-  absl::StatusOr<std::vector<std::byte>> file = ReadFile(path);
-  if (!file.ok()) return file.status();
+  // Both buffers are only read from until the next call (storage/byte_buffer.h).
+  thread_local ByteBuffer file, payload;
+  if (absl::Status s = ReadFileInto(path, file); !s.ok()) return s;
   const std::string source = path.string();
-  if (file->size() < kPreamble || std::memcmp(file->data(), kMagic, sizeof kMagic) != 0)
+  if (file.size() < kPreamble || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0)
     return absl::DataLossError(absl::StrCat(source, ": not a group result (bad magic)"));
   uint64_t payload_size = 0;
-  std::memcpy(&payload_size, file->data() + sizeof kMagic, sizeof payload_size);
+  std::memcpy(&payload_size, file.data() + sizeof kMagic, sizeof payload_size);
   if (payload_size > (uint64_t{1} << 36))  // a corrupt size must not become a huge allocation
     return absl::DataLossError(absl::StrCat(source, ": payload size ", payload_size));
-  absl::StatusOr<std::vector<std::byte>> payload =
-      ZstdDecompress(std::span(*file).subspan(kPreamble), payload_size, source);
-  if (!payload.ok()) return payload.status();
-  absl::StatusOr<GroupResult> result = ParsePayload(*payload, source);
+  payload.resize(payload_size);
+  if (absl::Status s = ZstdDecompressInto(std::span(file).subspan(kPreamble), payload, source);
+      !s.ok()) {
+    payload = {};  // a corrupt size must not stay reserved either
+    return s;
+  }
+  absl::StatusOr<GroupResult> result = ParsePayload(payload, source);
   if (result.ok() && result->group != group)
     return absl::DataLossError(absl::StrCat(source, ": holds group ", result->group));
   return result;

@@ -5,7 +5,9 @@
 # resumes and completes, bit-identical to an embedded bake.
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 
-BAKE=(builtin:cylinder-bump --light-res 16 --supersample 64 --refine off --layout camera:32x32
+# 16 tiles of ~0.25 s each (N = 32, K = 128: ~15 Mrays): still BAKING when
+# the status poll sees three done, with a second to spare.
+BAKE=(builtin:cylinder-bump --light-res 32 --supersample 128 --refine off --layout camera:32x32
       --tile-size 8 --column-group 512)
 port=$(free_port)
 

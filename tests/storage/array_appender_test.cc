@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <span>
 
 #include "storage/atomic_file.h"
@@ -69,6 +70,22 @@ TEST(ArrayAppender, AShortArrayIsAnErrorNamingIt) {
   EXPECT_FALSE(closed.ok());
   EXPECT_THAT(std::string(closed.message()), HasSubstr("short"));
   EXPECT_THAT(std::string(closed.message()), HasSubstr("appended 150 elements to an array of 200"));
+}
+
+// A chunk that cannot be written (its array directory is gone) fails the
+// appender with the write's error, and the appender still closes and is
+// destroyed without hanging on its writer threads.
+TEST(ArrayAppender, AFailedChunkWriteIsReturnedAndTheWritersStop) {
+  TempDir tmp;
+  absl::StatusOr<ZarrArray> array = ZarrArray::Create(tmp.path() / "gone", Spec(64 * 8));
+  ASSERT_TRUE(array.ok());
+  std::filesystem::remove_all(tmp.path() / "gone");
+  const std::vector<uint32_t> values = TestValues<uint32_t>(64 * 8, 5);
+  ArrayAppender<uint32_t> appender(*array, /*in_flight=*/2);
+  absl::Status status = appender.Append(values);
+  if (status.ok()) status = appender.Close();
+  EXPECT_FALSE(status.ok());
+  EXPECT_THAT(std::string(status.message()), HasSubstr("gone"));
 }
 
 }  // namespace

@@ -51,6 +51,26 @@ TEST(AtomicFileTest, MissingFileIsNotFoundNamingThePath) {
   EXPECT_THAT(read.status().message(), HasSubstr("nope"));
 }
 
+// A buffer reused from file to file (the chunk reads' per-thread buffer)
+// holds exactly the file read last: a shorter file after a longer one leaves
+// nothing of the longer one, and a missing file is NotFound as for ReadFile.
+TEST(AtomicFileTest, ReadFileIntoAReusedBufferHoldsExactlyTheLastFile) {
+  TempDir tmp;
+  const std::string longer(70000, 'L'), shorter = "short";
+  ASSERT_TRUE(AtomicWriteFile(tmp.path() / "long", Bytes(longer)).ok());
+  ASSERT_TRUE(AtomicWriteFile(tmp.path() / "short", Bytes(shorter)).ok());
+  ByteBuffer buffer;
+  for (const auto& [name, content] :
+       {std::pair{"long", longer}, std::pair{"short", shorter}, std::pair{"long", longer}}) {
+    ASSERT_TRUE(ReadFileInto(tmp.path() / name, buffer).ok());
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(buffer.data()), buffer.size()), content)
+        << name;
+  }
+  const absl::Status missing = ReadFileInto(tmp.path() / "nope", buffer);
+  EXPECT_TRUE(absl::IsNotFound(missing));
+  EXPECT_THAT(missing.message(), HasSubstr("nope"));
+}
+
 TEST(AtomicFileTest, FailedWriteLeavesNoTempFileAndKeepsTarget) {
   TempDir tmp;
   // Missing directory: the temp file cannot even be created.

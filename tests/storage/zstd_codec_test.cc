@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
 #include <vector>
 
 namespace wavebake {
@@ -57,6 +59,25 @@ TEST(ZstdCodecTest, LevelChangesTheFrameAndBadLevelIsRejected) {
   ASSERT_TRUE(fast.ok() && strong.ok());
   EXPECT_LT(strong->size(), fast->size());
   EXPECT_EQ(ZstdCompress(src, 99).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+// Contexts are pooled and reused across levels and threads, and frame
+// buffers across chunks: a chunk's frame must not depend on what was
+// compressed before it (stores are byte-identical across workers and retries).
+TEST(ZstdCodecTest, FramesDoNotDependOnWhatWasCompressedBefore) {
+  const std::vector<std::byte> smooth = SmoothFloats(1 << 18), noise = RandomBytes(1 << 17);
+  absl::StatusOr<std::vector<std::byte>> first = ZstdCompress(smooth, 9);
+  ASSERT_TRUE(first.ok());
+  ByteBuffer reused;
+  for (int level : {-3, 9, 5, 1}) {  // other levels and data through the pooled contexts
+    ASSERT_TRUE(ZstdCompressInto(noise, level, reused).ok());
+    ASSERT_TRUE(ZstdCompressInto(smooth, level, reused).ok());
+  }
+  ASSERT_TRUE(ZstdCompressInto(smooth, 9, reused).ok());
+  EXPECT_TRUE(std::equal(reused.begin(), reused.end(), first->begin(), first->end()));
+  std::vector<std::byte> on_thread;
+  std::thread([&] { on_thread = ZstdCompress(smooth, 9).value(); }).join();
+  EXPECT_EQ(on_thread, *first);
 }
 
 // Random data is stored in raw blocks, so a flipped byte decodes "fine" and only

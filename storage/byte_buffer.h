@@ -1,0 +1,38 @@
+#pragma once
+// A byte vector whose growth does not zero the new bytes, for buffers that
+// are written in full right after they grow (a zstd frame, a file read).
+// Zeroing a staging chunk's compress bound cost as much as a tenth of its
+// compression, and a fresh allocation of that size faults in every page:
+// a ByteBuffer kept per thread does neither once it has grown.
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
+namespace wavebake {
+
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+
+  // resize(n) default-initializes: for bytes, leaves them as they are.
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    std::construct_at(p, std::forward<Args>(args)...);
+  }
+};
+
+using ByteBuffer = std::vector<std::byte, DefaultInitAllocator<std::byte>>;
+
+}  // namespace wavebake
