@@ -15,7 +15,7 @@ namespace wavebake {
 
 inline constexpr int kDefaultZstdLevel = 1;
 
-// Compresses `src` as a single frame at `level`. Thread-safe (per-thread context).
+// Compresses `src` as a single frame at `level`. Thread-safe (contexts come from a pool).
 absl::StatusOr<std::vector<std::byte>> ZstdCompress(std::span<const std::byte> src,
                                                     int level = kDefaultZstdLevel);
 // The same into `frame`, resized to the frame: a buffer reused chunk after

@@ -159,7 +159,8 @@ absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupRes
 
 absl::StatusOr<GroupResult> ReadGroupResult(const std::filesystem::path& store, int group) {
   const std::filesystem::path path = GroupResultPath(store, group);
-  // Both buffers are only read from until the next call (storage/byte_buffer.h).
+  // Per-thread buffers, reused group after group (storage/byte_buffer.h);
+  // ParsePayload copies the result out of them.
   thread_local ByteBuffer file, payload;
   if (absl::Status s = ReadFileInto(path, file); !s.ok()) return s;
   const std::string source = path.string();
