@@ -8,11 +8,11 @@
 // asked for (one per thread, not one per phase) until ReleaseTaskBuffer.
 //
 // Even once per thread, those faults cost: ~15 µs each on this project's
-// VMs, so ~0.4 s for each thread's first tile at N = 64 (25 600 faults),
-// ~1.5 s at N = 128. The buffer asks
-// for transparent huge pages (madvise; the kernel may decline, and then it
-// is as before), one fault per 2 MiB: the refined bunny bake (hilbert 64²,
-// N = 64, bench_bake_phases) took 127 000 faults before and 49 000 after.
+// VMs, so ~0.4 s for each thread's first tile at N = 64 (25 600 faults) and
+// ~1.5 s at N = 128. The buffer asks for transparent huge pages (madvise;
+// the kernel may decline, and then it is as before), one fault per 2 MiB:
+// the refined bunny bake (hilbert 64², N = 64, bench_bake_phases) took
+// 127 000 faults before and 49 000 after.
 #include <cstddef>
 #include <span>
 
