@@ -14,7 +14,7 @@ constexpr int kNeighbours[8][2] = {{0, -1},  {0, 1},  {-1, 0}, {1, 0},
 
 CellFiller::CellFiller(UncoveredFill kind, std::span<const int32_t> grid, int width, int height,
                        int max_distance)
-    : kind_(kind), width_(width), height_(height), covered_(grid.size()) {
+    : kind_(kind), width_(width), covered_(grid.size()) {
   for (size_t i = 0; i < grid.size(); ++i) covered_[i] = grid[i] >= 0;
   {
     std::vector<uint32_t> level(covered_.begin(), covered_.end());

@@ -50,7 +50,7 @@ class CellFiller {
   void PushPull(std::span<float> values, int channels) const;
 
   UncoveredFill kind_;
-  int width_, height_;
+  int width_;
   std::vector<uint8_t> covered_;  // [cells]
   // Children blocks with coverage per block, level by level (level 0 =
   // cells: 1 if covered); sizes_ are BlockExtent(W, l) × BlockExtent(H, l).
