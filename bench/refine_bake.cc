@@ -19,8 +19,8 @@
 // Targets: refined rays ≤ 0.25× brute force (≤ 0.12× at N = 128), whole-bake
 // wall time ≤ 0.35×, error within +0.002 of the brute-force store's under
 // each probe. The machine's load inflates wall times; CPU ratios are printed
-// beside them, with x_cpu's floor: the refined bake's CPU outside the baking
-// phase over brute force's whole bake, the ratio a free trace would reach. --quick: cubes-wall on camera:64x64 only, N = 32 and 64.
+// beside them, with x_cpu's floor (below). --quick: cubes-wall on
+// camera:64x64 only, N = 32 and 64.
 // The last line is one JSON object with every number.
 #include <atomic>
 #include <cstdio>
@@ -132,8 +132,7 @@ nlohmann::json RunCase(const Case& c, const Config& config) {
   // that do not shrink with the rays (setup, the column stage, FINALIZE) bound
   // the whole-bake ratio from below.
   const bench::PhasedBake& r = bakes[1];
-  j["x_cpu_floor"] =
-      (r.setup.cpu + r.transforming.cpu + r.finalizing.cpu) / bakes[0].total.cpu;
+  j["x_cpu_floor"] = (r.setup.cpu + r.transforming.cpu + r.finalizing.cpu) / bakes[0].total.cpu;
   BakeParams layout;
   layout.layout = c.layout;
   for (const char* probe : kProbes) {
@@ -161,23 +160,24 @@ nlohmann::json RunCase(const Case& c, const Config& config) {
 const char* Mark(bool ok) { return ok ? "  ok" : "  MISSED"; }
 
 void PrintTable(const nlohmann::json& cases, const Config& config) {
-  std::printf("\n%-11s %8s %8s %8s %8s %8s  %-9s %-9s  %s\n", "case", "x_rays", "x_rays",
-              "x_wall", "x_cpu", "x_cpu", "d_err", "d_err", "");
+  std::printf("\n%-11s %8s %8s %8s %8s %8s  %-9s %-9s  %s\n", "case", "x_rays", "x_rays", "x_wall",
+              "x_cpu", "x_cpu", "d_err", "d_err", "");
   std::printf("%-11s %8s %8s %8s %8s %8s  %-9s %-9s\n", "",
               ("N=" + std::to_string(config.bake_res)).c_str(),
               ("N=" + std::to_string(config.rays_res)).c_str(), "", "", "floor", "grace", "pisa");
   for (const nlohmann::json& c : cases) {
     const double xr = c["x_rays"], xr2 = c["rays_at"]["x_rays"], xw = c["x_wall"], xc = c["x_cpu"];
-    const double floor = c["x_cpu_floor"];
+    const double xf = c["x_cpu_floor"];
     const double dg = c["error"]["grace"]["delta"], dp = c["error"]["pisa"]["delta"];
     std::printf("%-11s %8.3f %8.3f %8.3f %8.3f %8.3f  %+.5f  %+.5f %s%s%s%s\n",
-                c["case"].get<std::string>().c_str(), xr, xr2, xw, xc, floor, dg, dp, Mark(xr <= 0.25),
+                c["case"].get<std::string>().c_str(), xr, xr2, xw, xc, xf, dg, dp, Mark(xr <= 0.25),
                 Mark(xr2 <= 0.12), Mark(xw <= 0.35), Mark(dg <= 0.002 && dp <= 0.002));
   }
   std::printf("targets: x_rays <= 0.25 (N=%d), <= 0.12 (N=%d); x_wall <= 0.35; d_err <= +0.002\n",
               config.bake_res, config.rays_res);
-  std::printf("x_cpu floor: the refined bake's setup, column stage and FINALIZE CPU over the\n"
-              "brute-force bake's CPU, what x_cpu would be with a free baking phase\n");
+  std::printf(
+      "x_cpu floor: the refined bake's setup, column stage and FINALIZE CPU over the\n"
+      "brute-force bake's CPU, what x_cpu would be with a free baking phase\n");
 }
 
 }  // namespace
