@@ -11,8 +11,6 @@
 namespace wavebake {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Direction at polar cosine `c` and azimuth `phi` around `axis`.
 Vec3 AroundAxis(Vec3 axis, double c, double phi) {
   Vec3 t, b;
@@ -52,17 +50,19 @@ Vec3 HalfVector(Vec3 n, Vec3 wo, Vec3 wi) {
 class Lambert final : public Brdf {
  public:
   double Eval(Vec3 n, Vec3 wo, Vec3 wi) const override {
-    return Above(n, wi) && Above(n, wo) ? 1 / kPi : 0;
+    return Above(n, wi) && Above(n, wo) ? 1 / std::numbers::pi : 0;
   }
   Vec3 Sample(Vec3 n, Vec3, double u1, double u2) const override {
-    return AroundAxis(n, std::sqrt(u1), 2 * kPi * u2);  // cosine-weighted
+    return AroundAxis(n, std::sqrt(u1), 2 * std::numbers::pi * u2);  // cosine-weighted
   }
-  double Pdf(Vec3 n, Vec3, Vec3 wi) const override { return std::max(0.0f, Dot(n, wi)) / kPi; }
+  double Pdf(Vec3 n, Vec3, Vec3 wi) const override {
+    return std::max(0.0f, Dot(n, wi)) / std::numbers::pi;
+  }
   LobeCone Support(Vec3 n, Vec3, double relative) const override {
     return {n, static_cast<float>(relative)};
   }
   double CapBound(Vec3 n, Vec3, Vec3 centre, double radius) const override {
-    return CosineOverCap(n, centre, radius) / kPi;
+    return CosineOverCap(n, centre, radius) / std::numbers::pi;
   }
   bool ViewDependent() const override { return false; }
   std::string Name() const override { return "lambert"; }
@@ -75,14 +75,14 @@ class Phong final : public Brdf {
   double Eval(Vec3 n, Vec3 wo, Vec3 wi) const override {
     if (!Above(n, wi) || !Above(n, wo)) return 0;
     const double c = Dot(Reflect(wo, n), wi);
-    return c > 0 ? (e_ + 2) / (2 * kPi) * std::pow(c, e_) : 0;
+    return c > 0 ? (e_ + 2) / (2 * std::numbers::pi) * std::pow(c, e_) : 0;
   }
   Vec3 Sample(Vec3 n, Vec3 wo, double u1, double u2) const override {
-    return AroundAxis(Reflect(wo, n), std::pow(u1, 1 / (e_ + 1)), 2 * kPi * u2);
+    return AroundAxis(Reflect(wo, n), std::pow(u1, 1 / (e_ + 1)), 2 * std::numbers::pi * u2);
   }
   double Pdf(Vec3 n, Vec3 wo, Vec3 wi) const override {
     const double c = Dot(Reflect(wo, n), wi);
-    return c > 0 ? (e_ + 1) / (2 * kPi) * std::pow(c, e_) : 0;
+    return c > 0 ? (e_ + 1) / (2 * std::numbers::pi) * std::pow(c, e_) : 0;
   }
   LobeCone Support(Vec3 n, Vec3 wo, double relative) const override {
     return {Reflect(wo, n), static_cast<float>(std::pow(relative, 1 / e_))};
@@ -100,12 +100,13 @@ class Phong final : public Brdf {
       if (!(cn > 0 && cr > 0)) continue;
       sum += (whole >= 0 ? PowInt(cr, whole) : std::exp2(e * std::log2(cr))) * cn;
     }
-    return (e_ + 2) / (2 * kPi) * sum;
+    return (e_ + 2) / (2 * std::numbers::pi) * sum;
   }
   double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
     const double a = NearestAngle(Reflect(wo, n), centre, radius);
-    if (a >= kPi / 2) return 0;
-    return (e_ + 2) / (2 * kPi) * std::pow(std::cos(a), e_) * CosineOverCap(n, centre, radius);
+    if (a >= std::numbers::pi / 2) return 0;
+    return (e_ + 2) / (2 * std::numbers::pi) * std::pow(std::cos(a), e_) *
+           CosineOverCap(n, centre, radius);
   }
   std::string Name() const override { return absl::StrCat("phong:", e_); }
 
@@ -117,31 +118,33 @@ class Phong final : public Brdf {
 // (E+1)/(2π) (n·h)^E / (4 |ω_o·h|).
 class Blinn final : public Brdf {
  public:
-  explicit Blinn(double e) : e_(e), k_((e + 2) * (e + 4) / (8 * kPi * (std::exp2(-e / 2) + e))) {}
+  explicit Blinn(double e)
+      : e_(e), k_((e + 2) * (e + 4) / (8 * std::numbers::pi * (std::exp2(-e / 2) + e))) {}
   double Eval(Vec3 n, Vec3 wo, Vec3 wi) const override {
     if (!Above(n, wi) || !Above(n, wo)) return 0;
     return k_ * std::pow(std::max(0.0f, Dot(n, HalfVector(n, wo, wi))), e_);
   }
   Vec3 Sample(Vec3 n, Vec3 wo, double u1, double u2) const override {
-    return Reflect(wo, AroundAxis(n, std::pow(u1, 1 / (e_ + 1)), 2 * kPi * u2));
+    return Reflect(wo, AroundAxis(n, std::pow(u1, 1 / (e_ + 1)), 2 * std::numbers::pi * u2));
   }
   double Pdf(Vec3 n, Vec3 wo, Vec3 wi) const override {
     const Vec3 h = HalfVector(n, wo, wi);
     const double ch = Dot(n, h), oh = std::fabs(Dot(wo, h));
     if (!(ch > 0) || !(oh > 0)) return 0;
-    return (e_ + 1) / (2 * kPi) * std::pow(ch, e_) / (4 * oh);
+    return (e_ + 1) / (2 * std::numbers::pi) * std::pow(ch, e_) / (4 * oh);
   }
   LobeCone Support(Vec3 n, Vec3 wo, double relative) const override {
     // (n·h)^E < relative beyond half-angle β around n; ω_i then leaves the
     // mirror direction by at most 2β.
     const double beta = std::acos(std::clamp(std::pow(relative, 1 / e_), -1.0, 1.0));
-    return {Reflect(wo, n), static_cast<float>(std::cos(std::min(kPi, 2 * beta)))};
+    return {Reflect(wo, n), static_cast<float>(std::cos(std::min(std::numbers::pi, 2 * beta)))};
   }
   // A half vector h' off n by β puts ω off the mirror direction by at most
   // 2β (a reflection doubles angles), so n·h ≤ cos(angle(ω, r)/2).
   double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
     const double half = NearestAngle(Reflect(wo, n), centre, radius) / 2;
-    return k_ * std::pow(std::cos(std::min(half, kPi / 2)), e_) * CosineOverCap(n, centre, radius);
+    return k_ * std::pow(std::cos(std::min(half, std::numbers::pi / 2)), e_) *
+           CosineOverCap(n, centre, radius);
   }
   std::string Name() const override { return absl::StrCat("blinn:", e_); }
 
@@ -161,7 +164,7 @@ class Ggx final : public Brdf {
   }
   Vec3 Sample(Vec3 n, Vec3 wo, double u1, double u2) const override {
     const double tan2 = a_ * a_ * u1 / std::max(1e-12, 1 - u1);
-    return Reflect(wo, AroundAxis(n, 1 / std::sqrt(1 + tan2), 2 * kPi * u2));
+    return Reflect(wo, AroundAxis(n, 1 / std::sqrt(1 + tan2), 2 * std::numbers::pi * u2));
   }
   double Pdf(Vec3 n, Vec3 wo, Vec3 wi) const override {
     const Vec3 h = HalfVector(n, wo, wi);
@@ -177,14 +180,14 @@ class Ggx final : public Brdf {
     const double c2 = (1 - a2 / std::sqrt(relative)) / (1 - a2);
     if (c2 <= 0) return {n, -1};
     const double theta = std::acos(std::sqrt(std::min(1.0, c2)));
-    return {Reflect(wo, n), static_cast<float>(std::cos(std::min(kPi, 2 * theta)))};
+    return {Reflect(wo, n), static_cast<float>(std::cos(std::min(std::numbers::pi, 2 * theta)))};
   }
   // f cos θ_i = D G₂ / (4 cos θ_o) ≤ D(θ_h) / (4 cos θ_o), θ_h ≥ angle(ω, r)/2.
   double CapBound(Vec3 n, Vec3 wo, Vec3 centre, double radius) const override {
     const double co = Dot(n, wo);
     if (!(co > 0) || CosineOverCap(n, centre, radius) == 0) return 0;
     const double half = NearestAngle(Reflect(wo, n), centre, radius) / 2;
-    return ggx::D(a_, std::cos(std::min(half, kPi / 2))) / (4 * co);
+    return ggx::D(a_, std::cos(std::min(half, std::numbers::pi / 2))) / (4 * co);
   }
   std::string Name() const override { return absl::StrCat("ggx:", a_); }
 
@@ -203,7 +206,7 @@ absl::Status BadBrdf(std::string_view spec, std::string_view why) {
 double CosineOverCap(Vec3 n, Vec3 c, double r) {
   const double alpha = AngleBetween(n, c);
   if (alpha <= r) return 1;
-  if (alpha - r >= kPi / 2) return 0;
+  if (alpha - r >= std::numbers::pi / 2) return 0;
   return std::cos(alpha - r);
 }
 

@@ -5,14 +5,10 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/bake_params_io.h"
 #include "core/pinhole_frame.h"
 
 namespace wavebake {
-namespace {
-
-bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
-
-}  // namespace
 
 absl::StatusOr<SampleSet> CameraLayout(const Scene& scene, const RayCaster& caster, int width,
                                        int height) {

@@ -57,7 +57,7 @@ absl::StatusOr<SampleSet> HilbertLayout(const Scene& scene, int width, int heigh
     return absl::InvalidArgumentError(absl::StrCat(name, ": scene '", scene.name, "' has ",
                                                    s.position.size(), " vertices, more than the ",
                                                    cells, " cells; use a larger grid"));
-  const std::vector<uint64_t> keys = HilbertKeys(s.position, Bounds(scene));
+  const std::vector<uint64_t> keys = HilbertKeys(s.position, SceneBounds(scene));
   std::vector<int32_t> order(s.position.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),

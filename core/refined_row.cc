@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 
+#include "core/check_or_die.h"
 #include "core/texel_irradiance.h"
 
 namespace wavebake {
@@ -48,12 +48,6 @@ enum class Horizon { kBelow, kAbove, kCrossing };
 
 // Rays per Embree call, as in TransportRow: a whole texel for K ≤ 256.
 constexpr int kBatch = 512;
-
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "RefinedTransportRow: %s\n", what);
-  std::abort();
-}
 
 class RowRefiner {
  public:
@@ -407,11 +401,14 @@ void RefinedTransportRow(const RayCaster& caster, const Cubemap& cubemap,
                          const JitterPattern& pattern, const RefinePlan& plan, Vec3 position,
                          Vec3 normal, float epsilon, std::span<float> row, TransportStats* stats,
                          RefineScratch& scratch) {
-  CheckOrDie(row.size() == static_cast<size_t>(cubemap.size()), "row size differs from M");
-  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
+  CheckOrDie("RefinedTransportRow", row.size() == static_cast<size_t>(cubemap.size()),
+             "row size differs from M");
+  CheckOrDie("RefinedTransportRow", pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
              "jitter pattern was made for another cubemap");
-  CheckOrDie(plan.n() == cubemap.n(), "refinement plan was made for another cubemap");
-  CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
+  CheckOrDie("RefinedTransportRow", plan.n() == cubemap.n(),
+             "refinement plan was made for another cubemap");
+  CheckOrDie("RefinedTransportRow", pattern.per_texel <= kBatch,
+             "supersampling exceeds the ray batch");
   scratch.to_trace.clear();
   // DESIGN.md §1: rays start at x + ε n.
   RowRefiner refiner(caster, cubemap, pattern, plan, position + normal * epsilon, normal, row,

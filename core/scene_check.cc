@@ -183,7 +183,7 @@ absl::Status CheckAndRepairScene(Scene& scene, SceneReport* report) {
   return absl::OkStatus();
 }
 
-Bounds3 Bounds(const Scene& scene) {
+Bounds3 SceneBounds(const Scene& scene) {
   Bounds3 b;
   for (const Mesh& m : scene.meshes)
     for (Vec3 p : m.positions) {

@@ -40,6 +40,6 @@ struct Bounds3 {
 };
 
 // Axis-aligned box of every vertex of every mesh (empty for no vertices).
-Bounds3 Bounds(const Scene& scene);
+Bounds3 SceneBounds(const Scene& scene);
 
 }  // namespace wavebake

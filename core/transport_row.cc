@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <numbers>
+
+#include "core/check_or_die.h"
 
 namespace wavebake {
 namespace {
@@ -39,14 +40,6 @@ constexpr std::array<uint8_t, 256> kEvenBits = [] {
   return t;
 }();
 int EvenBits(int z) { return kEvenBits[z & 0xFF] | kEvenBits[(z >> 8) & 0xFF] << 4; }
-
-// The row's preconditions are programming errors, not bad input: the bake
-// builds cubemap, pattern and row from one BakeParams.
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "TransportRow: %s\n", what);
-  std::abort();
-}
 
 // A texel is the conic hull of its 4 corner directions, so if none of them is
 // above the horizon no direction inside it is: the texel is exactly 0 and
@@ -108,9 +101,7 @@ Float4 Load4(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-void Store4(float* p, Float4 v) {
-  std::memcpy(p, &v, sizeof v);
-}
+void Store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
 
 // Appends texel m's directions that are above the horizon; the ones below
 // contribute max(0, n·ω) = 0 whatever V is, so they are not traced. Returns
@@ -123,8 +114,7 @@ void Store4(float* p, Float4 v) {
   // per ray. Each lane is the same float expression as the loop below, so
   // the row is the same bits.
   for (; k + 4 <= p.per_texel; k += 4) {
-    const Float4 x = Load4(&p.x[first + k]), y = Load4(&p.y[first + k]),
-                 z = Load4(&p.z[first + k]);
+    const Float4 x = Load4(&p.x[first + k]), y = Load4(&p.y[first + k]), z = Load4(&p.z[first + k]);
     const Float4 c = n.x * x + n.y * y + n.z * z;
     const auto above = c > Float4{};  // lanes of -1 (true) or 0
     if (!(above[0] & above[1] & above[2] & above[3])) break;
@@ -226,8 +216,9 @@ template <class ForEachTexel>
 void TraceRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 position, Vec3 normal,
               float epsilon, std::span<float> row, TransportStats* stats,
               ForEachTexel for_each_texel) {
-  CheckOrDie(row.size() == static_cast<size_t>(pattern.texels()), "row size differs from M");
-  CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
+  CheckOrDie("TransportRow", row.size() == static_cast<size_t>(pattern.texels()),
+             "row size differs from M");
+  CheckOrDie("TransportRow", pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
 
   TransportStats local;
   const Vec3 origin = position + normal * epsilon;  // DESIGN.md §1: rays start at x + ε n
@@ -258,7 +249,7 @@ void TraceRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 positi
 void TransportRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                   Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                   TransportStats* stats) {
-  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
+  CheckOrDie("TransportRow", pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
              "jitter pattern was made for another cubemap");
   // Texels in Z order within each face (2×2 blocks, then 4×4, ...): packets
   // of neighbouring directions traverse the BVH together (bench/transport.cc:
@@ -299,10 +290,11 @@ void TransportRow(const RayCaster& caster, const JitterPattern& pattern, Vec3 po
 void VisibilityRow(const RayCaster& caster, const Cubemap& cubemap, const JitterPattern& pattern,
                    Vec3 position, Vec3 normal, float epsilon, std::span<float> row,
                    TransportStats* stats) {
-  CheckOrDie(row.size() == static_cast<size_t>(cubemap.size()), "row size differs from M");
-  CheckOrDie(pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
+  CheckOrDie("TransportRow", row.size() == static_cast<size_t>(cubemap.size()),
+             "row size differs from M");
+  CheckOrDie("TransportRow", pattern.n == cubemap.n() && pattern.texels() == cubemap.size(),
              "jitter pattern was made for another cubemap");
-  CheckOrDie(pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
+  CheckOrDie("TransportRow", pattern.per_texel <= kBatch, "supersampling exceeds the ray batch");
 
   TransportStats local;
   const Vec3 origin = position + normal * epsilon;

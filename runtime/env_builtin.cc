@@ -10,7 +10,7 @@ namespace wavebake {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi, kDeg = kPi / 180;
+constexpr double kDeg = std::numbers::pi / 180;
 
 double Overlap(double a0, double a1, double b0, double b1) {
   return std::max(0.0, std::min(a1, b1) - std::max(a0, b0));
@@ -47,7 +47,8 @@ double SunCover(const SkyParams& p, const Footprint& f, Vec3 sun_dir) {
   constexpr int kCells = 16;
   const double cos_radius = std::cos(p.sun_radius * kDeg);
   const double mid_mu = 0.5 * (f.mu0 + f.mu1), mid_phi = 0.5 * (f.phi0 + f.phi1);
-  const Vec3 centre = LatLongToDirection({0.5 + mid_phi / (2 * kPi), std::acos(mid_mu) / kPi});
+  const Vec3 centre = LatLongToDirection(
+      {0.5 + mid_phi / (2 * std::numbers::pi), std::acos(mid_mu) / std::numbers::pi});
   // Pixels are far smaller than a radian: skip those clearly apart.
   if (std::acos(std::min(1.0f, Dot(centre, sun_dir))) > p.sun_radius * kDeg + 0.1) return 0;
   int inside = 0;
@@ -55,7 +56,8 @@ double SunCover(const SkyParams& p, const Footprint& f, Vec3 sun_dir) {
     const double mu = f.mu0 + (j + 0.5) / kCells * (f.mu1 - f.mu0);
     for (int i = 0; i < kCells; ++i) {
       const double phi = f.phi0 + (i + 0.5) / kCells * (f.phi1 - f.phi0);
-      const Vec3 d = LatLongToDirection({0.5 + phi / (2 * kPi), std::acos(mu) / kPi});
+      const Vec3 d = LatLongToDirection(
+          {0.5 + phi / (2 * std::numbers::pi), std::acos(mu) / std::numbers::pi});
       inside += Dot(d, sun_dir) >= cos_radius;
     }
   }
@@ -75,8 +77,10 @@ EnvMap MakeSkyEnv(const SkyParams& p) {
   env.rgb.resize(size_t(env.width) * env.height * 3);
   for (int y = 0; y < env.height; ++y) {
     for (int x = 0; x < env.width; ++x) {
-      const Footprint f{kPi * (2.0 * x / env.width - 1), kPi * (2.0 * (x + 1) / env.width - 1),
-                        std::cos(kPi * (y + 1) / env.height), std::cos(kPi * y / env.height)};
+      const Footprint f{std::numbers::pi * (2.0 * x / env.width - 1),
+                        std::numbers::pi * (2.0 * (x + 1) / env.width - 1),
+                        std::cos(std::numbers::pi * (y + 1) / env.height),
+                        std::cos(std::numbers::pi * y / env.height)};
       const Vec3 l = MeanSky(p, f) + p.area_light * static_cast<float>(AreaLightCover(p, f)) +
                      p.sun * static_cast<float>(SunCover(p, f, sun_dir));
       float* o = &env.rgb[(size_t(y) * env.width + x) * 3];

@@ -12,7 +12,6 @@ namespace {
 
 constexpr int kMinWidth = 128;
 constexpr int kBlockColumns = 64, kBlockRows = 32;
-constexpr double kPi = std::numbers::pi;
 
 double MeanRgb(Vec3 v) { return (double{v.x} + v.y + v.z) / 3; }
 
@@ -20,9 +19,10 @@ double MeanRgb(Vec3 v) { return (double{v.x} + v.y + v.z) / 3; }
 // the centre go along the meridian (≤ Δθ/2), then along the parallel
 // (≤ sin θ_max · Δφ/2); the geodesic is no longer than that path.
 double RadiusBound(double theta0, double theta1, double phi_span) {
-  const double sin_max =
-      (theta0 <= kPi / 2 && theta1 >= kPi / 2) ? 1.0 : std::max(std::sin(theta0), std::sin(theta1));
-  return std::min(kPi, (theta1 - theta0) / 2 + sin_max * phi_span / 2 + 1e-6);
+  const double sin_max = (theta0 <= std::numbers::pi / 2 && theta1 >= std::numbers::pi / 2)
+                             ? 1.0
+                             : std::max(std::sin(theta0), std::sin(theta1));
+  return std::min(std::numbers::pi, (theta1 - theta0) / 2 + sin_max * phi_span / 2 + 1e-6);
 }
 
 // Upper bound of max(0, n·ω) over the cap of angular radius r around the
@@ -30,7 +30,7 @@ double RadiusBound(double theta0, double theta1, double phi_span) {
 double CosineBound(Vec3 n, Vec3 c, double r) {
   const double alpha = std::acos(std::clamp(double{Dot(n, c)}, -1.0, 1.0));
   if (alpha <= r) return 1;
-  if (alpha - r >= kPi / 2) return 0;
+  if (alpha - r >= std::numbers::pi / 2) return 0;
   return std::cos(alpha - r);
 }
 
@@ -70,14 +70,15 @@ EnvSampler::EnvSampler(const EnvMap& env) : env_(&env) {
     }
   }
   for (int by = 0; by < by_count; ++by) {
-    const double theta0 = kPi * block_y_[by] / height_, theta1 = kPi * block_y_[by + 1] / height_;
+    const double theta0 = std::numbers::pi * block_y_[by] / height_,
+                 theta1 = std::numbers::pi * block_y_[by + 1] / height_;
     for (int bx = 0; bx < bx_count; ++bx) {
       double light = 0;  // summed in row order, exactly as Sample walks the rows
       for (int y = block_y_[by]; y < block_y_[by + 1]; ++y) {
         light += segment_[static_cast<size_t>(y) * bx_count + bx];
       }
-      const double phi0 = kPi * (2.0 * block_x_[bx] / width_ - 1);
-      const double phi1 = kPi * (2.0 * block_x_[bx + 1] / width_ - 1);
+      const double phi0 = std::numbers::pi * (2.0 * block_x_[bx] / width_ - 1);
+      const double phi1 = std::numbers::pi * (2.0 * block_x_[bx + 1] / width_ - 1);
       block_light_.push_back(light);
       block_centre_.push_back(Direction((theta0 + theta1) / 2, (phi0 + phi1) / 2));
       block_radius_.push_back(static_cast<float>(RadiusBound(theta0, theta1, phi1 - phi0)));
@@ -122,9 +123,10 @@ EnvSampler::Draw EnvSampler::Sample(std::span<const double> cdf,
   int x = static_cast<int>(
       std::upper_bound(row + block_x_[bx], row + block_x_[bx + 1] - 1, col_target) - row);
   // Uniform in solid angle inside the pixel: cos θ and φ uniform.
-  const double c0 = std::cos(kPi * y / height_), c1 = std::cos(kPi * (y + 1) / height_);
+  const double c0 = std::cos(std::numbers::pi * y / height_),
+               c1 = std::cos(std::numbers::pi * (y + 1) / height_);
   const double theta = std::acos(std::clamp(c0 - u[3] * (c0 - c1), -1.0, 1.0));
-  const double phi = kPi * (2 * (x + u[4]) / width_ - 1);
+  const double phi = std::numbers::pi * (2 * (x + u[4]) / width_ - 1);
   // pdf = P(block) · (Y_p Ω_p / light_b) / Ω_p, so L_c / pdf =
   // L_c · light_b / (P(block) · Y_p) with P(block) = (cdf[b+1] − cdf[b]) / total.
   const Vec3 radiance = env_->Pixel(x / replicate_, y / replicate_);

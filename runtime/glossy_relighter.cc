@@ -1,22 +1,16 @@
 #include "runtime/glossy_relighter.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "core/check_or_die.h"
 #include "runtime/parallel_for.h"
 #include "runtime/relighter.h"
 
 namespace wavebake {
 namespace {
-
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "GlossyRelighter: %s\n", what);
-  std::abort();
-}
 
 absl::Status CheckSlices(const BrdfSlices& s, const SampleRows& rows) {
   if (s.light_res != rows.light_res() || s.first.size() != static_cast<size_t>(rows.cells()) + 1)
@@ -106,9 +100,12 @@ void GlossyRelighter::GatherSlices() {
 
 void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& slices,
                                 std::span<float> rgb_out) {
-  CheckOrDie(lighting.n() == light_res(), "lighting made for another light resolution");
-  CheckOrDie(slices.first.size() == static_cast<size_t>(cells()) + 1, "slices of another grid");
-  CheckOrDie(rgb_out.size() == 3 * static_cast<size_t>(cells()), "output is not W*H*3 floats");
+  CheckOrDie("GlossyRelighter", lighting.n() == light_res(),
+             "lighting made for another light resolution");
+  CheckOrDie("GlossyRelighter", slices.first.size() == static_cast<size_t>(cells()) + 1,
+             "slices of another grid");
+  CheckOrDie("GlossyRelighter", rgb_out.size() == 3 * static_cast<size_t>(cells()),
+             "output is not W*H*3 floats");
   const bool own = &slices == &slices_;
   const uint32_t per_face = static_cast<uint32_t>(light_res()) * light_res();
   ParallelForWorkers(cells(), threads_, kBlock, [&](int worker, int cell) {
@@ -138,13 +135,15 @@ void GlossyRelighter::Transport(const HaarFactor& lighting, const BrdfSlices& sl
 
 void GlossyRelighter::ApplyAlbedo(std::span<const float> transport_rgb,
                                   std::span<float> rgb_out) const {
-  CheckOrDie(transport_rgb.size() == albedo_.size() && rgb_out.size() == albedo_.size(),
+  CheckOrDie("GlossyRelighter",
+             transport_rgb.size() == albedo_.size() && rgb_out.size() == albedo_.size(),
              "ApplyAlbedo: buffers are not W*H*3 floats");
   for (size_t i = 0; i < albedo_.size(); ++i) rgb_out[i] = transport_rgb[i] * albedo_[i];
 }
 
 void GlossyRelighter::Relight(const WaveletLights& lights, std::span<float> rgb_out) {
-  CheckOrDie(lights.light_res == light_res(), "lights were made for another light resolution");
+  CheckOrDie("GlossyRelighter", lights.light_res == light_res(),
+             "lights were made for another light resolution");
   Transport(LightingFactor(lights), slices_, rgb_out);
   ApplyAlbedo(rgb_out, rgb_out);
 }

@@ -1,19 +1,13 @@
 #include "runtime/relight_oracles.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 
+#include "core/check_or_die.h"
 #include "core/wavelet2d.h"
 
 namespace wavebake {
 namespace {
-
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "relight oracle: %s\n", what);
-  std::abort();
-}
 
 // Column m as a W×H image at depth 0 (pixel domain).
 void DecodeColumn(const CompressedColumns& t, int m, std::span<float> img) {
@@ -27,12 +21,13 @@ void DecodeColumn(const CompressedColumns& t, int m, std::span<float> img) {
 void NaiveRelight(const CompressedColumns& t, std::span<const float> cell_albedo,
                   std::span<const WaveletLight> lights, std::span<float> rgb_out) {
   const size_t cells = static_cast<size_t>(t.width) * t.height;
-  CheckOrDie(rgb_out.size() == 3 * cells && cell_albedo.size() == 3 * cells,
+  CheckOrDie("relight oracle", rgb_out.size() == 3 * cells && cell_albedo.size() == 3 * cells,
              "buffers are not W*H*3 floats");
   std::vector<double> sum(3 * cells, 0.0);
   std::vector<float> img(cells);
   for (const WaveletLight& l : lights) {
-    CheckOrDie(l.column < static_cast<uint32_t>(t.columns), "light column out of range");
+    CheckOrDie("relight oracle", l.column < static_cast<uint32_t>(t.columns),
+               "light column out of range");
     DecodeColumn(t, static_cast<int>(l.column), img);
     for (size_t i = 0; i < cells; ++i) {
       for (int c = 0; c < 3; ++c) sum[3 * i + c] += double{l.weight[c]} * img[i];
@@ -58,9 +53,10 @@ DenseTransport Densify(const CompressedColumns& t) {
 void DenseRelight(const DenseTransport& t, std::span<const float> light_rgb,
                   std::span<const float> cell_albedo, std::span<float> rgb_out) {
   const size_t cells = t.cells();
-  CheckOrDie(rgb_out.size() == 3 * cells && cell_albedo.size() == 3 * cells,
+  CheckOrDie("relight oracle", rgb_out.size() == 3 * cells && cell_albedo.size() == 3 * cells,
              "buffers are not W*H*3 floats");
-  CheckOrDie(light_rgb.size() == 3 * static_cast<size_t>(t.columns), "lighting is not 3*M floats");
+  CheckOrDie("relight oracle", light_rgb.size() == 3 * static_cast<size_t>(t.columns),
+             "lighting is not 3*M floats");
   // Channel planes so each column is three contiguous axpys (vectorized).
   std::vector<float> planes(3 * cells, 0.0f);
   float* r = planes.data();

@@ -2,26 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/check_or_die.h"
 #include "core/wavelet2d.h"
 
 namespace wavebake {
-namespace {
 
-// Relight's preconditions are programming errors (lights built for another
-// matrix), not bad input: the CLI builds lights and Relighter from one store.
-void CheckOrDie(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "Relighter: %s\n", what);
-  std::abort();
-}
-
-}  // namespace
+// Relight's preconditions (CheckOrDie) are programming errors (lights built for
+// another matrix), not bad input: the CLI builds lights and Relighter from one
+// store.
 
 absl::Status CheckColumns(const CompressedColumns& t) {
   const int64_t cells = int64_t{t.width} * t.height;
@@ -139,7 +132,7 @@ int Relighter::SortByDepth(std::span<const WaveletLight> lights) {
   group_count_.fill(0);
   const uint32_t columns = static_cast<uint32_t>(depth_.size());
   for (const WaveletLight& l : lights) {
-    CheckOrDie(l.column < columns, "light column out of range for this matrix");
+    CheckOrDie("Relighter", l.column < columns, "light column out of range for this matrix");
     ++group_count_[depth_[l.column]];
   }
   int deepest = -1;
@@ -190,7 +183,7 @@ void Relighter::Accumulate(std::span<const WaveletLight> lights) {
 }
 
 void Relighter::RelightTransport(std::span<const WaveletLight> lights, std::span<float> rgb_out) {
-  CheckOrDie(rgb_out.size() == planes_.size(), "output is not W*H*3 floats");
+  CheckOrDie("Relighter", rgb_out.size() == planes_.size(), "output is not W*H*3 floats");
   Accumulate(lights);
   const size_t n = static_cast<size_t>(cells());
   const float* r = planes_.data();
@@ -202,8 +195,9 @@ void Relighter::RelightTransport(std::span<const WaveletLight> lights, std::span
 }
 
 void Relighter::Relight(const WaveletLights& lights, std::span<float> rgb_out) {
-  CheckOrDie(lights.light_res == light_res_, "lights were made for another light resolution");
-  CheckOrDie(rgb_out.size() == planes_.size(), "output is not W*H*3 floats");
+  CheckOrDie("Relighter", lights.light_res == light_res_,
+             "lights were made for another light resolution");
+  CheckOrDie("Relighter", rgb_out.size() == planes_.size(), "output is not W*H*3 floats");
   Accumulate(lights.lights);
   const size_t n = static_cast<size_t>(cells());
   const float* r = planes_.data();
@@ -216,7 +210,8 @@ void Relighter::Relight(const WaveletLights& lights, std::span<float> rgb_out) {
 }
 
 void Relighter::ApplyAlbedo(std::span<const float> transport_rgb, std::span<float> rgb_out) const {
-  CheckOrDie(transport_rgb.size() == albedo_.size() && rgb_out.size() == albedo_.size(),
+  CheckOrDie("Relighter",
+             transport_rgb.size() == albedo_.size() && rgb_out.size() == albedo_.size(),
              "ApplyAlbedo: buffers are not W*H*3 floats");
   for (size_t i = 0; i < albedo_.size(); ++i) rgb_out[i] = transport_rgb[i] * albedo_[i];
 }

@@ -12,8 +12,6 @@ namespace wavebake {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // 4-point Gauss–Legendre on [−1, 1]: exact for cubics; the integrands are
 // smooth on every piece up to the kinks where an interval end crosses a
 // pixel row.
@@ -34,7 +32,8 @@ struct Grid {
 
 // Adds the pixels of column x that [lo, hi] (in μ) covers, times weight.
 void SplitAmongRows(const Grid& g, int x, double lo, double hi, double weight, Entries& out) {
-  const int top = std::clamp(static_cast<int>(std::acos(hi) / kPi * g.height) - 1, 0, g.height - 1);
+  const int top = std::clamp(static_cast<int>(std::acos(hi) / std::numbers::pi * g.height) - 1, 0,
+                             g.height - 1);
   for (int y = top; y < g.height && g.row_mu[y] > lo; ++y) {
     const double overlap = std::min(hi, g.row_mu[y]) - std::max(lo, g.row_mu[y + 1]);
     if (overlap > 0) out.emplace_back(y * g.width + x, weight * overlap);
@@ -76,8 +75,9 @@ void AddRowCrossings(const Grid& g, const TexelMeridians& texel, double a, doubl
   for (bool upper : {false, true}) {
     const double va = upper ? at_a.hi : at_a.lo, vb = upper ? at_b.hi : at_b.lo;
     // Row edges between the two values: μ = row_mu[y] at θ = π y / H.
-    const int first = static_cast<int>(std::acos(std::max(va, vb)) / kPi * g.height);
-    const int last = static_cast<int>(std::acos(std::min(va, vb)) / kPi * g.height) + 1;
+    const int first = static_cast<int>(std::acos(std::max(va, vb)) / std::numbers::pi * g.height);
+    const int last =
+        static_cast<int>(std::acos(std::min(va, vb)) / std::numbers::pi * g.height) + 1;
     for (int y = std::max(first, 1); y <= std::min(last, g.height - 1); ++y) {
       const double edge = g.row_mu[y];
       if ((edge - va) * (edge - vb) >= 0) continue;
@@ -105,9 +105,9 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
   const std::vector<double>& kinks = texel.breakpoints();
   // Pieces: between kinks and pixel column edges φ = π (2x/W − 1).
   std::vector<double> cuts = kinks;
-  const double column = 2 * kPi / g.width;
-  for (int k = static_cast<int>(std::ceil((kinks.front() + kPi) / column));; ++k) {
-    const double phi = -kPi + k * column;
+  const double column = 2 * std::numbers::pi / g.width;
+  for (int k = static_cast<int>(std::ceil((kinks.front() + std::numbers::pi) / column));; ++k) {
+    const double phi = -std::numbers::pi + k * column;
     if (phi >= kinks.back()) break;
     if (phi > kinks.front()) cuts.push_back(phi);
   }
@@ -116,7 +116,8 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
   for (size_t i = 0; i + 1 < cuts.size(); ++i) {
     const double a = cuts[i], b = cuts[i + 1];
     if (!(a < b)) continue;
-    const int x = static_cast<int>(std::floor((0.5 * (a + b) + kPi) / column)) % g.width;
+    const int x =
+        static_cast<int>(std::floor((0.5 * (a + b) + std::numbers::pi) / column)) % g.width;
     // Pieces no wider than kMaxPiece, for maps whose pixels dwarf the texels.
     const int parts = static_cast<int>(std::ceil((b - a) / kMaxPiece));
     std::vector<double> sub = {a, b};
@@ -145,7 +146,7 @@ Entries TexelEntries(const Grid& g, const Cubemap& cube, int m) {
 
 SphereOverlap::SphereOverlap(int width, int height, const Cubemap& cube) {
   Grid grid{width, height, std::vector<double>(height + 1)};
-  for (int y = 0; y <= height; ++y) grid.row_mu[y] = std::cos(kPi * y / height);
+  for (int y = 0; y <= height; ++y) grid.row_mu[y] = std::cos(std::numbers::pi * y / height);
   grid.row_mu[0] = 1, grid.row_mu[height] = -1;
   std::vector<Entries> per_texel(cube.size());
   ParallelFor(cube.size(), [&](int m) { per_texel[m] = TexelEntries(grid, cube, m); });

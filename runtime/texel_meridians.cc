@@ -9,8 +9,6 @@ namespace wavebake {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Side faces (±X, ±Z) as core/cubemap.cc builds them: d = axis + sc·right −
 // tc·ŷ, so sc depends on φ only and tc = −y / (d·axis).
 struct SideFrame {
@@ -58,11 +56,12 @@ void TexelMeridians::InitSide() {
   double a = Azimuth(f.axis.x + s0_ * f.right.x, f.axis.z + s0_ * f.right.z);
   double b = Azimuth(f.axis.x + s1_ * f.right.x, f.axis.z + s1_ * f.right.z);
   if (a > b) std::swap(a, b);
-  if (b - a > kPi) std::swap(a, b), b += 2 * kPi;  // the texel straddles the seam
+  if (b - a > std::numbers::pi)
+    std::swap(a, b), b += 2 * std::numbers::pi;  // the texel straddles the seam
   breaks_ = {a, b};
   // At(φ) peaks where φ faces the axis; keep the pieces monotone.
   double facing = Azimuth(f.axis.x, f.axis.z);
-  facing = a + std::remainder(facing - a, 2 * kPi);
+  facing = a + std::remainder(facing - a, 2 * std::numbers::pi);
   if (a < facing && facing < b) breaks_.insert(breaks_.begin() + 1, facing);
 }
 
@@ -72,13 +71,13 @@ void TexelMeridians::InitCap() {
   // around the first one, bound it.
   const bool pole_inside = s0_ < 0 && 0 < s1_ && t0_ < 0 && 0 < t1_;
   breaks_.clear();
-  if (pole_inside) breaks_ = {-kPi, kPi};
+  if (pole_inside) breaks_ = {-std::numbers::pi, std::numbers::pi};
   for (double s : {s0_, s1_}) {
     for (double t : {t0_, t1_}) {
       if (s == 0 && t == 0) continue;  // the pole itself has no azimuth
       double phi = std::atan2(s, CapTcSign(face_) * t);
       if (!pole_inside && !breaks_.empty()) {
-        phi = breaks_[0] + std::remainder(phi - breaks_[0], 2 * kPi);
+        phi = breaks_[0] + std::remainder(phi - breaks_[0], 2 * std::numbers::pi);
       }
       breaks_.push_back(phi);
     }
@@ -87,8 +86,9 @@ void TexelMeridians::InitCap() {
   // Between corners one edge of the rectangle bounds each end of the ray,
   // r = edge / sin φ or edge / cos φ: monotone within a quadrant.
   const double lo = breaks_.front(), hi = breaks_.back();
-  for (int q = static_cast<int>(std::floor(lo / (kPi / 2))) + 1; q * (kPi / 2) < hi; ++q) {
-    breaks_.push_back(q * (kPi / 2));
+  for (int q = static_cast<int>(std::floor(lo / (std::numbers::pi / 2))) + 1;
+       q * (std::numbers::pi / 2) < hi; ++q) {
+    breaks_.push_back(q * (std::numbers::pi / 2));
   }
   std::sort(breaks_.begin(), breaks_.end());
 }

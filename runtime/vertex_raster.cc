@@ -106,7 +106,7 @@ void VertexRaster::Shade(std::span<const float> vertex_rgb, std::span<float> out
 }
 
 Camera PictureCamera(const Scene& scene) {
-  return scene.camera ? *scene.camera : FramingCamera(Bounds(scene));
+  return scene.camera ? *scene.camera : FramingCamera(SceneBounds(scene));
 }
 
 }  // namespace wavebake

@@ -15,11 +15,6 @@
 namespace wavebake::web {
 namespace {
 
-struct Probe {
-  EnvMap env;
-  EnvProjector projector;
-};
-
 absl::Status CheckRequest(const RelightRequest& r) {
   if (r.terms < 1) return absl::InvalidArgumentError(absl::StrCat("terms: ", r.terms, " < 1"));
   if (!std::isfinite(r.rotate_degrees))
@@ -50,6 +45,11 @@ void ToRgba(std::span<const float> rgb, double exposure_stops, std::vector<uint8
 }  // namespace
 
 struct RelightService::Session {
+  struct Probe {
+    EnvMap env;
+    EnvProjector projector;
+  };
+
   std::mutex mu;  // one frame at a time: the Relighter's scratch is per store
   bool opened = false;
   absl::Status open_error;
@@ -117,7 +117,7 @@ absl::StatusOr<RelightFrame> RelightService::Frame(const std::filesystem::path& 
   std::shared_ptr<Session> session = SessionFor(path);
   std::lock_guard lock(session->mu);
   if (absl::Status s = session->Open(path, scene); !s.ok()) return s;
-  absl::StatusOr<Probe*> probe = session->ProbeFor(probes_, request.probe);
+  absl::StatusOr<Session::Probe*> probe = session->ProbeFor(probes_, request.probe);
   if (!probe.ok()) return probe.status();
   Relighter& relighter = session->store->relighter;
 

@@ -20,7 +20,6 @@
 namespace wavebake {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const Vec3 kNormal = Normalize(Vec3{0.2f, 0.9f, -0.3f});
 
 // ∫_{S²} f(ω) dω, polar grid around `axis`.
@@ -28,7 +27,7 @@ template <typename F>
 double IntegrateSphere(Vec3 axis, const F& f, int n_theta = 2000, int n_phi = 360) {
   Vec3 t, b;
   OrthonormalFrame(axis, t, b);
-  const double dt = kPi / n_theta, dp = 2 * kPi / n_phi;
+  const double dt = std::numbers::pi / n_theta, dp = 2 * std::numbers::pi / n_phi;
   double sum = 0;
   for (int i = 0; i < n_theta; ++i) {
     const double theta = (i + 0.5) * dt, st = std::sin(theta), ct = std::cos(theta);
@@ -52,7 +51,7 @@ Vec3 ViewAt(double theta) {
                    t * static_cast<float>(std::sin(theta)));
 }
 
-std::unique_ptr<Brdf> Make(const std::string& spec) {
+std::unique_ptr<Brdf> MakeBrdf(const std::string& spec) {
   absl::StatusOr<std::unique_ptr<Brdf>> b = ParseBrdf(spec);
   EXPECT_TRUE(b.ok()) << b.status();
   return *std::move(b);
@@ -67,21 +66,21 @@ double Albedo(const Brdf& brdf, Vec3 wo) {
 }
 
 TEST(BrdfFurnace, LambertReflectsEverythingFromEveryDirection) {
-  const auto brdf = Make("lambert");
+  const auto brdf = MakeBrdf("lambert");
   for (double theta : {0.0, 0.7, 1.4}) EXPECT_NEAR(Albedo(*brdf, ViewAt(theta)), 1.0, 1e-4);
 }
 
 TEST(BrdfFurnace, NormalizedPhongAndBlinnAreExactAtNormalIncidence) {
   for (const char* spec :
        {"phong:1", "phong:8", "phong:32", "phong:128", "blinn:8", "blinn:32", "blinn:128"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     EXPECT_NEAR(Albedo(*brdf, kNormal), 1.0, 2e-3) << spec;
   }
 }
 
 TEST(BrdfFurnace, NoBrdfReflectsMoreThanItReceives) {
   for (const char* spec : {"phong:8", "phong:128", "blinn:32", "ggx:0.05", "ggx:0.3", "ggx:1"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     for (double theta : {0.3, 0.9, 1.3}) {
       const double a = Albedo(*brdf, ViewAt(theta));
       EXPECT_LE(a, 1.0 + 2e-3) << spec << " at " << theta;
@@ -120,7 +119,7 @@ TEST(GgxFurnace, WeakWhiteFurnace) {
 
 TEST(BrdfSampling, DensitiesIntegrateToOne) {
   for (const char* spec : {"lambert", "phong:32", "blinn:32", "ggx:0.2"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     for (double theta : {0.0, 1.0}) {
       const Vec3 wo = ViewAt(theta);
       const LobeCone cone = brdf->Support(kNormal, wo, 1e-3);
@@ -135,7 +134,7 @@ TEST(BrdfSampling, ImportanceSamplingReproducesTheAlbedo) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
   for (const char* spec : {"lambert", "phong:8", "phong:128", "blinn:32", "ggx:0.1", "ggx:0.7"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     const Vec3 wo = ViewAt(0.8);
     double sum = 0, sum_sq = 0;
     const int count = 40000;
@@ -163,7 +162,7 @@ TEST(Brdf, SumOverDirectionsIsTheSumOfEvalTimesCosine) {
     x.push_back(w.x), y.push_back(w.y), z.push_back(w.z);
   }
   for (const char* spec : {"lambert", "phong:32", "phong:7.5", "blinn:16", "ggx:0.4"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     const Vec3 wo = ViewAt(0.6);
     double want = 0;
     for (size_t i = 0; i < x.size(); ++i) {
@@ -180,7 +179,7 @@ TEST(Brdf, IsReciprocal) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
   for (const char* spec : {"phong:20", "blinn:20", "ggx:0.3"}) {
-    const auto brdf = Make(spec);
+    const auto brdf = MakeBrdf(spec);
     for (int i = 0; i < 200; ++i) {
       const Vec3 a = ViewAt(1.5 * u(rng)), b = brdf->Sample(kNormal, a, u(rng), u(rng));
       EXPECT_NEAR(brdf->Eval(kNormal, a, b), brdf->Eval(kNormal, b, a),
@@ -197,10 +196,10 @@ TEST(Brdf, ParseNamesTheFieldAndRoundTrips) {
     EXPECT_NE(b.status().message().find("brdf"), std::string::npos);
   }
   for (const char* good : {"lambert", "phong:32", "blinn:8", "ggx:0.25"}) {
-    EXPECT_EQ(Make(good)->Name(), good);
+    EXPECT_EQ(MakeBrdf(good)->Name(), good);
   }
-  EXPECT_FALSE(Make("lambert")->ViewDependent());
-  EXPECT_TRUE(Make("phong:32")->ViewDependent());
+  EXPECT_FALSE(MakeBrdf("lambert")->ViewDependent());
+  EXPECT_TRUE(MakeBrdf("phong:32")->ViewDependent());
 }
 
 }  // namespace

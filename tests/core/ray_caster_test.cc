@@ -13,18 +13,13 @@
 namespace wavebake {
 namespace {
 
+using test_shapes::BuildOrDie;
 using test_shapes::Quad;
 using test_shapes::SceneOf;
 using test_shapes::Triangle;
 using ::testing::HasSubstr;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-RayCaster BuildOrDie(const Scene& scene) {
-  absl::StatusOr<RayCaster> caster = RayCaster::Build(scene);
-  EXPECT_TRUE(caster.ok()) << caster.status();
-  return *std::move(caster);
-}
 
 void ExpectNear(Vec3 a, Vec3 b, float tol) {
   EXPECT_NEAR(a.x, b.x, tol);

@@ -21,15 +21,10 @@
 namespace wavebake {
 namespace {
 
+using test_shapes::BuildOrDie;
 using test_shapes::Disk;
 using test_shapes::Quad;
 using test_shapes::SceneOf;
-
-RayCaster BuildOrDie(const Scene& scene) {
-  absl::StatusOr<RayCaster> caster = RayCaster::Build(scene);
-  EXPECT_TRUE(caster.ok()) << caster.status();
-  return *std::move(caster);
-}
 
 JitterPattern PatternOrDie(const Cubemap& cubemap, int k, uint64_t seed) {
   absl::StatusOr<JitterPattern> p = MakeJitterPattern(cubemap, k, seed);

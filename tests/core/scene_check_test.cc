@@ -165,11 +165,11 @@ TEST(SceneCheck, BoundsCoverEveryMesh) {
   Mesh a = Square("a"), b = Square("b");
   for (Vec3& p : b.positions) p = p + Vec3{-3, 2, 5};
   const Scene s{.name = "two", .meshes = {a, b}, .camera = {}};
-  const Bounds3 box = Bounds(s);
+  const Bounds3 box = SceneBounds(s);
   EXPECT_EQ(box.lo, (Vec3{-3, 0, 0}));
   EXPECT_EQ(box.hi, (Vec3{1, 3, 5}));
   EXPECT_FLOAT_EQ(box.diagonal(), std::sqrt(16.0f + 9 + 25));
-  EXPECT_TRUE(Bounds(Scene{}).empty());
+  EXPECT_TRUE(SceneBounds(Scene{}).empty());
 }
 
 }  // namespace

@@ -1,12 +1,16 @@
 #pragma once
 // Small scenes built in test code: a square plane, a disk as a triangle fan,
 // a single triangle. Triangles are counter-clockwise seen from `normal`.
+// BuildOrDie makes their ray caster.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/ray_caster.h"
 #include "core/scene.h"
 #include "core/vec3.h"
 
@@ -60,6 +64,12 @@ inline Scene SceneOf(std::vector<Mesh> meshes) {
   s.name = "test";
   s.meshes = std::move(meshes);
   return s;
+}
+
+inline RayCaster BuildOrDie(const Scene& scene) {
+  absl::StatusOr<RayCaster> caster = RayCaster::Build(scene);
+  EXPECT_TRUE(caster.ok()) << caster.status();
+  return *std::move(caster);
 }
 
 }  // namespace wavebake::test_shapes

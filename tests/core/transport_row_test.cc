@@ -13,16 +13,11 @@
 namespace wavebake {
 namespace {
 
+using test_shapes::BuildOrDie;
 using test_shapes::Disk;
 using test_shapes::Quad;
 using test_shapes::SceneOf;
 using test_shapes::Tangents;
-
-RayCaster BuildOrDie(const Scene& scene) {
-  absl::StatusOr<RayCaster> caster = RayCaster::Build(scene);
-  EXPECT_TRUE(caster.ok()) << caster.status();
-  return *std::move(caster);
-}
 
 JitterPattern PatternOrDie(const Cubemap& cubemap, int supersample, uint64_t seed = 1) {
   absl::StatusOr<JitterPattern> p = MakeJitterPattern(cubemap, supersample, seed);

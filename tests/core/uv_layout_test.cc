@@ -10,10 +10,12 @@
 #include "core/layout.h"
 #include "core/scene_check.h"
 #include "core/uv_atlas.h"
+#include "tests/core/test_shapes.h"
 
 namespace wavebake {
 namespace {
 
+using test_shapes::SceneOf;
 using ::testing::HasSubstr;
 
 // The unit square z = 0 facing +z, UV = (x, y) mapped into [lo, hi]².
@@ -26,13 +28,6 @@ Mesh UvQuad(std::string name, float lo, float hi, Vec3 offset = {}) {
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
   m.uv_channels = {{{lo, lo}, {hi, lo}, {hi, hi}, {lo, hi}}};
   return m;
-}
-
-Scene SceneOf(std::vector<Mesh> meshes) {
-  Scene s;
-  s.name = "test";
-  s.meshes = std::move(meshes);
-  return s;
 }
 
 LayoutSpec Uv(int side, std::string_view options = "") {

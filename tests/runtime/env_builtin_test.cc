@@ -13,15 +13,16 @@
 namespace wavebake {
 namespace {
 
-constexpr double kPi = std::numbers::pi, kDeg = kPi / 180;
+constexpr double kDeg = std::numbers::pi / 180;
 
 double ExpectedSkyIntegral(const SkyParams& p, int c) {
-  const double sun = 2 * kPi * (1 - std::cos(p.sun_radius * kDeg)) * p.sun[c];
+  const double sun = 2 * std::numbers::pi * (1 - std::cos(p.sun_radius * kDeg)) * p.sun[c];
   const double area =
       (p.area_azimuth_max - p.area_azimuth_min) * kDeg *
       (std::sin(p.area_elevation_max * kDeg) - std::sin(p.area_elevation_min * kDeg)) *
       p.area_light[c];
-  return kPi * (p.zenith[c] + p.horizon[c]) + 2 * kPi * p.ground[c] + sun + area;
+  return std::numbers::pi * (p.zenith[c] + p.horizon[c]) + 2 * std::numbers::pi * p.ground[c] +
+         sun + area;
 }
 
 TEST(SkyTest, IntegralMatchesClosedForm) {

@@ -19,8 +19,6 @@
 namespace wavebake {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A 2×2 square at height y facing +Y (nothing above it).
 Scene Floor(float y, float half = 1) {
   Mesh m;
@@ -32,7 +30,7 @@ Scene Floor(float y, float half = 1) {
 }
 
 // One sample per cell of a `count`×1 grid.
-SampleSet Receivers(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals) {
+SampleSet ReceiverSamples(const std::vector<Vec3>& positions, const std::vector<Vec3>& normals) {
   SampleSet s;
   s.width = static_cast<int>(positions.size());
   s.height = 1;
@@ -46,7 +44,7 @@ SampleSet Receivers(const std::vector<Vec3>& positions, const std::vector<Vec3>&
 }
 
 Vec3 Tilted(double degrees) {
-  const double a = degrees * kPi / 180;
+  const double a = degrees * std::numbers::pi / 180;
   return {static_cast<float>(std::sin(a)), static_cast<float>(std::cos(a)), 0};
 }
 
@@ -62,7 +60,7 @@ TEST(Reference, UnoccludedPlaneUnderConstantIsOne) {
     pos.push_back({-0.8f + 0.2f * i, 0, 0.1f * i - 0.4f});
     nrm.push_back({0, 1, 0});
   }
-  const SampleSet s = Receivers(pos, nrm);
+  const SampleSet s = ReceiverSamples(pos, nrm);
   auto ref = ComputeReference(*caster, s, *env);
   ASSERT_TRUE(ref.ok()) << ref.status();
   EXPECT_TRUE(ref->converged);
@@ -89,10 +87,10 @@ TEST(Reference, TiltedReceiverUnderUpperHemisphereSky) {
     pos.push_back({0, 0, 0});
     nrm.push_back(Tilted(t));
   }
-  auto ref = ComputeReference(*caster, Receivers(pos, nrm), sky);
+  auto ref = ComputeReference(*caster, ReceiverSamples(pos, nrm), sky);
   ASSERT_TRUE(ref.ok()) << ref.status();
   for (size_t i = 0; i < tilts.size(); ++i) {
-    const double expect = (1 + std::cos(tilts[i] * kPi / 180)) / 2;
+    const double expect = (1 + std::cos(tilts[i] * std::numbers::pi / 180)) / 2;
     EXPECT_NEAR(ref->rgb[3 * i], expect, 4 * ref->standard_error[3 * i] + 1e-6) << tilts[i];
   }
   EXPECT_EQ(ref->rgb[3 * 6], 0.0f);  // facing down: no light above its horizon, no rays
@@ -108,16 +106,16 @@ double GlossyIntegral(const Brdf& brdf, Vec3 n, Vec3 wo, bool upper_sky_only) {
   const int nt = 1500, np = 360;
   double sum = 0;
   for (int i = 0; i < nt; ++i) {
-    const double th = (i + 0.5) * kPi / nt;
+    const double th = (i + 0.5) * std::numbers::pi / nt;
     for (int j = 0; j < np; ++j) {
-      const double ph = (j + 0.5) * 2 * kPi / np;
+      const double ph = (j + 0.5) * 2 * std::numbers::pi / np;
       const Vec3 w = Normalize(t * float(std::sin(th) * std::cos(ph)) +
                                b * float(std::sin(th) * std::sin(ph)) + axis * float(std::cos(th)));
       if (upper_sky_only && !(w.y > 0)) continue;
       sum += brdf.Eval(n, wo, w) * std::max(0.0f, Dot(n, w)) * std::sin(th);
     }
   }
-  return sum * (kPi / nt) * (2 * kPi / np);
+  return sum * (std::numbers::pi / nt) * (2 * std::numbers::pi / np);
 }
 
 // Glossy white furnace: unoccluded under L ≡ 1 the reference is the BRDF's
@@ -140,7 +138,7 @@ TEST(Reference, GlossyReceiversSeeTheirLobe) {
       nrm.push_back(Tilted(tilt));
       views.push_back(Normalize(Vec3{-0.3f, 0.8f, 0.4f}));
     }
-    const SampleSet s = Receivers(pos, nrm);
+    const SampleSet s = ReceiverSamples(pos, nrm);
     for (const EnvMap* env : {&*constant, &sky}) {
       ReferenceOptions o;
       o.brdf = brdf->get();
@@ -177,15 +175,16 @@ BruteForce StratifiedUniform(const RayCaster& caster, const EnvMap& env, Vec3 p,
       // Mean and variance of V·max(0, n·ω)/π over the pixel's strata.
       double sum = 0, sq = 0;
       for (int k = 0; k < per_pixel; ++k) {
-        const double c0 = std::cos(kPi * y / env.height), c1 = std::cos(kPi * (y + 1) / env.height);
-        const double v = std::acos(c0 - u(rng) * (c0 - c1)) / kPi;
+        const double c0 = std::cos(std::numbers::pi * y / env.height),
+                     c1 = std::cos(std::numbers::pi * (y + 1) / env.height);
+        const double v = std::acos(c0 - u(rng) * (c0 - c1)) / std::numbers::pi;
         const Vec3 d = LatLongToDirection({(x + u(rng)) / env.width, v});
         const double c = Dot(n, d);
         if (c <= 0) continue;
         ++b.rays;
         if (caster.Occluded(origin, d, 0, 1e30f)) continue;
-        sum += c / kPi;
-        sq += (c / kPi) * (c / kPi);
+        sum += c / std::numbers::pi;
+        sq += (c / std::numbers::pi) * (c / std::numbers::pi);
       }
       const double mean = sum / per_pixel;
       const double var_mean = std::max(0.0, sq / per_pixel - mean * mean) / (per_pixel - 1);
@@ -214,7 +213,7 @@ TEST(Reference, GraceAgreesWithBruteForceUniformSampling) {
   ASSERT_TRUE(env.ok()) << env.status();
   const std::vector<Vec3> pos = {{0, 0, 0}, {1.2f, 0, 0.3f}, {0, 0.76f, 0}, {0.3f, 0.2f, 0.1f}};
   const std::vector<Vec3> nrm = {{0, 1, 0}, {0, 1, 0}, Tilted(45), {1, 0.2f, -0.5f}};
-  const SampleSet s = Receivers(pos, nrm);
+  const SampleSet s = ReceiverSamples(pos, nrm);
   auto ref = ComputeReference(*caster, s, *env);
   ASSERT_TRUE(ref.ok()) << ref.status();
   std::printf("grace: rel_se %.5f, %lld rays, %.2f s\n", ref->rel_se,
@@ -245,7 +244,7 @@ TEST(Reference, BitIdenticalForAnyThreadCount) {
     pos.push_back({0.1f * i, 0, 0});
     nrm.push_back({0, 1, 0});
   }
-  const SampleSet s = Receivers(pos, nrm);
+  const SampleSet s = ReceiverSamples(pos, nrm);
   ReferenceOptions o;
   o.target_rel_se = 0.01;
   o.threads = 1;
@@ -260,7 +259,7 @@ TEST(Reference, BitIdenticalForAnyThreadCount) {
 TEST(Reference, RejectsBadInput) {
   auto caster = RayCaster::Build(Floor(0));
   ASSERT_TRUE(caster.ok());
-  const SampleSet s = Receivers({{0, 0, 0}}, {{0, 1, 0}});
+  const SampleSet s = ReceiverSamples({{0, 0, 0}}, {{0, 1, 0}});
   EnvMap square{16, 16, std::vector<float>(16 * 16 * 3, 1.0f)};
   auto r = ComputeReference(*caster, s, square);
   ASSERT_FALSE(r.ok());

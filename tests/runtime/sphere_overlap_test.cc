@@ -14,8 +14,6 @@
 namespace wavebake {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct Grid {
   int width, height, n;
 };
@@ -64,14 +62,14 @@ Vec3 LambertVectorIntegral(const Cubemap& cube, int m) {
 // Each pixel of the map holds the exact mean of L(d) = 1 + a·d over it.
 EnvMap LinearField(int width, int height, Vec3 a) {
   EnvMap env{width, height, std::vector<float>(size_t(width) * height * 3)};
-  const double dphi = 2 * kPi / width;
+  const double dphi = 2 * std::numbers::pi / width;
   for (int y = 0; y < height; ++y) {
-    const double t0 = kPi * y / height, t1 = kPi * (y + 1) / height;
+    const double t0 = std::numbers::pi * y / height, t1 = std::numbers::pi * (y + 1) / height;
     const double band = std::cos(t0) - std::cos(t1);
     const double sin2 = (t1 - t0) / 2 - (std::sin(2 * t1) - std::sin(2 * t0)) / 4;  // ∫ sin²θ
     const double ycos = (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) / 2;
     for (int x = 0; x < width; ++x) {
-      const double p0 = -kPi + x * dphi, p1 = p0 + dphi;
+      const double p0 = -std::numbers::pi + x * dphi, p1 = p0 + dphi;
       const double ix = sin2 * (std::cos(p0) - std::cos(p1));
       const double iz = -sin2 * (std::sin(p1) - std::sin(p0));
       const double mean = 1 + (a.x * ix + a.y * ycos * dphi + a.z * iz) / (band * dphi);

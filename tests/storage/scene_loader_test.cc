@@ -59,7 +59,7 @@ Vec3 Centroid(const Mesh& m) {
 // Fraction of vertices whose normal points out of the solid the mesh bounds.
 double OutwardFraction(const Mesh& m) {
   const Scene one{.name = "", .meshes = {m}, .camera = {}};
-  const float step = 1e-3f * Bounds(one).diagonal();
+  const float step = 1e-3f * SceneBounds(one).diagonal();
   int outward = 0;
   for (size_t v = 0; v < m.positions.size(); ++v) {
     const Vec3 p = m.positions[v], n = m.normals[v];
@@ -112,7 +112,7 @@ TEST_F(SceneLoaderTest, BunnyHilbertLayoutIsACoherentBijection) {
 
 TEST_F(SceneLoaderTest, FramingCameraSeesTheWholeBunny) {
   const Scene s = LoadOk(kBunny);
-  const Camera c = FramingCamera(Bounds(s));
+  const Camera c = FramingCamera(SceneBounds(s));
   const Vec3 f = Normalize(c.target - c.eye);
   const Vec3 right = Normalize(Cross(f, c.up)), up = Cross(right, f);
   const float half = std::tan(c.fov_y_degrees * 3.14159265f / 360);
@@ -145,7 +145,7 @@ TEST_F(SceneLoaderTest, BuiltinSpecs) {
 }
 
 TEST_F(SceneLoaderTest, JsonTransformMovesTheBoundsAsItSays) {
-  const Bounds3 raw = Bounds(LoadOk(kBunny));
+  const Bounds3 raw = SceneBounds(LoadOk(kBunny));
   const std::string json = Write("scene.json", R"({
     "meshes": [{"file": ")" + kBunny + R"(", "albedo": [0.9, 0.5, 0.1],
                 "transform": {"scale": 2, "rotate_y_degrees": 90, "translate": [1, 2, 3]}},
@@ -156,7 +156,7 @@ TEST_F(SceneLoaderTest, JsonTransformMovesTheBoundsAsItSays) {
   ASSERT_EQ(s.meshes.size(), 2u);
   EXPECT_EQ(s.name, "scene");
   const Scene only{.name = "", .meshes = {s.meshes[0]}, .camera = {}};
-  const Bounds3 moved = Bounds(only);
+  const Bounds3 moved = SceneBounds(only);
   // Scale 2, then rotate +90° about Y (x → −z, z → x), then translate.
   const Vec3 lo{2 * raw.lo.z + 1, 2 * raw.lo.y + 2, -2 * raw.hi.x + 3};
   const Vec3 hi{2 * raw.hi.z + 1, 2 * raw.hi.y + 2, -2 * raw.lo.x + 3};
