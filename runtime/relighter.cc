@@ -12,10 +12,6 @@
 
 namespace wavebake {
 
-// Relight's preconditions (CheckOrDie) are programming errors (lights built for
-// another matrix), not bad input: the CLI builds lights and Relighter from one
-// store.
-
 absl::Status CheckColumns(const CompressedColumns& t) {
   const int64_t cells = int64_t{t.width} * t.height;
   if (t.width <= 0 || t.height <= 0 || (t.width & (t.width - 1)) || (t.height & (t.height - 1))) {
