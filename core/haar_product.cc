@@ -1,16 +1,14 @@
 #include "core/haar_product.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
+#include "core/check_or_die.h"
 #include "core/haar_product_util.h"
 #include "core/haar_tree.h"
 
 namespace wavebake {
 namespace {
 
-using haar_product::CheckOrDie;
 using haar_product::NonZero;
 
 // f̂ on every square of one face, top-down: the root gets the scaling
@@ -41,8 +39,9 @@ void FaceParentSums(int n, const float* face_rgb, float* out) {
 }  // namespace
 
 HaarFactor HaarFactor::FromDense(int n, std::span<const float> rgb) {
-  CheckOrDie(n >= 1 && (n & (n - 1)) == 0, "face edge is not a power of two");
-  CheckOrDie(rgb.size() == static_cast<size_t>(18) * n * n, "factor is not 3·6N² floats");
+  CheckOrDie("HaarProduct", n >= 1 && (n & (n - 1)) == 0, "face edge is not a power of two");
+  CheckOrDie("HaarProduct", rgb.size() == static_cast<size_t>(18) * n * n,
+             "factor is not 3·6N² floats");
   HaarFactor f;
   f.n_ = n;
   f.squares_ = haar::SquaresOf(n);
@@ -110,16 +109,17 @@ HaarProduct::HaarProduct(int n)
 
 void HaarProduct::Accumulate(const HaarFactor& f, std::span<const uint32_t> g_index,
                              std::span<const float> g_value, RgbCube& w) {
-  CheckOrDie(f.n() == n_ && w.n == n_, "factor or output made for another face edge");
-  CheckOrDie(g_index.size() == g_value.size(), "g index and value sizes differ");
+  CheckOrDie("HaarProduct", f.n() == n_ && w.n == n_,
+             "factor or output made for another face edge");
+  CheckOrDie("HaarProduct", g_index.size() == g_value.size(), "g index and value sizes differ");
   const uint32_t per_face = static_cast<uint32_t>(n_) * n_;
   size_t first = 0;
   while (first < g_index.size()) {
     const uint32_t face = g_index[first] / per_face;
-    CheckOrDie(face < 6, "g index outside the cube");
+    CheckOrDie("HaarProduct", face < 6, "g index outside the cube");
     size_t last = first + 1;
     while (last < g_index.size() && g_index[last] / per_face == face) {
-      CheckOrDie(g_index[last] > g_index[last - 1], "g indices are not increasing");
+      CheckOrDie("HaarProduct", g_index[last] > g_index[last - 1], "g indices are not increasing");
       ++last;
     }
     AccumulateFace(f, static_cast<int>(face), g_index.subspan(first, last - first),

@@ -2,17 +2,16 @@
 // coefficients only (core/haar_product.h).
 #include <algorithm>
 
+#include "core/check_or_die.h"
 #include "core/haar_product.h"
 #include "core/haar_product_util.h"
 
 namespace wavebake {
 
-using haar_product::CheckOrDie;
-
 void HaarProduct::Gather(int face, std::span<const uint32_t> g_index,
                          std::span<const float> g_value, std::span<const uint32_t> wanted,
                          std::span<Gathered> out) {
-  CheckOrDie(out.size() == wanted.size(), "one gathered entry per wanted term");
+  CheckOrDie("HaarProduct", out.size() == wanted.size(), "one gathered entry per wanted term");
   const haar::FaceTables& tab = tables_;
   const uint32_t base = static_cast<uint32_t>(face) * n_ * n_;
   for (size_t k = 0; k < g_index.size(); ++k) g_[g_index[k] - base] = g_value[k];
@@ -42,8 +41,8 @@ void HaarProduct::Gather(int face, std::span<const uint32_t> g_index,
 void HaarProduct::Combine(const HaarFactor& f, int face, std::span<const uint32_t> g_index,
                           std::span<const float> g_value, std::span<const uint32_t> wanted,
                           std::span<const Gathered> gathered, std::span<float> rgb_out) {
-  CheckOrDie(f.n() == n_, "factor made for another face edge");
-  CheckOrDie(rgb_out.size() == 3 * wanted.size() && gathered.size() == wanted.size(),
+  CheckOrDie("HaarProduct", f.n() == n_, "factor made for another face edge");
+  CheckOrDie("HaarProduct", rgb_out.size() == 3 * wanted.size() && gathered.size() == wanted.size(),
              "output is not 3 floats and one gathered entry per wanted term");
   const haar::FaceTables& tab = tables_;
   const uint32_t base = static_cast<uint32_t>(face) * n_ * n_;

@@ -6,13 +6,12 @@
 #include <optional>
 
 #include "absl/strings/str_cat.h"
+#include "core/bake_params_io.h"
 
 namespace wavebake {
 namespace {
 
 constexpr int kMaxSide = 4096;
-
-bool IsPow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 std::optional<int> ParseInt(std::string_view s) {
   int v = 0;
@@ -100,7 +99,8 @@ absl::StatusOr<LayoutSpec> ParseLayout(std::string_view full_spec) {
   const int h = x == std::string_view::npos ? kNone : ParseInt(size.substr(x + 1)).value_or(kNone);
   if (w == kNone || h == kNone) return bad("has no size WxH after the colon (e.g. 64x64)");
   for (const auto& [name, v] : {std::pair{"width", w}, std::pair{"height", h}})
-    if (!IsPow2(v) || v > kMaxSide) return bad(name, " ", v, " is not a power of two in 1..4096");
+    if (!IsPowerOfTwo(v) || v > kMaxSide)
+      return bad(name, " ", v, " is not a power of two in 1..4096");
   out.width = w;
   out.height = h;
   return out;
