@@ -89,9 +89,9 @@ absl::Status SyncDirectory(const std::filesystem::path& dir) {
   return absl::OkStatus();
 }
 
-absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& path,
-                           std::span<const std::byte> data) {
-  if (absl::Status s = WriteAll(fd.get(), data, path); !s.ok()) return s;
+absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& path, FileParts parts) {
+  for (std::span<const std::byte> data : parts)
+    if (absl::Status s = WriteAll(fd.get(), data, path); !s.ok()) return s;
   if (::fsync(fd.get()) != 0) return ErrnoError("cannot fsync", path, errno);
   if (fd.Close() != 0) return ErrnoError("cannot close", path, errno);
   return absl::OkStatus();
@@ -100,7 +100,7 @@ absl::Status WriteAndClose(Fd& fd, const std::filesystem::path& path,
 // Creates, fills and syncs a temp file beside `path`; removes it on failure.
 absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir,
                                                 const std::filesystem::path& path,
-                                                std::span<const std::byte> data) {
+                                                FileParts parts) {
   for (int attempt = 0;; ++attempt) {
     const std::filesystem::path tmp = TempName(dir, path);
     // O_EXCL: never write into (or later remove) another writer's temp file.
@@ -109,7 +109,7 @@ absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir
     Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
     if (fd.get() < 0 && errno == EEXIST && attempt < 8) continue;
     if (fd.get() < 0) return ErrnoError("cannot create a temp file for", path, errno);
-    if (absl::Status s = WriteAndClose(fd, path, data); !s.ok()) {
+    if (absl::Status s = WriteAndClose(fd, path, parts); !s.ok()) {
       ::unlink(tmp.c_str());  // best effort; the write error is the one to report
       return s;
     }
@@ -145,8 +145,12 @@ absl::Status ReadWholeFile(const std::filesystem::path& path, Buffer& data) {
 }  // namespace
 
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data) {
+  return AtomicWriteFileParts(path, FileParts(&data, 1));
+}
+
+absl::Status AtomicWriteFileParts(const std::filesystem::path& path, FileParts parts) {
   const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
-  absl::StatusOr<std::filesystem::path> tmp = WriteTemp(dir, path, data);
+  absl::StatusOr<std::filesystem::path> tmp = WriteTemp(dir, path, parts);
   if (!tmp.ok()) return tmp.status();
   if (::rename(tmp->c_str(), path.c_str()) != 0) {
     const int err = errno;
@@ -171,6 +175,26 @@ absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& pat
 
 absl::Status ReadFileInto(const std::filesystem::path& path, ByteBuffer& data) {
   return ReadWholeFile(path, data);
+}
+
+absl::Status ReadFileRangeInto(const std::filesystem::path& path, uint64_t offset, size_t size,
+                               ByteBuffer& data) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
+  data.resize(size);
+  size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::pread(fd.get(), data.data() + done, size - done, off_t(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return ErrnoError("cannot read", path, errno);
+    if (n == 0) break;  // the file ends first
+    done += static_cast<size_t>(n);
+  }
+  if (done != size) {
+    return absl::OutOfRangeError(absl::StrFormat("short read of %s: %d of %d bytes at %d",
+                                                 path.string(), done, size, offset));
+  }
+  return absl::OkStatus();
 }
 
 absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text) {

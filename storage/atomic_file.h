@@ -3,6 +3,7 @@
 // concurrent or retried writers of the same file see either the old or the new
 // contents, never a partial file, on a local disk or a shared filesystem.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string_view>
@@ -20,6 +21,10 @@ namespace wavebake {
 // Errors name `path`; a full disk or quota (ENOSPC, EDQUOT) is ResourceExhausted
 // ("No space left on device"), as it is for CreateDirectories.
 absl::Status AtomicWriteFile(const std::filesystem::path& path, std::span<const std::byte> data);
+// The same for a file written as consecutive parts (a header and the frames
+// it describes), without first copying them into one buffer.
+using FileParts = std::span<const std::span<const std::byte>>;
+absl::Status AtomicWriteFileParts(const std::filesystem::path& path, FileParts parts);
 // The same for text (CSV, JSON, an address file).
 absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text);
 
@@ -35,6 +40,10 @@ absl::StatusOr<std::vector<std::byte>> ReadFile(const std::filesystem::path& pat
 // The same into `data`, resized to the file: a buffer reused file after file
 // keeps its pages (storage/byte_buffer.h).
 absl::Status ReadFileInto(const std::filesystem::path& path, ByteBuffer& data);
+// Bytes [offset, offset + size) of a file into `data`, resized to `size`: a
+// header without the rest. A file that ends first is OutOfRange.
+absl::Status ReadFileRangeInto(const std::filesystem::path& path, uint64_t offset, size_t size,
+                               ByteBuffer& data);
 
 // Creates `dir` and its parents; existing directories are fine (concurrent
 // workers create the same array directories).

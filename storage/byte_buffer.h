@@ -30,6 +30,10 @@ struct DefaultInitAllocator : std::allocator<T> {
   }
 };
 
-using ByteBuffer = std::vector<std::byte, DefaultInitAllocator<std::byte>>;
+// Plain values that are read or decompressed straight into after a resize.
+template <class T>
+using DefaultInitVector = std::vector<T, DefaultInitAllocator<T>>;
+
+using ByteBuffer = DefaultInitVector<std::byte>;
 
 }  // namespace wavebake

@@ -121,16 +121,23 @@ absl::StatusOr<std::vector<std::byte>> ZstdCompress(std::span<const std::byte> s
   return std::vector<std::byte>(frame.begin(), frame.end());
 }
 
-absl::Status ZstdDecompressInto(std::span<const std::byte> frame, std::span<std::byte> out,
-                                absl::string_view source) {
-  const size_t expected_size = out.size();
+absl::StatusOr<uint64_t> ZstdFrameContentSize(std::span<const std::byte> frame,
+                                              absl::string_view source) {
   const unsigned long long content = ZSTD_getFrameContentSize(frame.data(), frame.size());
   if (content == ZSTD_CONTENTSIZE_ERROR) return Corrupt(source, "not a zstd frame");
   if (content == ZSTD_CONTENTSIZE_UNKNOWN) {
     return Corrupt(source, "zstd frame header has no content size");
   }
-  if (content != expected_size) {
-    return Corrupt(source, absl::StrCat("frame holds ", content, " bytes, the chunk is ",
+  return uint64_t{content};
+}
+
+absl::Status ZstdDecompressInto(std::span<const std::byte> frame, std::span<std::byte> out,
+                                absl::string_view source) {
+  const size_t expected_size = out.size();
+  absl::StatusOr<uint64_t> content = ZstdFrameContentSize(frame, source);
+  if (!content.ok()) return content.status();
+  if (*content != expected_size) {
+    return Corrupt(source, absl::StrCat("frame holds ", *content, " bytes, the chunk is ",
                                         expected_size, " bytes"));
   }
   const size_t frame_size = ZSTD_findFrameCompressedSize(frame.data(), frame.size());

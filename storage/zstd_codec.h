@@ -3,6 +3,7 @@
 // content size (numcodecs 0.11 rejects frames without it) and the frame ends
 // with a content checksum, so a corrupted chunk is detected on read.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -32,5 +33,9 @@ absl::StatusOr<std::vector<std::byte>> ZstdDecompress(std::span<const std::byte>
 // The same, into `out`, whose size is the expected content size.
 absl::Status ZstdDecompressInto(std::span<const std::byte> frame, std::span<std::byte> out,
                                 absl::string_view source);
+// The content size a frame's header declares, to size its output before
+// decompressing (DataLoss naming `source` if the header has none).
+absl::StatusOr<uint64_t> ZstdFrameContentSize(std::span<const std::byte> frame,
+                                              absl::string_view source);
 
 }  // namespace wavebake

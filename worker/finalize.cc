@@ -39,8 +39,8 @@ absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store,
 }
 
 // Pass 1: nnz (the length of indices/data) and what the step choice needs to
-// know of every column (O(M)). A missing group is FailedPrecondition:
-// FINALIZE ran too early.
+// know of every column (O(M)), from the groups' column tables alone. A missing group is
+// FailedPrecondition: FINALIZE ran too early.
 struct GroupScan {
   int64_t nnz = 0;
   std::vector<ColumnQuantInput> columns;
@@ -57,13 +57,16 @@ int Threads(const FinalizeOptions& options) {
                              : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
-// Group g's result, checked against the plan; FailedPrecondition if it is
-// missing (FINALIZE ran too early).
+// Group g's result (only its column table if `columns_only`), checked
+// against the plan; FailedPrecondition if it is missing (FINALIZE ran too
+// early).
 absl::StatusOr<GroupResult> ReadCheckedGroup(const JobPlan& plan,
                                              const std::filesystem::path& store,
-                                             const FinalizeOptions& options, int g) {
+                                             const FinalizeOptions& options, int g,
+                                             bool columns_only = false) {
   if (absl::Status s = Stopped(options, g); !s.ok()) return s;
-  absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
+  absl::StatusOr<GroupResult> r =
+      columns_only ? ReadGroupColumns(store, g) : ReadGroupResult(store, g);
   if (absl::IsNotFound(r.status()))
     return absl::FailedPreconditionError(
         absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
@@ -83,10 +86,10 @@ absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
   return OrderedParallel<Columns>(
       plan.groups, threads, 2 * threads,
       [&](int g) -> absl::StatusOr<Columns> {
-        absl::StatusOr<GroupResult> r = ReadCheckedGroup(plan, store, options, g);
+        absl::StatusOr<GroupResult> r = ReadCheckedGroup(plan, store, options, g, true);
         if (!r.ok()) return r.status();
         Columns out;
-        out.kept = static_cast<int64_t>(r->positions.size());
+        for (const GroupColumn& c : r->columns) out.kept += c.kept;
         for (const GroupColumn& c : r->columns) {
           out.columns.push_back({.max_abs = c.max_abs,
                                  .step_unit = c.step_unit,
@@ -154,7 +157,7 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
 // a column without codes).
 struct QuantizedGroup {
   GroupResult result;
-  std::vector<int16_t> q;  // parallel to result.positions
+  DefaultInitVector<int16_t> q;  // parallel to result.positions, written in full
   std::vector<double> error_energy;
   std::vector<int> bits;
 };

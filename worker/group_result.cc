@@ -1,5 +1,6 @@
 #include "worker/group_result.h"
 
+#include <array>
 #include <cstring>
 #include <span>
 #include <string>
@@ -12,12 +13,25 @@
 namespace wavebake {
 namespace {
 
-constexpr char kMagic[8] = {'W', 'B', 'G', 'R', 'O', 'U', 'P', '2'};
+constexpr char kMagic[8] = {'W', 'B', 'G', 'R', 'O', 'U', 'P', '3'};
 
-// Group results live until FINALIZE reads them (twice) and are dropped with
-// staging: a fast level. Their float values hardly compress at any level.
+// Group results live until FINALIZE reads them and are dropped with staging:
+// a fast level. Their float values hardly compress at any level.
 constexpr int kGroupResultZstdLevel = -3;
-constexpr size_t kPreamble = sizeof kMagic + sizeof(uint64_t);
+
+// The compressed sizes of the frames after the magic, in file order.
+enum Frame { kTableFrame, kPositionsFrame, kValuesFrame, kFrames };
+struct Preamble {
+  std::array<uint64_t, kFrames> frame_bytes{};
+  uint64_t End(int frame) const {  // the file offset just past `frame`
+    uint64_t end = sizeof kMagic + sizeof frame_bytes;
+    for (int f = 0; f <= frame; ++f) end += frame_bytes[f];
+    return end;
+  }
+};
+constexpr size_t kPreambleBytes = sizeof kMagic + sizeof Preamble::frame_bytes;
+// A corrupt size must not become a huge allocation or read.
+constexpr uint64_t kMaxFrameBytes = uint64_t{1} << 36;
 
 // Appends plain values as their little-endian bytes (the host order, dtype.h).
 class ByteWriter {
@@ -26,11 +40,6 @@ class ByteWriter {
   void Put(const T& v) {
     const auto* p = reinterpret_cast<const std::byte*>(&v);
     bytes_.insert(bytes_.end(), p, p + sizeof(T));
-  }
-  template <class T>
-  void PutAll(const std::vector<T>& v) {
-    const auto b = std::as_bytes(std::span(v));
-    bytes_.insert(bytes_.end(), b.begin(), b.end());
   }
   std::vector<std::byte>& bytes() { return bytes_; }
 
@@ -48,15 +57,6 @@ class ByteReader {
     GetInto(std::as_writable_bytes(std::span(&v, 1)));
     return v;
   }
-  template <class T>
-  void GetAll(std::vector<T>& v, size_t n) {
-    if (n > (bytes_.size() - pos_) / sizeof(T)) {
-      ok_ = false;
-      return;
-    }
-    v.resize(n);
-    GetInto(std::as_writable_bytes(std::span(v)));
-  }
   bool ok() const { return ok_; }
   bool at_end() const { return pos_ == bytes_.size(); }
 
@@ -66,9 +66,6 @@ class ByteReader {
       ok_ = false;
       return;
     }
-    // An empty vector's data() may be null, which memcpy may not be given
-    // even for 0 bytes (a group whose columns kept nothing).
-    if (out.empty()) return;
     std::memcpy(out.data(), bytes_.data() + pos_, out.size());
     pos_ += out.size();
   }
@@ -77,7 +74,7 @@ class ByteReader {
   bool ok_ = true;
 };
 
-std::vector<std::byte> Payload(const GroupResult& r) {
+std::vector<std::byte> Table(const GroupResult& r) {
   ByteWriter w;
   w.Put<int32_t>(r.group);
   w.Put<int32_t>(r.first_column);
@@ -96,26 +93,25 @@ std::vector<std::byte> Payload(const GroupResult& r) {
     w.Put(c.max_abs);
     w.Put(c.step_unit);
   }
-  w.PutAll(r.positions);
-  w.PutAll(r.values);
   return std::move(w.bytes());
 }
 
-absl::StatusOr<GroupResult> ParsePayload(std::span<const std::byte> bytes,
-                                         const std::string& source) {
+// The table into `r` (header and columns); returns nnz, checked against the
+// columns' kept counts.
+absl::StatusOr<uint64_t> ParseTable(std::span<const std::byte> bytes, const std::string& source,
+                                    GroupResult* r) {
   ByteReader rd(bytes);
-  GroupResult r;
-  r.group = rd.Get<int32_t>();
-  r.first_column = rd.Get<int32_t>();
+  r->group = rd.Get<int32_t>();
+  r->first_column = rd.Get<int32_t>();
   const int32_t count = rd.Get<int32_t>();
   rd.Get<int32_t>();
   const uint64_t nnz = rd.Get<uint64_t>();
-  r.matrix_energy = rd.Get<double>();
-  if (!rd.ok() || count < 0 || nnz > bytes.size())
+  r->matrix_energy = rd.Get<double>();
+  if (!rd.ok() || count < 0 || uint64_t(count) > bytes.size())
     return absl::DataLossError(absl::StrCat(source, ": bad group header"));
-  r.columns.resize(count);
+  r->columns.resize(count);
   uint64_t kept_sum = 0;
-  for (GroupColumn& c : r.columns) {
+  for (GroupColumn& c : r->columns) {
     c.depth = rd.Get<uint8_t>();
     c.min_bits = rd.Get<uint8_t>();
     rd.Get<uint16_t>();
@@ -127,11 +123,52 @@ absl::StatusOr<GroupResult> ParsePayload(std::span<const std::byte> bytes,
     c.step_unit = rd.Get<double>();
     kept_sum += c.kept;
   }
-  rd.GetAll(r.positions, nnz);
-  rd.GetAll(r.values, nnz);
   if (!rd.ok() || !rd.at_end() || kept_sum != nnz)
-    return absl::DataLossError(absl::StrCat(source, ": group payload is inconsistent"));
-  return r;
+    return absl::DataLossError(absl::StrCat(source, ": group table is inconsistent"));
+  return nnz;
+}
+
+absl::StatusOr<Preamble> ParsePreamble(std::span<const std::byte> head, const std::string& source) {
+  if (head.size() < kPreambleBytes || std::memcmp(head.data(), kMagic, sizeof kMagic) != 0)
+    return absl::DataLossError(absl::StrCat(source, ": not a group result (bad magic)"));
+  Preamble p;
+  std::memcpy(p.frame_bytes.data(), head.data() + sizeof kMagic, sizeof p.frame_bytes);
+  for (uint64_t bytes : p.frame_bytes)
+    if (bytes > kMaxFrameBytes)
+      return absl::DataLossError(absl::StrCat(source, ": frame size ", bytes));
+  return p;
+}
+
+// Decompresses one frame into `out`, sized first from the frame's header,
+// which must declare `expected` bytes.
+template <class Vector>
+absl::Status DecompressFrame(std::span<const std::byte> frame, uint64_t expected,
+                             const std::string& source, Vector& out) {
+  absl::StatusOr<uint64_t> content = ZstdFrameContentSize(frame, source);
+  if (!content.ok()) return content.status();
+  if (*content != expected)
+    return absl::DataLossError(
+        absl::StrCat(source, ": frame holds ", *content, " bytes, the table says ", expected));
+  out.resize(expected / sizeof(typename Vector::value_type));
+  return ZstdDecompressInto(frame, std::as_writable_bytes(std::span(out)), source);
+}
+
+// The table frame, decompressed and parsed into `r`; returns nnz.
+absl::StatusOr<uint64_t> ReadTable(std::span<const std::byte> frame, const std::string& source,
+                                   GroupResult* r) {
+  thread_local ByteBuffer table;
+  absl::StatusOr<uint64_t> size = ZstdFrameContentSize(frame, source);
+  if (!size.ok()) return size.status();
+  if (*size > kMaxFrameBytes)
+    return absl::DataLossError(absl::StrCat(source, ": table size ", *size));
+  table.resize(*size);
+  if (absl::Status s = ZstdDecompressInto(frame, table, source); !s.ok()) return s;
+  return ParseTable(table, source, r);
+}
+
+absl::Status CheckGroup(const GroupResult& r, int group, const std::string& source) {
+  if (r.group == group) return absl::OkStatus();
+  return absl::DataLossError(absl::StrCat(source, ": holds group ", r.group));
 }
 
 }  // namespace
@@ -145,41 +182,72 @@ std::filesystem::path GroupResultPath(const std::filesystem::path& store, int gr
 }
 
 absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupResult& result) {
-  const std::vector<std::byte> payload = Payload(result);
-  ByteBuffer frame;
-  if (absl::Status s = ZstdCompressInto(payload, kGroupResultZstdLevel, frame); !s.ok()) return s;
-  ByteWriter file;
-  for (char c : kMagic) file.Put(c);
-  file.Put<uint64_t>(payload.size());
-  std::vector<std::byte>& bytes = file.bytes();
-  bytes.insert(bytes.end(), frame.begin(), frame.end());
+  const std::vector<std::byte> table = Table(result);
+  thread_local std::array<ByteBuffer, kFrames> frames;
+  const std::array<std::span<const std::byte>, kFrames> raw = {
+      table, std::as_bytes(std::span(result.positions)), std::as_bytes(std::span(result.values))};
+  Preamble p;
+  for (int f = 0; f < kFrames; ++f) {
+    if (absl::Status s = ZstdCompressInto(raw[f], kGroupResultZstdLevel, frames[f]); !s.ok())
+      return s;
+    p.frame_bytes[f] = frames[f].size();
+  }
+  std::array<std::byte, kPreambleBytes> head;
+  std::memcpy(head.data(), kMagic, sizeof kMagic);
+  std::memcpy(head.data() + sizeof kMagic, p.frame_bytes.data(), sizeof p.frame_bytes);
+  const std::array<std::span<const std::byte>, 1 + kFrames> parts = {head, frames[0], frames[1],
+                                                                     frames[2]};
   if (absl::Status s = CreateDirectories(GroupResultDir(store)); !s.ok()) return s;
-  return AtomicWriteFile(GroupResultPath(store, result.group), bytes);
+  return AtomicWriteFileParts(GroupResultPath(store, result.group), parts);
 }
 
 absl::StatusOr<GroupResult> ReadGroupResult(const std::filesystem::path& store, int group) {
   const std::filesystem::path path = GroupResultPath(store, group);
-  // Per-thread buffers, reused group after group (storage/byte_buffer.h);
-  // ParsePayload copies the result out of them.
-  thread_local ByteBuffer file, payload;
-  if (absl::Status s = ReadFileInto(path, file); !s.ok()) return s;
   const std::string source = path.string();
-  if (file.size() < kPreamble || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0)
-    return absl::DataLossError(absl::StrCat(source, ": not a group result (bad magic)"));
-  uint64_t payload_size = 0;
-  std::memcpy(&payload_size, file.data() + sizeof kMagic, sizeof payload_size);
-  if (payload_size > (uint64_t{1} << 36))  // a corrupt size must not become a huge allocation
-    return absl::DataLossError(absl::StrCat(source, ": payload size ", payload_size));
-  payload.resize(payload_size);
-  if (absl::Status s = ZstdDecompressInto(std::span(file).subspan(kPreamble), payload, source);
-      !s.ok()) {
-    payload = {};  // a corrupt size must not stay reserved either
+  // A per-thread buffer, reused group after group (storage/byte_buffer.h).
+  thread_local ByteBuffer file;
+  if (absl::Status s = ReadFileInto(path, file); !s.ok()) return s;
+  absl::StatusOr<Preamble> p = ParsePreamble(file, source);
+  if (!p.ok()) return p.status();
+  if (file.size() != p->End(kValuesFrame))
+    return absl::DataLossError(
+        absl::StrCat(source, ": ", file.size(), " bytes, the frames need ", p->End(kValuesFrame)));
+  auto frame = [&](int f) {
+    const uint64_t end = p->End(f);
+    return std::span<const std::byte>(file).subspan(end - p->frame_bytes[f], p->frame_bytes[f]);
+  };
+  GroupResult r;
+  absl::StatusOr<uint64_t> nnz = ReadTable(frame(kTableFrame), source, &r);
+  if (!nnz.ok()) return nnz.status();
+  if (absl::Status s = CheckGroup(r, group, source); !s.ok()) return s;
+  if (absl::Status s =
+          DecompressFrame(frame(kPositionsFrame), *nnz * sizeof(uint32_t), source, r.positions);
+      !s.ok())
     return s;
-  }
-  absl::StatusOr<GroupResult> result = ParsePayload(payload, source);
-  if (result.ok() && result->group != group)
-    return absl::DataLossError(absl::StrCat(source, ": holds group ", result->group));
-  return result;
+  if (absl::Status s = DecompressFrame(frame(kValuesFrame), *nnz * sizeof(float), source, r.values);
+      !s.ok())
+    return s;
+  return r;
+}
+
+absl::StatusOr<GroupResult> ReadGroupColumns(const std::filesystem::path& store, int group) {
+  const std::filesystem::path path = GroupResultPath(store, group);
+  const std::string source = path.string();
+  thread_local ByteBuffer head, frame;
+  absl::Status read = ReadFileRangeInto(path, 0, kPreambleBytes, head);
+  if (absl::IsOutOfRange(read)) return ParsePreamble({}, source).status();  // too short: bad magic
+  if (!read.ok()) return read;
+  absl::StatusOr<Preamble> p = ParsePreamble(head, source);
+  if (!p.ok()) return p.status();
+  read = ReadFileRangeInto(path, kPreambleBytes, p->frame_bytes[kTableFrame], frame);
+  if (absl::IsOutOfRange(read))
+    return absl::DataLossError(absl::StrCat(source, ": truncated: ", read.message()));
+  if (!read.ok()) return read;
+  GroupResult r;
+  absl::StatusOr<uint64_t> nnz = ReadTable(frame, source, &r);
+  if (!nnz.ok()) return nnz.status();
+  if (absl::Status s = CheckGroup(r, group, source); !s.ok()) return s;
+  return r;
 }
 
 }  // namespace wavebake

@@ -3,19 +3,25 @@
 // §2): the group's coded columns, unquantized (the bit count is a
 // matrix-wide choice FINALIZE makes). Stored as one file per group,
 // staging/groups/<g>.wbg, replaced atomically, so a retried task simply
-// rewrites it. Format (little-endian): 8-byte magic "WBGROUP2", uint64 size of
-// the payload, then the payload as one zstd frame (with checksum):
-//   int32 group, int32 first_column, int32 columns, int32 0, uint64 nnz,
-//   double matrix_energy,
-//   per column: uint8 depth, uint8 min_bits, uint16 0, uint32 kept,
-//               double energy, reference_energy, dropped_energy, max_abs, step_unit,
-//   uint32 positions[nnz], float values[nnz]   (columns concatenated in order).
+// rewrites it. Format (little-endian): 8-byte magic "WBGROUP3", then uint64
+// sizes: the table's, and the compressed size of each of the three zstd
+// frames (with checksums) that follow, in this order:
+//   table: int32 group, int32 first_column, int32 columns, int32 0,
+//          uint64 nnz, double matrix_energy,
+//          per column: uint8 depth, uint8 min_bits, uint16 0, uint32 kept,
+//                      double energy, reference_energy, dropped_energy,
+//                      max_abs, step_unit;
+//   uint32 positions[nnz];  float values[nnz]   (columns concatenated in order).
+// The table comes first and alone so that FINALIZE's first pass, which needs
+// only the columns, reads and decompresses a few kilobytes per group instead
+// of the whole group.
 #include <cstdint>
 #include <filesystem>
 #include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "storage/byte_buffer.h"
 
 namespace wavebake {
 
@@ -35,8 +41,10 @@ struct GroupResult {
   int first_column = 0;
   double matrix_energy = 0;  // mean column energy of the matrix the group saw
   std::vector<GroupColumn> columns;
-  std::vector<uint32_t> positions;
-  std::vector<float> values;
+  // Empty after ReadGroupColumns. Default-initialized on growth: a read
+  // decompresses straight into them (storage/byte_buffer.h).
+  DefaultInitVector<uint32_t> positions;
+  DefaultInitVector<float> values;
 };
 
 std::filesystem::path GroupResultDir(const std::filesystem::path& store);
@@ -46,5 +54,7 @@ absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupRes
 // NotFound if the group has not been written; DataLoss naming the file if it
 // is corrupt or inconsistent.
 absl::StatusOr<GroupResult> ReadGroupResult(const std::filesystem::path& store, int group);
+// The same without positions and values: the header and the column table.
+absl::StatusOr<GroupResult> ReadGroupColumns(const std::filesystem::path& store, int group);
 
 }  // namespace wavebake

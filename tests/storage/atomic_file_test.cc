@@ -44,6 +44,35 @@ TEST(AtomicFileTest, WritesReplacesAndReadsBack) {
   EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
 }
 
+// A file written in parts is their concatenation, empty parts included.
+TEST(AtomicFileTest, PartsAreWrittenInOrder) {
+  TempDir tmp;
+  const auto path = tmp.path() / "parts.bin";
+  const std::vector<std::byte> a = Bytes("head:"), b = Bytes(""),
+                               c = Bytes(std::string(70000, 'x'));
+  const std::span<const std::byte> parts[] = {a, b, c, a};
+  ASSERT_TRUE(AtomicWriteFileParts(path, parts).ok());
+  EXPECT_EQ(Slurp(path), "head:" + std::string(70000, 'x') + "head:");
+  EXPECT_THAT(PartialFiles(tmp.path()), IsEmpty());
+}
+
+// A range inside the file reads exactly those bytes; one reaching past the
+// end is OutOfRange naming the file; a missing file is NotFound.
+TEST(AtomicFileTest, ReadFileRangeReadsExactlyTheRange) {
+  TempDir tmp;
+  const auto path = tmp.path() / "range.bin";
+  ASSERT_TRUE(AtomicWriteFile(path, Bytes("0123456789")).ok());
+  ByteBuffer buf;
+  ASSERT_TRUE(ReadFileRangeInto(path, 3, 4, buf).ok());
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(buf.data()), buf.size()), "3456");
+  ASSERT_TRUE(ReadFileRangeInto(path, 10, 0, buf).ok());
+  EXPECT_TRUE(buf.empty());
+  const absl::Status past = ReadFileRangeInto(path, 8, 3, buf);
+  EXPECT_TRUE(absl::IsOutOfRange(past)) << past;
+  EXPECT_THAT(past.message(), HasSubstr("range.bin"));
+  EXPECT_TRUE(absl::IsNotFound(ReadFileRangeInto(tmp.path() / "nope", 0, 1, buf)));
+}
+
 TEST(AtomicFileTest, MissingFileIsNotFoundNamingThePath) {
   TempDir tmp;
   absl::StatusOr<std::vector<std::byte>> read = ReadFile(tmp.path() / "nope");
