@@ -8,9 +8,11 @@ source "$(dirname "$0")/cluster_lib.bash" "$1"
 start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 3
 start_worker w1 "$TMP/data/store" --threads 2
 
-# Two tiles of 32×32 cells at N = 32, K = 64: tens of seconds each, so
-# the cancel surely lands inside them.
-job=$("$WB" submit builtin:sphere-plane --light-res 32 --supersample 64 --refine off --layout camera:64x32 \
+# Two tiles of 32×32 cells at N = 64, K = 256: neither had finished 8 s into
+# an embedded bake on 2 cores, so the cancel surely lands inside them (at
+# N = 32, K = 64 the faster row loop finished them in 1.6 s, sometimes
+# before the cancel came).
+job=$("$WB" submit builtin:sphere-plane --light-res 64 --supersample 256 --refine off --layout camera:64x32 \
   --tile-size 32 --output-name big.wbk --coordinator "$ADDR")
 wait_until 30 "both tiles leased" job_at_least "$job" leased_tasks 2
 wait_until 30 "the tiles started" test -d "$TMP/data/store/.big.wbk.partial/staging"

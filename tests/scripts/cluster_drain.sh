@@ -8,8 +8,10 @@ start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 5
 start_worker w1 "$TMP/data/store" --threads 1
 w1=$WORKER_PID
 
-# 4 tiles of 16×16 cells, ~40 Mrays each: long enough to be inside one.
-job=$("$WB" submit builtin:disk-over-plane --light-res 32 --supersample 64 --refine off --layout camera:32x32 \
+# 4 tiles of 16×16 cells at N = 64, K = 256, ~500 Mrays each (13.8 s for
+# all four in an embedded bake with one worker): the signal lands inside
+# one, with tiles left to lease.
+job=$("$WB" submit builtin:disk-over-plane --light-res 64 --supersample 256 --refine off --layout camera:32x32 \
   --tile-size 16 --output-name disk.wbk --coordinator "$ADDR")
 wait_until 30 "a tile leased" job_at_least "$job" leased_tasks 1
 kill -TERM "$w1"
