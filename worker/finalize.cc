@@ -39,8 +39,8 @@ absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store,
 }
 
 // Pass 1: nnz (the length of indices/data) and what the step choice needs to
-// know of every column (O(M)), from the groups' column tables alone. A missing group is
-// FailedPrecondition: FINALIZE ran too early.
+// know of every column (O(M)), from the groups' column tables alone. A
+// missing group is FailedPrecondition: FINALIZE ran too early.
 struct GroupScan {
   int64_t nnz = 0;
   std::vector<ColumnQuantInput> columns;
@@ -89,8 +89,8 @@ absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
         absl::StatusOr<GroupResult> r = ReadCheckedGroup(plan, store, options, g, true);
         if (!r.ok()) return r.status();
         Columns out;
-        for (const GroupColumn& c : r->columns) out.kept += c.kept;
         for (const GroupColumn& c : r->columns) {
+          out.kept += c.kept;
           out.columns.push_back({.max_abs = c.max_abs,
                                  .step_unit = c.step_unit,
                                  .reference_energy = c.reference_energy,

@@ -30,8 +30,10 @@ struct Preamble {
   }
 };
 constexpr size_t kPreambleBytes = sizeof kMagic + sizeof Preamble::frame_bytes;
-// A corrupt size must not become a huge allocation or read.
+// A corrupt size must not become a huge allocation or read. A table holds
+// 48 bytes per column, and a group has at most the M ≤ 6·256² columns of a job.
 constexpr uint64_t kMaxFrameBytes = uint64_t{1} << 36;
+constexpr uint64_t kMaxTableBytes = uint64_t{1} << 26;
 
 // Appends plain values as their little-endian bytes (the host order, dtype.h).
 class ByteWriter {
@@ -159,7 +161,7 @@ absl::StatusOr<uint64_t> ReadTable(std::span<const std::byte> frame, const std::
   thread_local ByteBuffer table;
   absl::StatusOr<uint64_t> size = ZstdFrameContentSize(frame, source);
   if (!size.ok()) return size.status();
-  if (*size > kMaxFrameBytes)
+  if (*size > kMaxTableBytes)
     return absl::DataLossError(absl::StrCat(source, ": table size ", *size));
   table.resize(*size);
   if (absl::Status s = ZstdDecompressInto(frame, table, source); !s.ok()) return s;
