@@ -8,11 +8,12 @@
 # "Determinism").
 source "$(dirname "$0")/cluster_lib.bash" "$1"
 
-# 16 tiles of 8×8 cells, each long enough (N = 16, K = 256: ~12 Mrays, about
-# a second on one thread) that neither the gap between two tasks nor a status
-# poll on a loaded machine is likely to span the kill: the victim must hold a
-# lease when it dies, and the job must still be baking.
-BAKE=(builtin:cubes-wall --light-res 16 --supersample 256 --refine off --layout camera:32x32
+# 16 tiles of 8×8 cells, each long enough (N = 32, K = 256: ~40 Mrays, 7.0 s
+# for all sixteen and the column stage in an embedded bake with one worker)
+# that neither the gap between two tasks nor a status poll on a loaded
+# machine is likely to span the kill: the victim must hold a lease when it
+# dies, and the job must still be baking.
+BAKE=(builtin:cubes-wall --light-res 32 --supersample 256 --refine off --layout camera:32x32
       --tile-size 8 --column-group 512)
 
 start_coordinator "$TMP/data" "$(free_port)" --lease-seconds 2
