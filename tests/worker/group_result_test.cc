@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 #include <vector>
 
 #include "tests/testing/scratch_dir.h"
@@ -69,6 +70,26 @@ std::vector<char> GroupFileBytes(const std::filesystem::path& p) {
 
 void WriteGroupFile(const std::filesystem::path& p, const std::vector<char>& bytes) {
   std::ofstream(p, std::ios::binary | std::ios::trunc).write(bytes.data(), bytes.size());
+}
+
+// Writes group 1's file under `dir`, then lets `damage` change its bytes.
+template <class Damage>
+std::filesystem::path WriteDamagedGroup(const std::filesystem::path& dir, Damage damage) {
+  EXPECT_TRUE(WriteGroupResult(dir, SampleGroup(1)).ok());
+  const auto path = GroupResultPath(dir, 1);
+  std::vector<char> bytes = GroupFileBytes(path);
+  damage(bytes);
+  WriteGroupFile(path, bytes);
+  return path;
+}
+
+// Both reads of `group` are DataLoss with `why` in the message.
+void ExpectBothReadsLost(const std::filesystem::path& dir, int group, const std::string& why) {
+  for (const absl::Status& s :
+       {ReadGroupResult(dir, group).status(), ReadGroupColumns(dir, group).status()}) {
+    EXPECT_TRUE(absl::IsDataLoss(s)) << s;
+    EXPECT_THAT(s.message(), HasSubstr(why));
+  }
 }
 
 TEST(GroupResultTest, ReadsBackWhatWasWritten) {
@@ -143,11 +164,9 @@ TEST(GroupResultTest, TruncatedFileIsDataLoss) {
 // alone does not read that frame.
 TEST(GroupResultTest, DamagedValuesAreDataLoss) {
   ScratchDir dir;
-  ASSERT_TRUE(WriteGroupResult(dir.path(), SampleGroup(1)).ok());
-  const auto path = GroupResultPath(dir.path(), 1);
-  std::vector<char> bytes = GroupFileBytes(path);
-  bytes[bytes.size() - 8] ^= 0x40;  // inside the last frame, before its checksum
-  WriteGroupFile(path, bytes);
+  const auto path = WriteDamagedGroup(dir.path(), [](std::vector<char>& bytes) {
+    bytes[bytes.size() - 8] ^= 0x40;  // inside the last frame, before its checksum
+  });
   const absl::Status s = ReadGroupResult(dir.path(), 1).status();
   EXPECT_TRUE(absl::IsDataLoss(s)) << s;
   EXPECT_THAT(s.message(), HasSubstr(path.string()));
@@ -156,33 +175,21 @@ TEST(GroupResultTest, DamagedValuesAreDataLoss) {
 
 TEST(GroupResultTest, BadMagicIsDataLoss) {
   ScratchDir dir;
-  ASSERT_TRUE(WriteGroupResult(dir.path(), SampleGroup(1)).ok());
-  const auto path = GroupResultPath(dir.path(), 1);
-  std::vector<char> bytes = GroupFileBytes(path);
-  bytes[7] = '2';  // the format before the column table stood alone
-  WriteGroupFile(path, bytes);
-  for (const absl::Status& s :
-       {ReadGroupResult(dir.path(), 1).status(), ReadGroupColumns(dir.path(), 1).status()}) {
-    EXPECT_TRUE(absl::IsDataLoss(s)) << s;
-    EXPECT_THAT(s.message(), HasSubstr("bad magic"));
-  }
+  WriteDamagedGroup(dir.path(), [](std::vector<char>& bytes) {
+    bytes[7] = '2';  // the format before the column table stood alone
+  });
+  ExpectBothReadsLost(dir.path(), 1, "bad magic");
 }
 
 // A frame size far beyond any real group is refused before anything is
 // allocated or read for it.
 TEST(GroupResultTest, AbsurdFrameSizeIsDataLoss) {
   ScratchDir dir;
-  ASSERT_TRUE(WriteGroupResult(dir.path(), SampleGroup(1)).ok());
-  const auto path = GroupResultPath(dir.path(), 1);
-  std::vector<char> bytes = GroupFileBytes(path);
-  const uint64_t huge = uint64_t{1} << 62;
-  std::memcpy(bytes.data() + 8, &huge, sizeof huge);  // the table frame's size
-  WriteGroupFile(path, bytes);
-  for (const absl::Status& s :
-       {ReadGroupResult(dir.path(), 1).status(), ReadGroupColumns(dir.path(), 1).status()}) {
-    EXPECT_TRUE(absl::IsDataLoss(s)) << s;
-    EXPECT_THAT(s.message(), HasSubstr("frame size"));
-  }
+  WriteDamagedGroup(dir.path(), [](std::vector<char>& bytes) {
+    const uint64_t huge = uint64_t{1} << 62;
+    std::memcpy(bytes.data() + 8, &huge, sizeof huge);  // the table frame's size
+  });
+  ExpectBothReadsLost(dir.path(), 1, "frame size");
 }
 
 // Another group's file under this group's name is not taken for it.
@@ -190,11 +197,7 @@ TEST(GroupResultTest, WrongGroupIsDataLoss) {
   ScratchDir dir;
   ASSERT_TRUE(WriteGroupResult(dir.path(), SampleGroup(1)).ok());
   std::filesystem::copy_file(GroupResultPath(dir.path(), 1), GroupResultPath(dir.path(), 2));
-  for (const absl::Status& s :
-       {ReadGroupResult(dir.path(), 2).status(), ReadGroupColumns(dir.path(), 2).status()}) {
-    EXPECT_TRUE(absl::IsDataLoss(s)) << s;
-    EXPECT_THAT(s.message(), HasSubstr("holds group 1"));
-  }
+  ExpectBothReadsLost(dir.path(), 2, "holds group 1");
 }
 
 }  // namespace
