@@ -141,17 +141,12 @@ absl::StatusOr<Preamble> ParsePreamble(std::span<const std::byte> head, const st
   return p;
 }
 
-// Decompresses one frame into `out`, sized first from the frame's header,
-// which must declare `expected` bytes.
+// Decompresses one frame into `out`, resized to the `bytes` the (checksummed)
+// table expects; ZstdDecompressInto refuses a frame that declares another size.
 template <class Vector>
-absl::Status DecompressFrame(std::span<const std::byte> frame, uint64_t expected,
+absl::Status DecompressFrame(std::span<const std::byte> frame, uint64_t bytes,
                              const std::string& source, Vector& out) {
-  absl::StatusOr<uint64_t> content = ZstdFrameContentSize(frame, source);
-  if (!content.ok()) return content.status();
-  if (*content != expected)
-    return absl::DataLossError(
-        absl::StrCat(source, ": frame holds ", *content, " bytes, the table says ", expected));
-  out.resize(expected / sizeof(typename Vector::value_type));
+  out.resize(bytes / sizeof(typename Vector::value_type));
   return ZstdDecompressInto(frame, std::as_writable_bytes(std::span(out)), source);
 }
 
