@@ -1,10 +1,9 @@
 #include "core/bake_params_io.h"
 
 #include "absl/strings/str_cat.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
-
-bool IsPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
 std::string_view ToString(ColumnMode m) {
   switch (m) {
@@ -83,7 +82,7 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   auto bad = [](const char* field, const auto&... msg) {
     return absl::InvalidArgumentError(absl::StrCat(field, ": ", msg...));
   };
-  if (!IsPowerOfTwo(p.light_res) || p.light_res < 8 || p.light_res > 256)
+  if (!IsPowerOfTwoIn(p.light_res, 8, 256))
     return bad("light_res", p.light_res, " is not a power of two in 8..256");
   if (absl::Status s = ValidateLightDomain(p.light_domain); !s.ok()) return s;
   if (p.supersample < 1 || p.supersample > 256)
@@ -108,7 +107,7 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
     return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
   if (p.bits != 0 && (p.bits < 2 || p.bits > 16))
     return bad("bits", p.bits, " is outside 2..16 (or auto)");
-  if (!IsPowerOfTwo(p.tile_size) || p.tile_size > 256)
+  if (!IsPowerOfTwoIn(p.tile_size, 1, 256))
     return bad("tile_size", p.tile_size, " is not a power of two up to 256");
   if (p.column_group < 0 || p.column_group > 65536)
     return bad("column_group", p.column_group, " is outside 1..65536 (or 0: the plan's)");

@@ -26,6 +26,4 @@ absl::StatusOr<Transport> ParseTransport(std::string_view s);          // diffus
 // not a power of two in 8..256"). The layout string is checked by ParseLayout.
 absl::Status ValidateBakeParams(const BakeParams& p);
 
-bool IsPowerOfTwo(int v);
-
 }  // namespace wavebake

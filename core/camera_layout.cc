@@ -5,8 +5,8 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
 #include "core/pinhole_frame.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 

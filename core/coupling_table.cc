@@ -4,11 +4,10 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 namespace {
-
-bool PowerOfTwo(int v) { return v >= 2 && v <= 4096 && (v & (v - 1)) == 0; }
 
 // Grid point j of `count` over (lo, hi), endpoints excluded.
 double Inside(double lo, double hi, int j, int count) { return lo + (hi - lo) * (j + 0.5) / count; }
@@ -19,8 +18,10 @@ absl::StatusOr<CouplingTable> CouplingTable::Build(const CouplingTableOptions& o
   const auto bad = [](const char* field, const auto&... why) {
     return absl::InvalidArgumentError(absl::StrCat("coupling_table.", field, ": ", why...));
   };
-  if (!PowerOfTwo(o.source_res)) return bad("source_res", o.source_res, " is not a power of two");
-  if (!PowerOfTwo(o.target_res)) return bad("target_res", o.target_res, " is not a power of two");
+  if (!IsPowerOfTwoIn(o.source_res, 2, 4096))
+    return bad("source_res", o.source_res, " is not a power of two");
+  if (!IsPowerOfTwoIn(o.target_res, 2, 4096))
+    return bad("target_res", o.target_res, " is not a power of two");
   if (!(o.s_min > 0 && o.s_max > o.s_min && std::isfinite(o.s_max)))
     return bad("s_min", "need 0 < s_min < s_max (", o.s_min, ", ", o.s_max, ")");
   if (o.scales < 2 || o.offsets < 2 || int64_t{o.scales} * o.offsets > (1 << 22))

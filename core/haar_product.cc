@@ -5,6 +5,7 @@
 #include "core/check_or_die.h"
 #include "core/haar_product_util.h"
 #include "core/haar_tree.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 namespace {
@@ -39,7 +40,7 @@ void FaceParentSums(int n, const float* face_rgb, float* out) {
 }  // namespace
 
 HaarFactor HaarFactor::FromDense(int n, std::span<const float> rgb) {
-  CheckOrDie("HaarProduct", n >= 1 && (n & (n - 1)) == 0, "face edge is not a power of two");
+  CheckOrDie("HaarProduct", IsPowerOfTwo(n), "face edge is not a power of two");
   CheckOrDie("HaarProduct", rgb.size() == static_cast<size_t>(18) * n * n,
              "factor is not 3·6N² floats");
   HaarFactor f;

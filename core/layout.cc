@@ -7,6 +7,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/bake_params_io.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 namespace {
@@ -99,7 +100,7 @@ absl::StatusOr<LayoutSpec> ParseLayout(std::string_view full_spec) {
   const int h = x == std::string_view::npos ? kNone : ParseInt(size.substr(x + 1)).value_or(kNone);
   if (w == kNone || h == kNone) return bad("has no size WxH after the colon (e.g. 64x64)");
   for (const auto& [name, v] : {std::pair{"width", w}, std::pair{"height", h}})
-    if (!IsPowerOfTwo(v) || v > kMaxSide)
+    if (!IsPowerOfTwoIn(v, 1, kMaxSide))
       return bad(name, " ", v, " is not a power of two in 1..4096");
   out.width = w;
   out.height = h;

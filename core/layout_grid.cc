@@ -1,6 +1,7 @@
 // The `grid` layout: a regular-grid mesh is already an image.
 #include "absl/strings/str_cat.h"
 #include "core/layout.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 
@@ -12,8 +13,7 @@ absl::StatusOr<SampleSet> GridLayout(const Scene& scene) {
       continue;
     }
     const int w = m.grid_width, h = m.grid_height;
-    auto pow2 = [](int v) { return v <= 4096 && (v & (v - 1)) == 0; };
-    if (!pow2(w) || !pow2(h))
+    if (!IsPowerOfTwoIn(w, 1, 4096) || !IsPowerOfTwoIn(h, 1, 4096))
       return absl::InvalidArgumentError(
           absl::StrCat("layout 'grid': mesh '", m.name, "' is a ", w, "x", h,
                        " grid; the grid layout needs powers of two up to 4096"));

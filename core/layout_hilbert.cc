@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/layout.h"
 #include "core/layout_hilbert_curve.h"
+#include "core/power_of_two.h"
 #include "core/scene_check.h"
 
 namespace wavebake {
@@ -37,8 +38,7 @@ std::vector<uint64_t> HilbertKeys(const std::vector<Vec3>& positions, const Boun
 
 absl::StatusOr<SampleSet> HilbertLayout(const Scene& scene, int width, int height) {
   const std::string name = absl::StrCat("layout 'hilbert:", width, "x", height, "'");
-  auto pow2 = [](int v) { return v > 0 && v <= 4096 && (v & (v - 1)) == 0; };
-  if (!pow2(width) || !pow2(height))
+  if (!IsPowerOfTwoIn(width, 1, 4096) || !IsPowerOfTwoIn(height, 1, 4096))
     return absl::InvalidArgumentError(
         absl::StrCat(name, ": width and height must be powers of two in 1..4096"));
   SampleSet s;

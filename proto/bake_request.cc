@@ -10,6 +10,7 @@
 #include "absl/strings/strip.h"
 #include "core/bake_params_io.h"
 #include "core/layout.h"
+#include "core/power_of_two.h"
 
 namespace wavebake {
 namespace {
@@ -77,7 +78,7 @@ absl::Status CheckOutputName(v1::BakeRequest& r) {
 
 absl::Status CheckNumbers(v1::BakeRequest& r) {
   if (r.light_res() == 0) r.set_light_res(32);
-  if (!IsPowerOfTwo(r.light_res()) || r.light_res() < 8 || r.light_res() > 256) {
+  if (!IsPowerOfTwoIn(r.light_res(), 8, 256)) {
     return Bad("light_res", absl::StrCat(r.light_res(), " is not a power of two in 8..256"));
   }
   if (r.supersample() == 0) r.set_supersample(4);
@@ -96,7 +97,7 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
   }
   if (!r.has_seed()) r.set_seed(1);
   if (r.tile_size() == 0) r.set_tile_size(32);
-  if (!IsPowerOfTwo(r.tile_size()) || r.tile_size() < 4 || r.tile_size() > 256) {
+  if (!IsPowerOfTwoIn(r.tile_size(), 4, 256)) {
     return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..256"));
   }
   if (r.column_group() < 0 || r.column_group() > 65536) {  // 0: the plan's

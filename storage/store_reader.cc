@@ -3,8 +3,8 @@
 #include <span>
 
 #include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
 #include "core/layout.h"
+#include "core/power_of_two.h"
 #include "core/quantizer.h"
 #include "core/scene_hash.h"
 #include "core/subband.h"

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/power_of_two.h"
 #include "core/wavelet2d.h"
 
 namespace wavebake {
@@ -12,7 +13,7 @@ namespace {
 // programming error, not bad input (as in core/transport_row.cc). Returns
 // the number of faces: 6 (cube) or 1 (plane light domain).
 int FacesOrDie(int n, std::span<const float> row) {
-  if (n > 0 && (n & (n - 1)) == 0) {
+  if (IsPowerOfTwo(n)) {
     const size_t face = static_cast<size_t>(n) * n;
     if (row.size() == 6 * face) return 6;
     if (row.size() == face) return 1;
