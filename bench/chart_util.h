@@ -3,19 +3,17 @@
 // share: dying loudly on an error (a chart must not be drawn from a partial
 // sweep) and CSV output. Header-only: every bench/*.cc is its own binary.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/parallel_for.h"
 
 namespace wavebake::charts {
 
@@ -37,27 +35,10 @@ T Value(absl::StatusOr<T> v) {
   return *std::move(v);
 }
 
-// task(0..count-1) on `threads` threads; the first failure stops new tasks
-// and dies (bench/charts_uv.cc's in-place staging and coding).
+// task(0..count-1) on `threads` threads; the first failure dies
+// (bench/charts_uv.cc's in-place staging and coding).
 inline void RunTasksOrDie(int count, int threads, const std::function<absl::Status(int)>& task) {
-  std::atomic<int> next{0};
-  std::mutex mu;
-  absl::Status first;
-  auto work = [&] {
-    for (int i; (i = next.fetch_add(1)) < count;) {
-      if (absl::Status s = task(i); !s.ok()) {
-        std::lock_guard lock(mu);
-        if (first.ok()) first = s;
-        next = count;  // no new task starts
-      }
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(work);
-    work();
-  }
-  Check(first);
+  Check(ParallelTasks(count, threads, task));
 }
 
 inline double SecondsSince(std::chrono::steady_clock::time_point start) {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bake_params_io.h"
 #include "core/wavelet2d.h"
 
 namespace wavebake {
@@ -106,27 +107,14 @@ void BM_Transform(benchmark::State& state, WaveletFilter f, bool inverse) {
   state.counters["x_memcpy"] = total_s / static_cast<double>(state.iterations()) / memcpy_s;
 }
 
-const char* Name(WaveletFilter f) {
-  switch (f) {
-    case WaveletFilter::kHaar:
-      return "haar";
-    case WaveletFilter::kDaub4:
-      return "daub4";
-    case WaveletFilter::kLeGall53:
-      return "legall53";
-    case WaveletFilter::kCdf97:
-      return "cdf97";
-  }
-  return "?";
-}
-
 void RegisterAll() {
   benchmark::RegisterBenchmark("memcpy/glibc", BM_Copy, GlibcCopy)->Arg(256)->Arg(1024);
   benchmark::RegisterBenchmark("memcpy/chunked", BM_Copy, ChunkedCopy)->Arg(256)->Arg(1024);
   for (const WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4,
                                 WaveletFilter::kLeGall53, WaveletFilter::kCdf97}) {
     for (const bool inverse : {false, true}) {
-      const std::string name = std::string(inverse ? "inverse/" : "forward/") + Name(f);
+      const std::string name =
+          std::string(inverse ? "inverse/" : "forward/") + std::string(ToString(f));
       benchmark::RegisterBenchmark(name.c_str(), BM_Transform, f, inverse)->Arg(256)->Arg(1024);
     }
   }

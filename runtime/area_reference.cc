@@ -9,7 +9,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/light_domain.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 #include "runtime/stream_rng.h"
 
 namespace wavebake {

@@ -9,7 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/cubemap.h"
 #include "core/wavelet2d.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace wavebake {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 #include "runtime/relighter.h"
 #include "runtime/sample_rows.h"
 

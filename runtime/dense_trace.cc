@@ -10,7 +10,7 @@
 #include "core/jitter_pattern.h"
 #include "core/transport_row.h"
 #include "runtime/brdf_slices.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace wavebake {
 

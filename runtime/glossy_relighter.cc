@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/check_or_die.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 #include "runtime/relighter.h"
 
 namespace wavebake {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/wavelet2d.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace wavebake {
 namespace {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -12,6 +11,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "core/parallel_for.h"
 #include "runtime/env_sampler.h"
 #include "runtime/stream_rng.h"
 
@@ -138,17 +138,6 @@ void TraceGlossyBatch(const RayCaster& caster, const EnvSampler& sampler,
   b.TraceInto(caster, r.origin, e);
 }
 
-template <typename Body>
-void ForEachIndex(int count, int threads, const Body& body) {
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int i; (i = next.fetch_add(1)) < count;) body(i);
-  };
-  std::vector<std::jthread> pool;
-  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
-  work();
-}
-
 absl::Status CheckInputs(const SampleSet& s, const EnvMap& env, const ReferenceOptions& o) {
   if (env.height <= 0 || env.width != 2 * env.height ||
       env.rgb.size() != static_cast<size_t>(env.width) * env.height * 3) {
@@ -215,7 +204,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
     }
   };
   // Pass 1, the pilot: min_rays for everyone (whole batches, at least 8).
-  ForEachIndex(count, threads, [&](int s) {
+  ParallelForWorkers(count, threads, 1, [&](int, int s) {
     run(s, [&](const Estimate& e) { return e.rays() < o.min_rays || e.batches < kMinBatches; });
   });
   double sum_sq = 0;
@@ -228,7 +217,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
   const double rms = terms ? std::sqrt(sum_sq / terms) : 0;
   const double target = o.target_rel_se * rms;
   // Pass 2: each sample until SE_c · albedo_c ≤ target · R, or max_rays.
-  ForEachIndex(count, threads, [&](int s) {
+  ParallelForWorkers(count, threads, 1, [&](int, int s) {
     const Vec3 a = samples.albedo[s];
     run(s, [&](const Estimate& e) {
       if (e.rays() >= o.max_rays) return false;

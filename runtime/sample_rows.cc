@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "core/wavelet2d.h"
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 #include "runtime/relighter.h"
 
 namespace wavebake {

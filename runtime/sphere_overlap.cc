@@ -5,7 +5,7 @@
 #include <numbers>
 #include <utility>
 
-#include "runtime/parallel_for.h"
+#include "core/parallel_for.h"
 #include "runtime/texel_meridians.h"
 
 namespace wavebake {

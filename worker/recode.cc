@@ -1,13 +1,12 @@
 #include "worker/recode.h"
 
-#include <atomic>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "core/bake_params_io.h"
+#include "core/parallel_for.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_group.h"
 #include "worker/bake_tile.h"
@@ -59,29 +58,6 @@ absl::Status LinkStaging(const std::filesystem::path& traced, const std::filesys
   return absl::OkStatus();
 }
 
-// task(i) for i in [0, count) on `threads` threads; the first error stops
-// new tasks and is returned.
-absl::Status RunAll(int count, int threads, const std::function<absl::Status(int)>& task) {
-  std::atomic<int> next{0};
-  std::mutex mu;
-  absl::Status first;
-  auto work = [&] {
-    for (int i; (i = next.fetch_add(1)) < count;) {
-      absl::Status s = task(i);
-      if (s.ok()) continue;
-      std::lock_guard lock(mu);
-      if (first.ok()) first = s;
-      next = count;  // no new task starts
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(work);
-    work();
-  }
-  return first;
-}
-
 std::filesystem::path PartialBeside(const std::filesystem::path& out, const char* what) {
   return out.parent_path() / absl::StrCat(".", out.filename().string(), ".", what);
 }
@@ -114,7 +90,7 @@ absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesys
   std::mutex progress;
   absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx));
   if (s.ok()) {
-    s = RunAll(ctx.plan.tiles(), options.threads, [&](int t) {
+    s = ParallelTasks(ctx.plan.tiles(), options.threads, [&](int t) {
       TileStats stats;
       if (absl::Status b = BakeTile(ctx, partial, t, &stats, {.cancel = options.cancel}); !b.ok())
         return b;
@@ -147,8 +123,8 @@ absl::Status Recode(const BakeContext& ctx, const std::filesystem::path& traced,
   std::filesystem::remove_all(partial, ec);
   absl::Status s = LinkStaging(traced, partial);
   if (s.ok()) {
-    s = RunAll(ctx.plan.groups, options.threads,
-               [&](int g) { return TransformColumns(ctx, partial, g, nullptr); });
+    s = ParallelTasks(ctx.plan.groups, options.threads,
+                      [&](int g) { return TransformColumns(ctx, partial, g, nullptr); });
   }
   if (s.ok()) s = Finalize(ctx, partial, {.keep_staging = false});
   if (s.ok()) {

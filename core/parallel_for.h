@@ -1,11 +1,14 @@
 #pragma once
-// A minimal deterministic parallel loop: body(i) for i in [0, count) on all
-// cores. Callers make every index write its own output, so the result does
-// not depend on the number of threads or their timing.
+// Minimal parallel loops over [0, count). Callers make every index write its
+// own output, so the result does not depend on the number of threads or
+// their timing.
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <thread>
 #include <vector>
+
+#include "absl/status/status.h"
 
 namespace wavebake {
 
@@ -62,5 +65,11 @@ void ParallelChunks(int count, int chunk, int threads, const MakeState& make_sta
   for (int t = 1; t < threads; ++t) pool.emplace_back(work);
   work();
 }
+
+// task(i) for i in [0, count) on `threads` threads (at least 1; the caller's
+// is one of them): tasks that can fail, like a job's tiles or column groups
+// run in one process. The first error stops new tasks and is returned once
+// the running ones end.
+absl::Status ParallelTasks(int count, int threads, const std::function<absl::Status(int)>& task);
 
 }  // namespace wavebake
