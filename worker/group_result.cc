@@ -150,9 +150,10 @@ absl::Status DecompressFrame(std::span<const std::byte> frame, uint64_t bytes,
   return ZstdDecompressInto(frame, std::as_writable_bytes(std::span(out)), source);
 }
 
-// The table frame, decompressed and parsed into `r`; returns nnz.
+// The table frame, decompressed and parsed into `r` and checked to be
+// `group`'s; returns nnz.
 absl::StatusOr<uint64_t> ReadTable(std::span<const std::byte> frame, const std::string& source,
-                                   GroupResult* r) {
+                                   int group, GroupResult* r) {
   thread_local ByteBuffer table;
   absl::StatusOr<uint64_t> size = ZstdFrameContentSize(frame, source);
   if (!size.ok()) return size.status();
@@ -160,12 +161,10 @@ absl::StatusOr<uint64_t> ReadTable(std::span<const std::byte> frame, const std::
     return absl::DataLossError(absl::StrCat(source, ": table size ", *size));
   table.resize(*size);
   if (absl::Status s = ZstdDecompressInto(frame, table, source); !s.ok()) return s;
-  return ParseTable(table, source, r);
-}
-
-absl::Status CheckGroup(const GroupResult& r, int group, const std::string& source) {
-  if (r.group == group) return absl::OkStatus();
-  return absl::DataLossError(absl::StrCat(source, ": holds group ", r.group));
+  absl::StatusOr<uint64_t> nnz = ParseTable(table, source, r);
+  if (nnz.ok() && r->group != group)
+    return absl::DataLossError(absl::StrCat(source, ": holds group ", r->group));
+  return nnz;
 }
 
 }  // namespace
@@ -214,9 +213,8 @@ absl::StatusOr<GroupResult> ReadGroupResult(const std::filesystem::path& store, 
     return std::span<const std::byte>(file).subspan(end - p->frame_bytes[f], p->frame_bytes[f]);
   };
   GroupResult r;
-  absl::StatusOr<uint64_t> nnz = ReadTable(frame(kTableFrame), source, &r);
+  absl::StatusOr<uint64_t> nnz = ReadTable(frame(kTableFrame), source, group, &r);
   if (!nnz.ok()) return nnz.status();
-  if (absl::Status s = CheckGroup(r, group, source); !s.ok()) return s;
   if (absl::Status s =
           DecompressFrame(frame(kPositionsFrame), *nnz * sizeof(uint32_t), source, r.positions);
       !s.ok())
@@ -241,9 +239,8 @@ absl::StatusOr<GroupResult> ReadGroupColumns(const std::filesystem::path& store,
     return absl::DataLossError(absl::StrCat(source, ": truncated: ", read.message()));
   if (!read.ok()) return read;
   GroupResult r;
-  absl::StatusOr<uint64_t> nnz = ReadTable(frame, source, &r);
+  absl::StatusOr<uint64_t> nnz = ReadTable(frame, source, group, &r);
   if (!nnz.ok()) return nnz.status();
-  if (absl::Status s = CheckGroup(r, group, source); !s.ok()) return s;
   return r;
 }
 

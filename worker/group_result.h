@@ -3,9 +3,9 @@
 // §2): the group's coded columns, unquantized (the bit count is a
 // matrix-wide choice FINALIZE makes). Stored as one file per group,
 // staging/groups/<g>.wbg, replaced atomically, so a retried task simply
-// rewrites it. Format (little-endian): 8-byte magic "WBGROUP3", then uint64
-// sizes: the table's, and the compressed size of each of the three zstd
-// frames (with checksums) that follow, in this order:
+// rewrites it. Format (little-endian): 8-byte magic "WBGROUP3", three uint64
+// compressed sizes, then the three zstd frames (with checksums) they size, in
+// this order:
 //   table: int32 group, int32 first_column, int32 columns, int32 0,
 //          uint64 nnz, double matrix_energy,
 //          per column: uint8 depth, uint8 min_bits, uint16 0, uint32 kept,
