@@ -8,7 +8,10 @@
 // same lighting. Pixels are drawn with probability ∝ Y_p·Ω_p (Y = mean of R,
 // G, B, Ω_p the exact pixel solid angle: "luminance × sin θ"), through a 2D
 // CDF, marginal over rows then conditional over columns, and the direction is
-// uniform in solid angle inside the pixel (so the pdf is exact).
+// uniform in solid angle inside the pixel (so the pdf is exact). The 2D CDF
+// is the piecewise-constant 2D distribution of Pharr, Jakob & Humphreys,
+// Physically Based Rendering (3rd ed.), §13.6.7, and the sin θ weighting that
+// of its infinite area light, §14.2.4; ours weights by the exact Ω_p instead.
 //
 // A diffuse receiver sees only max(0, n·ω), which for a tiny, very bright
 // source below the horizon wastes most rays. So the 2D CDF is cut into

@@ -12,8 +12,9 @@ namespace wavebake {
 
 namespace {
 
-// 4-point Gauss–Legendre on [−1, 1]: exact for cubics; the integrands are
-// smooth on every piece up to the kinks where an interval end crosses a
+// 4-point Gauss–Legendre on [−1, 1] (Abramowitz & Stegun 25.4.29, nodes and
+// weights of Table 25.4): exact for polynomials of degree ≤ 7; the integrands
+// are smooth on every piece up to the kinks where an interval end crosses a
 // pixel row.
 constexpr double kNode[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
                              0.8611363115940526};
@@ -41,7 +42,8 @@ void SplitAmongRows(const Grid& g, int x, double lo, double hi, double weight, E
 }
 
 // The root of a monotone f on [l, r], given f(l) and f(r) of opposite signs:
-// regula falsi with the Illinois fix, a handful of evaluations to ~1e-15.
+// regula falsi with the Illinois fix (Dowell & Jarratt 1971: halve the
+// stale end's value), a handful of evaluations to ~1e-15.
 template <typename F>
 double FindRoot(const F& f, double l, double fl, double r, double fr) {
   double x = 0.5 * (l + r);

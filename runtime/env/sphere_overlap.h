@@ -5,11 +5,14 @@
 // resampling through it keeps constants and ∫ L dω, even for a source of a
 // single pixel, which sampling in either direction cannot promise.
 //
-// Computed, not sampled: in (φ, μ = cos θ) solid angle is area and a pixel
-// is a rectangle; a texel is, meridian by meridian, one μ-interval
-// (texel_meridians.h). For each texel the azimuth range is cut at pixel
-// columns and at the texel's own kinks, each piece is integrated with
-// Gauss–Legendre nodes, and at each node the μ-interval is split exactly
+// Computed, not sampled: in (φ, μ = cos θ) solid angle is area, dω = dφ dμ
+// (Archimedes' hat-box theorem), and a pixel is a rectangle; a texel is,
+// meridian by meridian, one μ-interval (texel_meridians.h). For each texel the
+// azimuth range is cut at pixel columns and at the texel's own kinks (found by
+// regula falsi with the Illinois modification: Dowell & Jarratt, BIT 11
+// (1971) 168–174), each piece is integrated with 4-point Gauss–Legendre
+// quadrature (Abramowitz & Stegun, Handbook of Mathematical Functions,
+// 25.4.29 and Table 25.4), and at each node the μ-interval is split exactly
 // among the pixel rows.
 #include <span>
 #include <vector>
