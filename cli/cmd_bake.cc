@@ -22,7 +22,6 @@
 #include "driver/job_query.h"
 #include "driver/signal_watcher.h"
 #include "web/bake_monitor.h"
-#include "worker/publish_store.h"
 
 namespace wavebake::cli {
 namespace {

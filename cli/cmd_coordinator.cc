@@ -1,21 +1,18 @@
 // `wavebake coordinator --listen ADDR --data DIR [--http ADDR]` (DESIGN.md
-// §4, §5): the job service and the work queue, and with --http the web
-// monitor and /metrics, until SIGINT or SIGTERM.
+// §4, §5): the coordinator process (driver/coordinator_run.h), and with
+// --http the web monitor and /metrics, until SIGINT or SIGTERM.
 #include <spdlog/spdlog.h>
 
 #include <future>
 #include <memory>
 #include <mutex>
 
-#include "absl/strings/str_cat.h"
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/web_flags.h"
-#include "coordinator/coordinator.h"
-#include "coordinator/job_planner.h"
+#include "driver/coordinator_run.h"
 #include "driver/signal_watcher.h"
-#include "storage/atomic_file.h"
 #include "web/coordinator_source.h"
 
 namespace wavebake::cli {
@@ -36,26 +33,19 @@ void Run(CoordinatorFlags f) {
   });
   CoordinatorOptions& options = f.options;
   options.max_upload_bytes = f.max_upload_mb << 20;
-  if (options.store_root.empty()) options.store_root = options.data_dir / "store";
   options.token = TokenOrFail(f.token_file, "coordinator");
-  const PlannerOptions planner{
-      .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
-  absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =
-      Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
-  if (!coordinator.ok()) Fail("coordinator", coordinator.status());
+  absl::StatusOr<driver::CoordinatorRun> run = driver::StartCoordinator(options, f.address_file);
+  if (!run.ok()) Fail("coordinator", run.status());
+  Coordinator& coordinator = *run->coordinator;
   // The same token and certificate as gRPC (DESIGN.md §4).
   f.web.options.token = options.token;
   f.web.options.tls_cert = options.tls_cert_path, f.web.options.tls_key = options.tls_key_path;
   std::unique_ptr<web::MonitorServer> monitor =
-      StartMonitor("coordinator", f.web, web::CoordinatorSource(**coordinator, planner));
-  // "host:port" for scripts that listen on port 0; appears whole (rename).
-  if (!f.address_file.empty())
-    if (absl::Status s = AtomicWriteText(f.address_file, (*coordinator)->address() + "\n"); !s.ok())
-      Fail("coordinator", absl::StrCat("--address-file: ", s.message()));
+      StartMonitor("coordinator", f.web, web::CoordinatorSource(coordinator, run->planner));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");
   if (monitor) monitor->Stop();  // it reads the coordinator
-  (*coordinator)->Shutdown();
+  coordinator.Shutdown();
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
-#include "runtime/reference/eval.h"
+#include "driver/evaluate.h"
 
 namespace wavebake::cli {
 namespace {
@@ -34,7 +34,7 @@ void Run(EvalFlags f) {
   EvalOptions options = f.options;
   options.dense = !f.no_dense;
   options.glossy = GlossyOf(f.glossy, "eval");
-  absl::StatusOr<EvalReport> report = Evaluate(f.store, f.env, f.terms, options);
+  absl::StatusOr<EvalReport> report = driver::Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   std::printf("%s", f.json ? (EvalReportJson(*report).dump() + "\n").c_str()
                            : EvalReportText(*report).c_str());

@@ -10,7 +10,6 @@
 #include "cli/progress.h"
 #include "driver/job_query.h"
 #include "driver/job_submit.h"
-#include "proto/bake_request.h"
 
 namespace wavebake::cli {
 namespace {
@@ -27,11 +26,9 @@ struct SubmitFlags {
 void Run(const SubmitFlags& f) {
   absl::StatusOr<BakeParams> params = ParseBakeParamWords(f.bake.params, f.bake.words);
   if (!params.ok()) Fail("submit", params.status());
-  v1::BakeRequest request = ToBakeRequest(*params);
-  request.set_output_name(f.output_name);
-  request.set_max_attempts(f.max_attempts);
   const driver::Client client = ConnectOrFail(f.client, "submit");
-  absl::StatusOr<v1::Job> job = driver::SubmitScene(client, request, f.scene);
+  absl::StatusOr<v1::Job> job =
+      driver::SubmitBake(client, *params, f.output_name, f.max_attempts, f.scene);
   if (!job.ok()) Fail("submit", job.status());
   std::printf("%s\n", job->id().c_str());
   std::fflush(stdout);

@@ -9,7 +9,6 @@
 #include <string>
 
 #include "driver/client.h"
-#include "wavebake.pb.h"
 
 namespace wavebake::cli {
 

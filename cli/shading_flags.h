@@ -5,7 +5,7 @@
 #include <string>
 
 #include "driver/area_light_commands.h"
-#include "runtime/glossy/glossy_store.h"
+#include "driver/relight_command.h"
 
 namespace wavebake::cli {
 

@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
-#include "storage/atomic_file.h"
+#include "driver/coordinator_run.h"
 
 namespace wavebake::cli {
 
@@ -39,7 +39,7 @@ std::unique_ptr<web::MonitorServer> StartMonitor(const std::string& command, Web
       web::MonitorServer::Start(std::move(f.options), std::move(source));
   if (!server.ok()) Fail(command, server.status());
   if (!f.address_file.empty())
-    if (absl::Status s = AtomicWriteText(f.address_file, (*server)->address() + "\n"); !s.ok())
+    if (absl::Status s = driver::WriteAddressFile(f.address_file, (*server)->address()); !s.ok())
       Fail(command, absl::StrCat(f.flag, "-address-file: ", s.message()));
   std::fprintf(stderr, "%s: web monitor at %s\n", command.c_str(), (*server)->url().c_str());
   return *std::move(server);

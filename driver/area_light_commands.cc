@@ -6,7 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/products/coupling_table.h"
-#include "runtime/near_field/area_relight.h"
+#include "driver/area_relight.h"
 #include "runtime/reference/area_eval.h"
 #include "runtime/relight/store_relight.h"
 

@@ -15,6 +15,7 @@
 #include "coordinator/job_planner.h"
 #include "core/bake/bake_params.h"
 #include "wavebake.pb.h"
+#include "worker/publish_store.h"  // ResolveOutputPath: OUT as a bake writes it
 
 namespace wavebake::driver {
 

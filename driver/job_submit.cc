@@ -125,4 +125,13 @@ absl::StatusOr<v1::Job> SubmitScene(const Client& client, v1::BakeRequest reques
   return Submit(client, request);
 }
 
+absl::StatusOr<v1::Job> SubmitBake(const Client& client, const BakeParams& params,
+                                   const std::string& output_name, int max_attempts,
+                                   const std::string& scene) {
+  v1::BakeRequest request = ToBakeRequest(params);
+  request.set_output_name(output_name);
+  request.set_max_attempts(max_attempts);
+  return SubmitScene(client, std::move(request), scene);
+}
+
 }  // namespace wavebake::driver

@@ -5,7 +5,9 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "core/bake/bake_params.h"
 #include "driver/client.h"
+#include "proto/bake_request.h"  // ToBakeRequest, kDefaultMaxAttempts
 #include "wavebake.pb.h"
 
 namespace wavebake::driver {
@@ -29,5 +31,11 @@ absl::StatusOr<SceneFile> ReadSceneFile(const std::string& path);
 // user's own paths).
 absl::StatusOr<v1::Job> SubmitScene(const Client& client, v1::BakeRequest request,
                                     const std::string& scene, bool with_files = true);
+
+// A bake of `params` (proto/bake_request.h ToBakeRequest) submitted for
+// `scene` as SubmitScene does, with the request's output name and attempts.
+absl::StatusOr<v1::Job> SubmitBake(const Client& client, const BakeParams& params,
+                                   const std::string& output_name, int max_attempts,
+                                   const std::string& scene);
 
 }  // namespace wavebake::driver

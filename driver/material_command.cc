@@ -4,7 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "runtime/glossy/material_sequence.h"
+#include "driver/material_sequence.h"
 
 namespace wavebake::driver {
 
@@ -26,7 +26,7 @@ absl::StatusOr<std::string> RelightMaterialSequence(const MaterialCommand& c) {
       .out_dir = c.out,
       .frame_extension = c.frame_extension};
   absl::StatusOr<std::vector<MaterialFrame>> frames =
-      wavebake::RelightMaterialSequence(c.store, c.env, options);
+      RelightMaterialSequence(c.store, c.env, options);
   if (!frames.ok()) return frames.status();
   double sum = 0, worst = 0, seconds = 0;
   for (const MaterialFrame& f : *frames) {

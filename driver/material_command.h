@@ -1,7 +1,7 @@
 #pragma once
 // What `relight --brdf-sequence` does, for the command line (and anything
 // else that wants the same words): material editing of a visibility store
-// (runtime/glossy/material_sequence.h, Overbeck ch. 4) behind one request,
+// (driver/material_sequence.h, Overbeck ch. 4) behind one request,
 // returning the summary to print.
 #include <string>
 

@@ -3,7 +3,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "driver/material_command.h"
-#include "runtime/relight/relight_sequence.h"
+#include "driver/relight_sequence.h"
+#include "driver/relight_to_file.h"
 
 namespace wavebake::driver {
 namespace {

@@ -2,7 +2,7 @@
 // What `relight --env` does, for the command line (and anything else that
 // wants the same words): one frame (Eq. 8 for a diffuse store, the triple
 // product for a visibility store, runtime/glossy/glossy_store.h), a rotating
-// environment over frames (runtime/relight/relight_sequence.h), or material editing
+// environment over frames (driver/relight_sequence.h), or material editing
 // (driver/material_command.h), behind one request returning the summary to
 // print. Near-field lights have their own (driver/area_light_commands.h).
 #include <string>

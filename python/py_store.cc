@@ -13,6 +13,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "driver/embedded_bake.h"
+#include "driver/evaluate.h"
 #include "proto/bake_request.h"
 #include "python/py_convert.h"
 #include "runtime/env/env_map.h"
@@ -177,7 +178,7 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
     absl::StatusOr<EvalReport> report;
     {
       py::gil_scoped_release release;
-      report = Evaluate(s.path(), spec, terms, options);
+      report = driver::Evaluate(s.path(), spec, terms, options);
     }
     return JsonToPython(EvalReportJson(Unwrap(std::move(report))));
   }

@@ -84,17 +84,4 @@ class GlossyStore {
   std::optional<GlossyRelighter> relighter_;
 };
 
-// `wavebake relight STORE --brdf B …` for a visibility store: as RelightToFile
-// (runtime/relight/store_relight.h), the image relit through the triple product.
-absl::Status RelightGlossyToFile(const std::filesystem::path& store, std::string_view env_spec,
-                                 int terms, double rotate_degrees, float exposure_stops,
-                                 const std::filesystem::path& out, const GlossyOptions& options);
-
-// `wavebake relight` for any store: a visibility store through the triple
-// product with options.brdf; a diffuse store by Eq. 8 (RelightToFile), which
-// accepts lambert only and no eye (an error says why).
-absl::Status RelightStoreToFile(const std::filesystem::path& store, std::string_view env_spec,
-                                int terms, double rotate_degrees, float exposure_stops,
-                                const std::filesystem::path& out, const GlossyOptions& options);
-
 }  // namespace wavebake

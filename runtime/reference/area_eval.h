@@ -1,5 +1,5 @@
 #pragma once
-// `wavebake eval STORE --reference --area-light LIGHT.json [--json]`: how far
+// The measurement behind `wavebake eval STORE --reference --area-light LIGHT.json`: how far
 // near-field relighting of a plane-domain store (runtime/near_field/near_field.h) is
 // from the independent Monte-Carlo reference over the lights' areas
 // (runtime/reference/area_reference.h), next to the same lights treated as distant

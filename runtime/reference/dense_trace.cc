@@ -13,6 +13,32 @@
 #include "runtime/glossy/brdf_slices.h"
 
 namespace wavebake {
+namespace {
+
+// What both traces share: per covered cell, `radiance(cell, s, b)` sums the
+// cell's row against the lighting into b[3] and returns the rays it traced;
+// the image is b × albedo, NaN in masked cells.
+template <typename Radiance>
+DenseTraceResult TraceCells(const SampleSet& samples, std::chrono::steady_clock::time_point start,
+                            const Radiance& radiance) {
+  DenseTraceResult r;
+  r.rgb.assign(3 * static_cast<size_t>(samples.cells()), std::numeric_limits<float>::quiet_NaN());
+  std::atomic<int64_t> rays{0};
+  ParallelFor(samples.cells(), [&](int cell) {
+    const int32_t s = samples.grid[cell];
+    if (s < 0) return;
+    double b[3] = {0, 0, 0};
+    rays += radiance(cell, s, b);
+    const Vec3 a = samples.albedo[s];
+    for (int c = 0; c < 3; ++c)
+      r.rgb[3 * static_cast<size_t>(cell) + c] = static_cast<float>(b[c] * a[c]);
+  });
+  r.rays = rays;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace
 
 absl::StatusOr<DenseTraceResult> TraceDenseRelight(const RayCaster& caster,
                                                    const SampleSet& samples,
@@ -27,27 +53,15 @@ absl::StatusOr<DenseTraceResult> TraceDenseRelight(const RayCaster& caster,
   absl::StatusOr<JitterPattern> jitter = MakeJitterPattern(cube, o.supersample, o.seed);
   if (!jitter.ok()) return jitter.status();
   const float eps = o.epsilon > 0 ? o.epsilon : caster.DefaultEpsilon();
-  DenseTraceResult r;
-  r.rgb.assign(3 * static_cast<size_t>(samples.cells()), std::numeric_limits<float>::quiet_NaN());
-  std::atomic<int64_t> rays{0};
-  ParallelFor(samples.cells(), [&](int cell) {
-    const int32_t s = samples.grid[cell];
-    if (s < 0) return;
+  return TraceCells(samples, start, [&](int, int32_t s, double b[3]) {
     std::vector<float> row(cube.size());
     TransportStats stats;
     TransportRow(caster, cube, *jitter, samples.position[s], samples.normal[s], eps, row, &stats);
-    double b[3] = {0, 0, 0};
     for (int m = 0; m < cube.size(); ++m) {
       for (int c = 0; c < 3; ++c) b[c] += double{row[m]} * cube_rgb[3 * m + c];
     }
-    const Vec3 a = samples.albedo[s];
-    for (int c = 0; c < 3; ++c)
-      r.rgb[3 * static_cast<size_t>(cell) + c] = static_cast<float>(b[c] * a[c]);
-    rays += static_cast<int64_t>(stats.rays_traced);
+    return static_cast<int64_t>(stats.rays_traced);
   });
-  r.rays = rays;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return r;
 }
 
 absl::StatusOr<DenseTraceResult> TraceDenseGlossy(const RayCaster& caster, const SampleSet& samples,
@@ -70,29 +84,17 @@ absl::StatusOr<DenseTraceResult> TraceDenseGlossy(const RayCaster& caster, const
   if (!rho_jitter.ok()) return rho_jitter.status();
   const BrdfTexels texels(&*rho_jitter);
   const float eps = o.epsilon > 0 ? o.epsilon : caster.DefaultEpsilon();
-  DenseTraceResult r;
-  r.rgb.assign(3 * static_cast<size_t>(samples.cells()), std::numeric_limits<float>::quiet_NaN());
-  std::atomic<int64_t> rays{0};
-  ParallelFor(samples.cells(), [&](int cell) {
-    const int32_t s = samples.grid[cell];
-    if (s < 0) return;
+  return TraceCells(samples, start, [&](int cell, int32_t s, double b[3]) {
     std::vector<float> v(cube.size()), rho(cube.size(), 0.0f);
     TransportStats stats;
     VisibilityRow(caster, cube, *jitter, samples.position[s], samples.normal[s], eps, v, &stats);
     texels.Evaluate(brdf, samples.normal[s], views[cell], 0, rho);
-    double b[3] = {0, 0, 0};
     for (int m = 0; m < cube.size(); ++m) {
       const double vr = double{v[m]} * rho[m];
       for (int c = 0; c < 3; ++c) b[c] += vr * cube_rgb[3 * m + c];
     }
-    const Vec3 a = samples.albedo[s];
-    for (int c = 0; c < 3; ++c)
-      r.rgb[3 * static_cast<size_t>(cell) + c] = static_cast<float>(b[c] * a[c]);
-    rays += static_cast<int64_t>(stats.rays_traced);
+    return static_cast<int64_t>(stats.rays_traced);
   });
-  r.rays = rays;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return r;
 }
 
 }  // namespace wavebake

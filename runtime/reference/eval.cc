@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -11,8 +12,8 @@
 #include "core/directions/cubemap.h"
 #include "core/scene/scene_hash.h"
 #include "runtime/env/env_resample.h"
-#include "runtime/glossy/glossy_eval.h"
 #include "runtime/reference/dense_trace.h"
+#include "runtime/reference/glossy_eval.h"
 #include "runtime/relight/store_relight.h"
 #include "storage/scene_loader.h"
 
@@ -72,37 +73,13 @@ float BakedEpsilon(const StoreInfo& info, const RayCaster& caster) {
   return info.params.ray_epsilon > 0 ? info.params.ray_epsilon : caster.DefaultEpsilon();
 }
 
-absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
-                                    int terms, const EvalOptions& options) {
-  if (terms <= 0) {
-    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
-  }
-  absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
-  if (!store_info.ok()) return store_info.status();
-  if (store_info->params.transport == Transport::kVisibility)
-    return EvaluateGlossy(store, env_spec, terms, options);
-  // A diffuse store is Lambertian by construction.
-  absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
-  if (!brdf.ok()) return brdf.status();
-  if ((*brdf)->Name() != "lambert") return CheckVisibilityStore(*store_info);
-  absl::StatusOr<OpenedStore> opened = OpenStore(store);
-  if (!opened.ok()) return opened.status();
-  if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;
-  absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
-  if (!env.ok()) return env.status();
-  if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
-
-  const StoreInfo& info = opened->info;
-  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
-  if (!caster.ok()) return caster.status();
-  const float eps = BakedEpsilon(info, *caster);
-
+absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const SampleSet& samples,
+                                                const EnvMap& env,
+                                                const ReferenceOptions& ref_options, int terms,
+                                                const ImageFn& compressed, const DenseFn& dense) {
   EvalReport report;
   report.terms = terms;
-  ReferenceOptions ref_options = options.reference;
-  ref_options.epsilon = eps;
-  absl::StatusOr<ReferenceResult> reference =
-      ComputeReference(*caster, opened->samples, *env, ref_options);
+  absl::StatusOr<ReferenceResult> reference = ComputeReference(caster, samples, env, ref_options);
   if (!reference.ok()) return reference.status();
   report.reference_rel_se = reference->rel_se;
   report.reference_rays = reference->rays;
@@ -110,26 +87,63 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   report.reference_converged = reference->converged;
 
   auto t0 = std::chrono::steady_clock::now();
-  absl::StatusOr<std::vector<float>> compressed = RelightImage(*opened, *env, terms);
-  if (!compressed.ok()) return compressed.status();
+  absl::StatusOr<std::vector<float>> image = compressed();
+  if (!image.ok()) return image.status();
   const double compressed_seconds = SecondsSince(t0);
-  report.compressed = CompareToReference(*compressed, reference->rgb);
+  report.compressed = CompareToReference(*image, reference->rgb);
   report.compressed.seconds = compressed_seconds;
 
-  if (options.dense) {
+  if (dense) {
     t0 = std::chrono::steady_clock::now();
-    const std::vector<float> cube = ResampleToCubemap(*env, Cubemap(info.light_res));
-    DenseTraceOptions dense_options{info.light_res, info.params.supersample, info.params.seed, eps};
-    absl::StatusOr<DenseTraceResult> dense =
-        TraceDenseRelight(*caster, opened->samples, cube, dense_options);
-    if (!dense.ok()) return dense.status();
+    absl::StatusOr<DenseTraceResult> traced = dense();
+    if (!traced.ok()) return traced.status();
     const double dense_seconds = SecondsSince(t0);
-    report.dense = CompareToReference(dense->rgb, reference->rgb);
+    report.dense = CompareToReference(traced->rgb, reference->rgb);
     report.dense.seconds = dense_seconds;
     report.has_dense = true;
-    report.dense_rays = dense->rays;
+    report.dense_rays = traced->rays;
   }
   return report;
+}
+
+absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, const EnvMap& env_map,
+                                    int terms, const EvalOptions& options) {
+  if (terms <= 0) {
+    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
+  }
+  absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
+  if (!store_info.ok()) return store_info.status();
+  if (store_info->params.transport == Transport::kVisibility)
+    return EvaluateGlossy(store, env_map, terms, options);
+  // A diffuse store is Lambertian by construction.
+  absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
+  if (!brdf.ok()) return brdf.status();
+  if ((*brdf)->Name() != "lambert") return CheckVisibilityStore(*store_info);
+  absl::StatusOr<OpenedStore> opened = OpenStore(store);
+  if (!opened.ok()) return opened.status();
+  if (absl::Status s = RequireCubeDomain(opened->info); !s.ok()) return s;
+  std::optional<EnvMap> turned;
+  if (options.rotate_degrees != 0) turned = Rotated(env_map, options.rotate_degrees);
+  const EnvMap& env = turned ? *turned : env_map;
+
+  const StoreInfo& info = opened->info;
+  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
+  if (!caster.ok()) return caster.status();
+  const float eps = BakedEpsilon(info, *caster);
+  ReferenceOptions ref_options = options.reference;
+  ref_options.epsilon = eps;
+  DenseFn dense;
+  if (options.dense) {
+    dense = [&]() -> absl::StatusOr<DenseTraceResult> {
+      const std::vector<float> cube = ResampleToCubemap(env, Cubemap(info.light_res));
+      DenseTraceOptions dense_options{info.light_res, info.params.supersample, info.params.seed,
+                                      eps};
+      return TraceDenseRelight(*caster, opened->samples, cube, dense_options);
+    };
+  }
+  return CompareWithReference(
+      *caster, opened->samples, env, ref_options, terms,
+      [&] { return RelightImage(*opened, env, terms); }, dense);
 }
 
 nlohmann::json EvalReportJson(const EvalReport& r) {

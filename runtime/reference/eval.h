@@ -1,11 +1,12 @@
 #pragma once
-// `wavebake eval STORE --env ENV --reference [--terms n] [--json]`
-// (DESIGN.md §5): how far the store's relighting is from an independently
-// traced reference (runtime/reference/reference.h), next to how far the uncompressed T
-// is (runtime/reference/dense_trace.h), so discretization and compression error can be
-// told apart.
+// The measurement behind `wavebake eval STORE --env ENV --reference` (DESIGN.md
+// §5; the command: driver/evaluate.h): how far the store's relighting is from
+// an independently traced reference (runtime/reference/reference.h), next to
+// how far the uncompressed T is (runtime/reference/dense_trace.h), so
+// discretization and compression error can be told apart.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -13,7 +14,9 @@
 
 #include "absl/status/statusor.h"
 #include "core/transport/ray_caster.h"
+#include "runtime/env/env_map.h"
 #include "runtime/glossy/glossy_store.h"
+#include "runtime/reference/dense_trace.h"
 #include "runtime/reference/reference.h"
 #include "storage/store_reader.h"
 
@@ -24,7 +27,7 @@ struct EvalOptions {
   double rotate_degrees = 0;   // environment rotation about +Y (Rotated)
   bool dense = true;           // also retrace and evaluate the uncompressed T
   // The material. A visibility store is relit through the triple product
-  // (runtime/glossy/glossy_eval.h) with this BRDF, its reference traced with it; a
+  // (runtime/reference/glossy_eval.h) with this BRDF, its reference traced with it; a
   // diffuse store takes lambert only (anything else is an error saying why).
   GlossyOptions glossy;
 };
@@ -59,11 +62,22 @@ struct EvalReport {
   int64_t dense_rays = 0;
 };
 
-// Errors: terms ≤ 0; the store (missing, another format version, damaged);
-// the env spec; the scene spec recorded in the store no longer loading or no
-// longer hashing to the baked scene.
-absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::string_view env_spec,
+// The store relit under env (lat-long, turned by options.rotate_degrees)
+// against the reference. Errors: terms ≤ 0; the store (missing, another
+// format version, damaged); the scene spec recorded in the store no longer
+// loading or no longer hashing to the baked scene.
+absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, const EnvMap& env,
                                     int terms, const EvalOptions& options = {});
+
+// What both stores' evals share: the reference traced over `samples` under
+// env, then the store's image (`compressed`) and, when `dense` is given, the
+// uncompressed answer, each timed and compared with the reference.
+using ImageFn = std::function<absl::StatusOr<std::vector<float>>()>;
+using DenseFn = std::function<absl::StatusOr<DenseTraceResult>()>;
+absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const SampleSet& samples,
+                                                const EnvMap& env,
+                                                const ReferenceOptions& ref_options, int terms,
+                                                const ImageFn& compressed, const DenseFn& dense);
 
 // {"terms": n, "dense": {"rel_rms", "max_abs", "psnr", "seconds"},
 //  "compressed": {same keys}, "reference": {"rel_se", "rays", "seconds",

@@ -84,26 +84,6 @@ absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap
   return rgb;
 }
 
-absl::Status RelightToFile(const std::filesystem::path& store, std::string_view env_spec, int terms,
-                           double rotate_degrees, float exposure_stops,
-                           const std::filesystem::path& out) {
-  if (terms <= 0) {
-    return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
-  }
-  if (!std::isfinite(rotate_degrees)) {
-    return absl::InvalidArgumentError(absl::StrCat("rotate: ", rotate_degrees, " is not finite"));
-  }
-  if (absl::Status s = CheckRelitPath(out); !s.ok()) return s;
-  absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
-  if (!env.ok()) return env.status();
-  if (rotate_degrees != 0) *env = Rotated(*env, rotate_degrees);
-  absl::StatusOr<OpenedStore> opened = OpenStore(store);
-  if (!opened.ok()) return opened.status();
-  absl::StatusOr<std::vector<float>> rgb = RelightImage(*opened, *env, terms);
-  if (!rgb.ok()) return rgb.status();
-  return WriteRelit(*opened, *rgb, exposure_stops, out);
-}
-
 absl::Status CheckRelitPath(const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   if (ext == ".png" || ext == ".exr" || ext == ".ply" || ext == ".gltf" || ext == ".glb")

@@ -1,6 +1,7 @@
 #pragma once
-// Entry points of `wavebake relight` (DESIGN.md §5): a finished store opened
-// for relighting, one relit image, and the whole command as one call.
+// Relighting a finished store (DESIGN.md §5 relight): the store opened for
+// relighting, one relit image, and its output file (the command that ties
+// them together: driver/relight_to_file.h).
 #include <filesystem>
 #include <span>
 #include <string_view>
@@ -35,20 +36,8 @@ absl::Status RequireCubeDomain(const StoreInfo& info);
 // [W*H*3] linear RGB × albedo, NaN in masked cells. Error: terms ≤ 0.
 absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap& env, int terms);
 
-// `wavebake relight STORE --env ENV --terms n --rotate DEG --out OUT`:
-// ENV as LoadEnvMap reads it, rotated about +Y by rotate_degrees (Rotated);
-// OUT by extension: .png (8-bit sRGB, × 2^exposure_stops, masked cells
-// black) or .exr (linear float, masked NaN) of the W×H sample grid — the
-// image itself for camera layouts; .ply (vertex colours on the scene
-// reloaded from the store's scene spec) for the mesh layouts grid|hilbert;
-// for uv layouts the lightmap (.png, .exr) or a glTF (.gltf, .glb), see
-// WriteLightmapOutput.
-// Errors name the bad argument (terms, rotate, out, env, store).
-absl::Status RelightToFile(const std::filesystem::path& store, std::string_view env_spec, int terms,
-                           double rotate_degrees, float exposure_stops,
-                           const std::filesystem::path& out);
-
-// One relit image [W*H*3] written by out's extension, as RelightToFile does.
+// One relit image [W*H*3] written by out's extension (driver/relight_to_file.h
+// RelightToFile says which).
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out);
 absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::span<const float> rgb,

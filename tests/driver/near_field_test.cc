@@ -15,8 +15,8 @@
 #include <numbers>
 #include <string>
 
+#include "driver/area_relight.h"
 #include "driver/embedded_bake.h"
-#include "runtime/near_field/area_relight.h"
 #include "runtime/near_field/near_field_brute.h"
 #include "runtime/reference/area_reference.h"
 #include "runtime/reference/eval.h"
@@ -24,7 +24,7 @@
 #include "storage/json_file.h"
 #include "tests/testing/scratch_dir.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 using TempDir = test_support::ScratchDir;
@@ -298,4 +298,4 @@ TEST_F(NearFieldStoreTest, SequenceWritesEveryFrameAndItsTime) {
 }
 
 }  // namespace
-}  // namespace wavebake
+}  // namespace wavebake::driver

@@ -14,15 +14,17 @@
 
 #include "core/bake/bake_params.h"
 #include "driver/embedded_bake.h"
+#include "driver/evaluate.h"
+#include "driver/relight_sequence.h"
+#include "driver/relight_to_file.h"
 #include "runtime/env/env_resample.h"
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/eval.h"
-#include "runtime/relight/relight_sequence.h"
 #include "runtime/relight/store_relight.h"
 #include "storage/scene_loader.h"
 #include "tests/testing/scratch_dir.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 using TempDir = test_support::ScratchDir;
@@ -233,4 +235,4 @@ TEST(RelightSequence, BadSpecsNameTheFlag) {
 }
 
 }  // namespace
-}  // namespace wavebake
+}  // namespace wavebake::driver

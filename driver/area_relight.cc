@@ -1,15 +1,15 @@
-#include "runtime/near_field/area_relight.h"
+#include "driver/area_relight.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "runtime/relight/relight_sequence.h"
+#include "driver/relight_sequence.h"
 #include "runtime/relight/store_relight.h"
 #include "storage/atomic_file.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 absl::StatusOr<std::vector<float>> Frame(const NearFieldStore& store,
@@ -96,4 +96,4 @@ absl::StatusOr<AreaSequenceSummary> RelightAreaSequence(
   return sum;
 }
 
-}  // namespace wavebake
+}  // namespace wavebake::driver

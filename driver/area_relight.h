@@ -11,7 +11,7 @@
 #include "absl/status/statusor.h"
 #include "runtime/near_field/near_field.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 
 struct AreaRelightOptions {
   NearFieldOptions near;
@@ -43,4 +43,4 @@ absl::StatusOr<AreaSequenceSummary> RelightAreaSequence(
     std::span<const std::filesystem::path> lights, const AreaRelightOptions& options,
     const std::filesystem::path& out_dir, const std::string& frame_extension);
 
-}  // namespace wavebake
+}  // namespace wavebake::driver

@@ -1,4 +1,4 @@
-#include "runtime/glossy/material_sequence.h"
+#include "driver/material_sequence.h"
 
 #include <chrono>
 #include <cmath>
@@ -7,13 +7,13 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "driver/relight_sequence.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/lighting.h"
-#include "runtime/relight/relight_sequence.h"
 #include "runtime/relight/store_relight.h"
 #include "storage/atomic_file.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 absl::Status BadMaterialSequence(std::string_view spec, std::string_view why) {
@@ -63,14 +63,6 @@ BrdfSlices DeltaAndUpdate(const BrdfSlices& target, BrdfSlices& approx, int n) {
   }
   approx = std::move(next);
   return delta;
-}
-
-absl::Status WriteMaterialErrorsCsv(const std::filesystem::path& dir,
-                                    const std::vector<MaterialFrame>& frames) {
-  std::string csv = "frame,brdf,rel_rms,seconds\n";
-  for (const MaterialFrame& f : frames)
-    csv += absl::StrCat(f.index, ",", f.brdf, ",", f.rel_rms, ",", f.seconds, "\n");
-  return AtomicWriteText(dir / "errors.csv", csv);
 }
 
 }  // namespace
@@ -164,9 +156,12 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
     }
   }
   if (!o.out_dir.empty()) {
-    if (absl::Status s = WriteMaterialErrorsCsv(o.out_dir, frames); !s.ok()) return s;
+    if (absl::Status s = WriteErrorsCsv(o.out_dir, "brdf", std::span<const MaterialFrame>(frames),
+                                        &MaterialFrame::brdf);
+        !s.ok())
+      return s;
   }
   return frames;
 }
 
-}  // namespace wavebake
+}  // namespace wavebake::driver

@@ -1,12 +1,12 @@
 // The glossy command-line values: --view and --brdf-sequence
-// (runtime/glossy/glossy_store.h, runtime/glossy/material_sequence.h).
+// (runtime/glossy/glossy_store.h, driver/material_sequence.h).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "driver/material_sequence.h"
 #include "runtime/glossy/glossy_store.h"
-#include "runtime/glossy/material_sequence.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 using ::testing::HasSubstr;
@@ -43,4 +43,4 @@ TEST(ParseBrdfSequence, ErrorsNameTheFlag) {
 }
 
 }  // namespace
-}  // namespace wavebake
+}  // namespace wavebake::driver

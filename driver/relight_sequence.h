@@ -9,12 +9,15 @@
 // number isolates what the lighting approximation costs.
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "storage/atomic_file.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 
 enum class SequenceMode { kNonIncremental, kBasic, kPerBand };
 
@@ -49,6 +52,17 @@ struct SequenceOptions {
 std::filesystem::path SequenceFramePath(const std::filesystem::path& dir, int index,
                                         std::string_view extension);
 
+// dir/errors.csv of a sequence: "frame,<column>,rel_rms,seconds" and a line
+// a frame, the frame's `parameter` (degrees, a BRDF) in the second column.
+template <typename Frame, typename Parameter>
+absl::Status WriteErrorsCsv(const std::filesystem::path& dir, const char* column,
+                            std::span<const Frame> frames, Parameter Frame::*parameter) {
+  std::string csv = absl::StrCat("frame,", column, ",rel_rms,seconds\n");
+  for (const Frame& f : frames)
+    absl::StrAppend(&csv, f.index, ",", f.*parameter, ",", f.rel_rms, ",", f.seconds, "\n");
+  return AtomicWriteText(dir / "errors.csv", csv);
+}
+
 // Over a sequence's frames: what `relight` prints and the charts plot.
 struct SequenceSummary {
   double mean_rel_rms = 0, max_rel_rms = 0;
@@ -61,4 +75,4 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
                                                            std::string_view env_spec,
                                                            const SequenceOptions& options);
 
-}  // namespace wavebake
+}  // namespace wavebake::driver

@@ -1,4 +1,4 @@
-#include "runtime/relight/relight_sequence.h"
+#include "driver/relight_sequence.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,20 +18,12 @@
 #include "runtime/relight/store_relight.h"
 #include "storage/atomic_file.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 namespace {
 
 absl::Status BadSequence(std::string_view spec, const char* why) {
   return absl::InvalidArgumentError(
       absl::StrCat("rotate-sequence: '", std::string(spec), "' ", why, " (START:END:FRAMES)"));
-}
-
-absl::Status WriteErrorsCsv(const std::filesystem::path& dir,
-                            const std::vector<SequenceFrame>& frames) {
-  std::string csv = "frame,degrees,rel_rms,seconds\n";
-  for (const SequenceFrame& f : frames)
-    csv += absl::StrCat(f.index, ",", f.degrees, ",", f.rel_rms, ",", f.seconds, "\n");
-  return AtomicWriteText(dir / "errors.csv", csv);
 }
 
 }  // namespace
@@ -109,7 +101,10 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
     }
   }
   if (!o.out_dir.empty()) {
-    if (absl::Status s = WriteErrorsCsv(o.out_dir, frames); !s.ok()) return s;
+    if (absl::Status s = WriteErrorsCsv(
+            o.out_dir, "degrees", std::span<const SequenceFrame>(frames), &SequenceFrame::degrees);
+        !s.ok())
+      return s;
   }
   return frames;
 }
@@ -127,4 +122,4 @@ SequenceSummary Summarize(std::span<const SequenceFrame> frames) {
   return sum;
 }
 
-}  // namespace wavebake
+}  // namespace wavebake::driver

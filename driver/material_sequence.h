@@ -27,7 +27,7 @@
 #include "absl/status/statusor.h"
 #include "runtime/glossy/glossy_store.h"
 
-namespace wavebake {
+namespace wavebake::driver {
 
 struct BrdfSequence {
   std::string kind;  // phong | blinn | ggx
@@ -65,4 +65,4 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
     const std::filesystem::path& store, std::string_view env_spec,
     const MaterialSequenceOptions& options);
 
-}  // namespace wavebake
+}  // namespace wavebake::driver
