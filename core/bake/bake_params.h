@@ -25,7 +25,8 @@ enum class Transport { kDiffuse, kVisibility };
 struct BakeParams {
   int light_res = 32;             // N: texels per cube face edge, power of two in 8..256
   LightDomain light_domain;       // the cube (default) or one expanded plane face
-  std::string layout = "camera";  // camera[:WxH] | grid | hilbert:WxH
+  std::string layout = "camera";  // camera[:WxH] | grid | hilbert:WxH | uv[1][:WxH][,OPTIONS]
+                                  // (ParseLayout, core/layouts/layout.h)
   int supersample = 4;            // K jittered directions per texel (rounded to a square)
   WaveletFilter row_filter = WaveletFilter::kHaar;  // haar | daub4
   ColumnMode column_mode = ColumnMode::kAdaptive;
