@@ -1,4 +1,5 @@
-"""wavebake from Python.
+"""wavebake from Python: bake, read and relight compressed all-frequency
+light transport.
 
     import wavebake
     store = wavebake.Store("cubes.wbk")          # metadata, samples, columns
@@ -6,8 +7,201 @@
     report = wavebake.eval(store, "builtin:sky", reference=True)
     job = wavebake.Client("127.0.0.1:7433").submit("builtin:cubes-wall", light_res=16)
 
-See docs/python.md for a worked example.
+The compiled extension (wavebake._wavebake) does the work; this module gives
+it inspectable, typed signatures (the same as __init__.pyi, which a test
+checks) and accepts pathlib.Path wherever a path is taken. See
+docs/python.md for a worked example.
 """
-from ._wavebake import Client, Store, Watch, bake, eval, relight
+from __future__ import annotations
 
-__all__ = ["Client", "Store", "Watch", "bake", "eval", "relight"]
+import os
+from typing import Any, Literal, Union, overload
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _wavebake
+
+__version__: str = _wavebake.__version__
+
+_Path = Union[str, os.PathLike[str]]
+
+__all__ = ["Client", "Store", "Watch", "__version__", "bake", "eval", "relight"]
+
+
+def _path(value: _Path) -> str:
+    return os.fspath(value)
+
+
+def _env(env: _Path | ArrayLike) -> Any:
+    """A spec string stays one, a path becomes one, anything else is an array."""
+    if isinstance(env, os.PathLike):
+        return os.fspath(env)
+    return env
+
+
+class Store(_wavebake.Store):
+    """A finished wavebake store (a Zarr v2 directory): its metadata and
+    samples at once, the transport matrix on first use (relight, column).
+
+    Parameters
+    ----------
+    path: the store's directory (str or pathlib.Path).
+    """
+
+    def __init__(self, path: _Path) -> None:
+        super().__init__(_path(path))
+
+    @overload
+    def column(self, index: int, domain: Literal["pixel"] = "pixel") -> NDArray[np.float32]: ...
+    @overload
+    def column(self, index: int, domain: Literal["wavelet"]
+               ) -> tuple[int, NDArray[np.uint32], NDArray[np.float32]]: ...
+
+    def column(self, index: int, domain: str = "pixel") -> Any:
+        """Column `index` of the transport matrix T.
+
+        Parameters
+        ----------
+        index: the column (the wavelet light), 0 .. columns - 1.
+        domain: "pixel": a (height, width) float32 image of the grid;
+            "wavelet": (depth, positions, values) as stored.
+        """
+        return super().column(index=index, domain=domain)
+
+
+def _store(store: Store | _Path) -> Any:
+    return store if isinstance(store, _wavebake.Store) else _path(store)
+
+
+def relight(store: Store | _Path, env: _Path | ArrayLike, terms: int = 256,
+            rotate: float = 0.0) -> NDArray[np.float32]:
+    """The store relit by the `terms` largest wavelet lights of an environment.
+
+    Parameters
+    ----------
+    store: a Store, or the path of one.
+    env: a spec (an .hdr/.exr/.png path, "builtin:sky", "builtin:constant")
+        or a lat-long array of shape (H, 2H, 3) of radiance.
+    terms: how many wavelet lights (more than the store has: all of them).
+    rotate: degrees the environment turns about +Y.
+
+    Returns an (height, width, 3) float32 array, NaN where no sample is.
+    """
+    return _wavebake.relight(store=_store(store), env=_env(env), terms=terms, rotate=rotate)
+
+
+def eval(store: Store | _Path, env: _Path | ArrayLike, reference: bool = True,
+         terms: int = 256, rotate: float = 0.0, dense: bool = True,
+         target_rel_se: float = 0.002) -> dict[str, Any]:
+    """The relighting error, as a dict.
+
+    Parameters
+    ----------
+    store: a Store, or the path of one.
+    env: a spec (or, with reference=False, also an (H, 2H, 3) array).
+    reference: True: against the independent Monte-Carlo reference (the
+        report of `wavebake eval --json`); False: the n-term relighting
+        against all wavelet lights (no tracing).
+    terms: how many wavelet lights.
+    rotate: degrees the environment turns about +Y.
+    dense: also trace the dense transport (reference=True).
+    target_rel_se: the reference's relative standard error to reach.
+    """
+    return _wavebake.eval(store=_store(store), env=_env(env), reference=reference, terms=terms,
+                          rotate=rotate, dense=dense, target_rel_se=target_rel_se)
+
+
+def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]:
+    """Bake a scene into a store in this process (as `wavebake bake`).
+
+    Parameters
+    ----------
+    scene: "builtin:NAME" or a scene file (str or pathlib.Path).
+    out: the store to write (must not exist).
+    workers: worker threads (0: one per core).
+    params: BakeRequest fields (light_res=16, layout="camera:32x32", ...).
+
+    Returns the finished job as a dict. Ctrl-C cancels the bake.
+    """
+    return _wavebake.bake(_path(scene), _path(out), workers, **params)
+
+
+Watch = _wavebake.Watch
+
+
+class Client(_wavebake.Client):
+    """A client of a running coordinator (`wavebake coordinator`).
+
+    Parameters
+    ----------
+    coordinator: its address, host:port.
+    token_file: a file holding the bearer token ("" for none).
+    tls_ca: a CA certificate file for TLS ("" for plaintext).
+    connect_seconds: how long to wait for the connection.
+    """
+
+    def __init__(self, coordinator: str, token_file: _Path = "", tls_ca: _Path = "",
+                 connect_seconds: float = 5.0) -> None:
+        super().__init__(coordinator=coordinator, token_file=_path(token_file),
+                         tls_ca=_path(tls_ca), connect_seconds=connect_seconds)
+
+    def submit(self, scene: _Path, **params: Any) -> dict[str, Any]:
+        """Submit a bake; returns the job.
+
+        Parameters
+        ----------
+        scene: "builtin:NAME" or a scene file (uploaded once, by hash).
+        params: BakeRequest fields (light_res=16, layout="camera:32x32", ...).
+        """
+        return super().submit(_path(scene), **params)
+
+    def watch(self, job_id: str | int, patience_seconds: float = 60.0) -> Watch:
+        """The job's events as an iterator of dicts, to the job's end (its
+        `job` attribute is then the finished job); reconnects across restarts.
+
+        Parameters
+        ----------
+        job_id: the job.
+        patience_seconds: how long to keep reconnecting to a lost coordinator.
+        """
+        return super().watch(job_id=str(job_id), patience_seconds=patience_seconds)
+
+    def status(self, job_id: str | int) -> dict[str, Any]:
+        """The job as the coordinator has it now.
+
+        Parameters
+        ----------
+        job_id: the job.
+        """
+        return super().status(job_id=str(job_id))
+
+    def jobs(self, limit: int = 100, active_only: bool = False) -> list[dict[str, Any]]:
+        """The newest jobs, newest first.
+
+        Parameters
+        ----------
+        limit: at most this many.
+        active_only: only queued and baking jobs.
+        """
+        return super().jobs(limit=limit, active_only=active_only)
+
+    def cancel(self, job_id: str | int) -> dict[str, Any]:
+        """Cancel a queued or baking job; returns it.
+
+        Parameters
+        ----------
+        job_id: the job.
+        """
+        return super().cancel(job_id=str(job_id))
+
+    def fetch(self, job_id: str | int, out: _Path) -> dict[str, Any]:
+        """Stream a finished job's store into `out`, verified; returns files,
+        bytes, arrays and path.
+
+        Parameters
+        ----------
+        job_id: the job.
+        out: where the store goes (must not exist).
+        """
+        return super().fetch(job_id=str(job_id), out=_path(out))
