@@ -85,7 +85,7 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields) {
     const std::string name = py::str(key);
     const FieldDescriptor* f = d.FindFieldByName(name);
     if (!f || f->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
-      throw py::value_error(absl::StrCat(name, ": not a bake parameter (BakeRequest field)"));
+      RaiseInvalid(absl::StrCat(name, ": not a bake parameter (BakeRequest field)"));
     }
     try {
       switch (f->cpp_type()) {
@@ -105,7 +105,7 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields) {
           r.SetString(&request, f, value.cast<std::string>());
           break;
         default:
-          throw py::value_error(absl::StrCat(name, ": cannot be set from Python"));
+          RaiseInvalid(absl::StrCat(name, ": cannot be set from Python"));
       }
     } catch (const py::cast_error&) {
       throw py::type_error(absl::StrCat(name, ": ", std::string(py::str(py::type::of(value))),
@@ -119,16 +119,14 @@ py::object JsonToPython(const nlohmann::json& j) {
 }
 
 void Raise(const absl::Status& status) {
-  const std::string message(status.ToString());
-  switch (status.code()) {
-    case absl::StatusCode::kInvalidArgument:
-    case absl::StatusCode::kOutOfRange:
-      throw py::value_error(message);
-    case absl::StatusCode::kNotFound:
-      throw py::key_error(message);
-    default:
-      throw std::runtime_error(message);
-  }
+  // wavebake.Error's subclass for the code (python/wavebake/__init__.py);
+  // the class names the kind, so the message is the status's alone.
+  py::object cls =
+      py::module_::import("wavebake").attr("_error_class")(static_cast<int>(status.code()));
+  PyErr_SetObject(cls.ptr(), py::str(std::string(status.message())).ptr());
+  throw py::error_already_set();
 }
+
+void RaiseInvalid(const std::string& message) { Raise(absl::InvalidArgumentError(message)); }
 
 }  // namespace wavebake::python

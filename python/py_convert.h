@@ -25,10 +25,12 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields);
 
 py::object JsonToPython(const nlohmann::json& j);
 
-// Raises ValueError for INVALID_ARGUMENT (and OUT_OF_RANGE), KeyError for
-// NOT_FOUND, RuntimeError otherwise; the message is the status's, which
-// names the code and the bad input.
+// Raises the wavebake.Error subclass of the status's code (InvalidArgument,
+// a ValueError; NotFound, a FileNotFoundError; ...) with the status's
+// message, which names the bad input.
 [[noreturn]] void Raise(const absl::Status& status);
+// wavebake.InvalidArgument(message): an argument the binding itself refuses.
+[[noreturn]] void RaiseInvalid(const std::string& message);
 
 template <typename T>
 T Unwrap(absl::StatusOr<T> value) {

@@ -99,7 +99,7 @@ py::object Column(PyStore& s, int column, const std::string& domain) {
     std::copy(c.values.begin(), c.values.end(), values.mutable_data());
     return py::make_tuple(c.depth, positions, values);
   }
-  if (domain != "pixel") throw py::value_error("domain: 'pixel' or 'wavelet'");
+  if (domain != "pixel") RaiseInvalid("domain: 'pixel' or 'wavelet'");
   auto [opened, lock] = s.Opened();
   // The column's inverse transform is Eq. 8 with the one light of weight 1.
   const WaveletLight light{static_cast<uint32_t>(column), {1, 1, 1}};
@@ -116,7 +116,7 @@ EnvMap EnvFrom(const py::object& env) {
   if (py::isinstance<py::str>(env)) return Unwrap(LoadEnvMap(env.cast<std::string>()));
   auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(env);
   if (!a || a.ndim() != 3 || a.shape(2) != 3 || a.shape(1) != 2 * a.shape(0) || a.shape(0) < 1) {
-    throw py::value_error("env: a spec string or a lat-long array of shape (H, 2H, 3)");
+    RaiseInvalid("env: a spec string or a lat-long array of shape (H, 2H, 3)");
   }
   EnvMap map;
   map.width = static_cast<int>(a.shape(1));
@@ -124,7 +124,7 @@ EnvMap EnvFrom(const py::object& env) {
   map.rgb.assign(a.data(), a.data() + a.size());
   for (size_t i = 0; i < map.rgb.size(); ++i) {
     if (!(std::isfinite(map.rgb[i]) && map.rgb[i] >= 0)) {
-      throw py::value_error(absl::StrCat("env: value ", map.rgb[i], " at flat index ", i,
+      RaiseInvalid(absl::StrCat("env: value ", map.rgb[i], " at flat index ", i,
                                          " is not a finite non-negative radiance"));
     }
   }
@@ -148,7 +148,7 @@ py::array_t<float> Relight(const py::object& store, const py::object& env, int t
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
   EnvMap map = EnvFrom(env);
-  if (!std::isfinite(rotate)) throw py::value_error("rotate: not a finite number of degrees");
+  if (!std::isfinite(rotate)) RaiseInvalid("rotate: not a finite number of degrees");
   auto [opened, lock] = s.Opened();
   absl::StatusOr<std::vector<float>> rgb;
   {

@@ -26,7 +26,130 @@ __version__: str = _wavebake.__version__
 
 _Path = Union[str, os.PathLike[str]]
 
-__all__ = ["Client", "Store", "Watch", "__version__", "bake", "eval", "relight"]
+__all__ = [
+    "Aborted", "AlreadyExists", "Cancelled", "Client", "DataLoss", "DeadlineExceeded",
+    "Error", "FailedPrecondition", "Internal", "InvalidArgument", "NotFound", "OutOfRange",
+    "PermissionDenied", "ResourceExhausted", "Store", "Unauthenticated", "Unavailable", "Unimplemented",
+    "Unknown", "Watch", "__version__", "bake", "eval", "relight",
+]
+
+
+class Error(Exception):
+    """A wavebake call failed. The subclass names the kind (the status code
+    of the library or of the coordinator's RPC, `code`); the message names
+    the bad input, in the words of the Python API."""
+
+    code: str = "UNKNOWN"
+
+
+class Cancelled(Error):
+    """The operation was cancelled (a job cancelled while it was watched)."""
+
+    code = "CANCELLED"
+
+
+class Unknown(Error):
+    """A failure of no known kind."""
+
+    code = "UNKNOWN"
+
+
+class InvalidArgument(Error, ValueError):
+    """An argument is invalid: the message starts with its name."""
+
+    code = "INVALID_ARGUMENT"
+
+
+class DeadlineExceeded(Error, TimeoutError):
+    """A deadline passed (a coordinator that did not answer in time)."""
+
+    code = "DEADLINE_EXCEEDED"
+
+
+class NotFound(Error, FileNotFoundError):
+    """A file, store, scene or job does not exist."""
+
+    code = "NOT_FOUND"
+
+
+class AlreadyExists(Error, FileExistsError):
+    """An output that must not exist does."""
+
+    code = "ALREADY_EXISTS"
+
+
+class PermissionDenied(Error, PermissionError):
+    """Not allowed."""
+
+    code = "PERMISSION_DENIED"
+
+
+class ResourceExhausted(Error):
+    """A limit was reached (an upload too large, memory)."""
+
+    code = "RESOURCE_EXHAUSTED"
+
+
+class FailedPrecondition(Error):
+    """The state does not allow it (cancelling a finished job)."""
+
+    code = "FAILED_PRECONDITION"
+
+
+class Aborted(Error):
+    """Aborted by a conflict; trying again may work."""
+
+    code = "ABORTED"
+
+
+class OutOfRange(InvalidArgument):
+    """A value outside its range."""
+
+    code = "OUT_OF_RANGE"
+
+
+class Unimplemented(Error, NotImplementedError):
+    """Not supported (by this store, or this coordinator)."""
+
+    code = "UNIMPLEMENTED"
+
+
+class Internal(Error):
+    """A broken invariant: a bug to report."""
+
+    code = "INTERNAL"
+
+
+class Unavailable(Error, ConnectionError):
+    """The coordinator cannot be reached."""
+
+    code = "UNAVAILABLE"
+
+
+class DataLoss(Error):
+    """A store or file is corrupt or truncated."""
+
+    code = "DATA_LOSS"
+
+
+class Unauthenticated(Error, PermissionError):
+    """The coordinator wants a (valid) token."""
+
+    code = "UNAUTHENTICATED"
+
+
+# By status code number (absl::StatusCode and grpc::StatusCode agree).
+_ERRORS: dict[int, type[Error]] = {
+    1: Cancelled, 2: Unknown, 3: InvalidArgument, 4: DeadlineExceeded, 5: NotFound,
+    6: AlreadyExists, 7: PermissionDenied, 8: ResourceExhausted, 9: FailedPrecondition,
+    10: Aborted, 11: OutOfRange, 12: Unimplemented, 13: Internal, 14: Unavailable, 15: DataLoss,
+    16: Unauthenticated,
+}
+
+
+def _error_class(code: int) -> type[Error]:
+    """The exception the extension raises for a status code."""
+    return _ERRORS.get(code, Unknown)
 
 
 def _path(value: _Path) -> str:

@@ -37,9 +37,10 @@ def test_submit_watch_fetch_relight(coordinator, tmp_path):
     assert summary["arrays"] >= 9 and summary["bytes"] > 0
     image = wavebake.relight(str(out), "builtin:sky", terms=64)
     assert image.shape == (16, 16, 3) and np.isfinite(image[wavebake.Store(str(out)).samples["grid"] >= 0]).all()
-    with pytest.raises(Exception, match="--out"):
-        client.fetch(job["id"], str(out))  # never over an existing path
-    with pytest.raises(Exception, match="FAILED_PRECONDITION"):
+    with pytest.raises(wavebake.AlreadyExists, match="^out: ") as existing:
+        client.fetch(job["id"], out)  # never over an existing path
+    assert isinstance(existing.value, FileExistsError) and "--" not in str(existing.value)
+    with pytest.raises(wavebake.FailedPrecondition):
         client.cancel(job["id"])  # already DONE
 
 
@@ -60,16 +61,18 @@ def test_cancel_and_an_early_dropped_watch(coordinator):
 
 def test_errors_are_named(coordinator, tmp_path):
     address, token = coordinator
-    with pytest.raises(Exception, match="UNAUTHENTICATED"):
+    with pytest.raises(wavebake.Unauthenticated):
         wavebake.Client(address).jobs()
     client = wavebake.Client(address, token_file=token)
-    with pytest.raises(ValueError, match="lightres"):
+    with pytest.raises(wavebake.InvalidArgument, match="lightres"):
         client.submit("builtin:furnace", lightres=8)
     with pytest.raises(TypeError, match="light_res"):
         client.submit("builtin:furnace", light_res="eight")
-    with pytest.raises(ValueError, match="light_res"):
+    with pytest.raises(wavebake.InvalidArgument, match="light_res"):
         client.submit("builtin:furnace", light_res=33)
-    with pytest.raises(KeyError):
-        client.status("424242")
-    with pytest.raises(Exception, match="missing.obj"):
-        client.submit(str(tmp_path / "missing.obj"))
+    with pytest.raises(wavebake.NotFound):
+        client.status(424242)  # an int is a job id too
+    with pytest.raises(wavebake.Error, match="missing.obj"):
+        client.submit(tmp_path / "missing.obj")
+    with pytest.raises(wavebake.Unavailable, match="^coordinator: "):
+        wavebake.Client("127.0.0.1:1", connect_seconds=0.2)

@@ -97,6 +97,8 @@ def test_the_stub_is_the_module():
         ours, theirs = getattr(wavebake, name), getattr(stub, name)
         if inspect.isfunction(theirs):
             compare_callable(ours, theirs, name)
+        elif inspect.isclass(theirs) and issubclass(theirs, BaseException):
+            assert [b.__name__ for b in ours.__bases__] == [b.__name__ for b in theirs.__bases__], name
         elif inspect.isclass(theirs):
             assert inspect.isclass(ours), name
             public = {n for n in dir(ours) if not n.startswith("_")}
