@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "python/py_client.h"
+#include "python/py_shading.h"
 #include "python/py_store.h"
 
 PYBIND11_MODULE(_wavebake, m) {
@@ -13,5 +14,6 @@ PYBIND11_MODULE(_wavebake, m) {
   // a notebook's output; warnings and errors still show.
   spdlog::set_level(spdlog::level::warn);
   wavebake::python::AddStoreBindings(m);
+  wavebake::python::AddShadingBindings(m);
   wavebake::python::AddClientBindings(m);
 }

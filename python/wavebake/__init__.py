@@ -15,7 +15,7 @@ docs/python.md for a worked example.
 from __future__ import annotations
 
 import os
-from typing import Any, Literal, Union, overload
+from typing import Any, Iterable, Iterator, Literal, Sequence, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -30,7 +30,7 @@ __all__ = [
     "Aborted", "AlreadyExists", "Cancelled", "Client", "DataLoss", "DeadlineExceeded",
     "Error", "FailedPrecondition", "Internal", "InvalidArgument", "NotFound", "OutOfRange",
     "PermissionDenied", "ResourceExhausted", "Store", "Unauthenticated", "Unavailable", "Unimplemented",
-    "Unknown", "Watch", "__version__", "bake", "eval", "relight",
+    "Unknown", "Watch", "__version__", "bake", "eval", "relight", "relight_sequence",
 ]
 
 
@@ -156,7 +156,7 @@ def _path(value: _Path) -> str:
     return os.fspath(value)
 
 
-def _env(env: _Path | ArrayLike) -> Any:
+def _env(env: _Path | ArrayLike | None) -> Any:
     """A spec string stays one, a path becomes one, anything else is an array."""
     if isinstance(env, os.PathLike):
         return os.fspath(env)
@@ -197,42 +197,124 @@ def _store(store: Store | _Path) -> Any:
     return store if isinstance(store, _wavebake.Store) else _path(store)
 
 
-def relight(store: Store | _Path, env: _Path | ArrayLike, terms: int = 256,
-            rotate: float = 0.0) -> NDArray[np.float32]:
-    """The store relit by the `terms` largest wavelet lights of an environment.
+def _lights(area_lights: Iterable[_Path]) -> list[str]:
+    if isinstance(area_lights, (str, os.PathLike)):
+        return [os.fspath(area_lights)]
+    return [os.fspath(f) for f in area_lights]
+
+
+def relight(store: Store | _Path, env: _Path | ArrayLike | None = None, terms: int = 256,
+            rotate: float = 0.0, brdf: str = "lambert", view: Sequence[float] | None = None,
+            exposure: float = 0.0, area_lights: Iterable[_Path] = (),
+            source_fraction: float = 0.01, target_fraction: float = 0.30) -> NDArray[np.float32]:
+    """The store relit, as `wavebake relight` relights it (the same floats as
+    its .exr): an (height, width, 3) float32 array, NaN where no sample is.
 
     Parameters
     ----------
     store: a Store, or the path of one.
-    env: a spec (an .hdr/.exr/.png path, "builtin:sky", "builtin:constant")
-        or a lat-long array of shape (H, 2H, 3) of radiance.
+    env: an environment: a spec (an .hdr/.exr/.png path, "builtin:sky",
+        "builtin:constant") or a lat-long array of shape (H, 2H, 3) of
+        radiance; None with area_lights.
     terms: how many wavelet lights (more than the store has: all of them).
     rotate: degrees the environment turns about +Y.
-
-    Returns an (height, width, 3) float32 array, NaN where no sample is.
+    brdf: the material of a visibility store ("lambert", "phong:16",
+        "blinn:32", ... as `--brdf`); a diffuse store takes "lambert" only.
+    view: the eye (x, y, z) of a visibility store with a mesh layout
+        (a camera layout sees from its camera); None otherwise.
+    exposure: stops: the floats are scaled by 2**exposure.
+    area_lights: LIGHT.json files of near-field area lights (their lights
+        add) for a store baked with light_domain="plane:S"; env is then None.
+    source_fraction: area lights: source coefficients kept per light.
+    target_fraction: area lights: face coefficients propagated per sample.
     """
-    return _wavebake.relight(store=_store(store), env=_env(env), terms=terms, rotate=rotate)
+    return _wavebake.relight(store=_store(store), env=_env(env), terms=terms, rotate=rotate,
+                             brdf=brdf, view=view, exposure=exposure,
+                             area_lights=_lights(area_lights), source_fraction=source_fraction,
+                             target_fraction=target_fraction)
 
 
-def eval(store: Store | _Path, env: _Path | ArrayLike, reference: bool = True,
-         terms: int = 256, rotate: float = 0.0, dense: bool = True,
-         target_rel_se: float = 0.002) -> dict[str, Any]:
-    """The relighting error, as a dict.
+def relight_sequence(store: Store | _Path, env: _Path | ArrayLike | None = None,
+                     rotate: Iterable[float] | None = None, brdf: Iterable[str] | None = None,
+                     area_light_sequence: _Path | None = None, terms: int = 256,
+                     view: Sequence[float] | None = None, exposure: float = 0.0,
+                     area_lights: Iterable[_Path] = (), source_fraction: float = 0.01,
+                     target_fraction: float = 0.30) -> Iterator[NDArray[np.float32]]:
+    """Frames one at a time (a generator), the store opened once: each is
+    relight() with that frame's rotation and BRDF, or of that frame of a
+    moving area light.
 
     Parameters
     ----------
     store: a Store, or the path of one.
-    env: a spec (or, with reference=False, also an (H, 2H, 3) array).
-    reference: True: against the independent Monte-Carlo reference (the
-        report of `wavebake eval --json`); False: the n-term relighting
-        against all wavelet lights (no tracing).
+    env: the environment (as for relight); None with area lights.
+    rotate: the degrees of each frame (e.g. numpy.linspace(0, 360, 36));
+        None: 0 for every frame.
+    brdf: the material of each frame (visibility stores); None: "lambert".
+        Given both, rotate and brdf have one entry per frame each.
+    area_light_sequence: a SEQ.json moving light (as
+        `--area-light-sequence`), its frames over the fixed area_lights.
+    terms: how many wavelet lights.
+    view: the eye (x, y, z) for a mesh layout's visibility store.
+    exposure: stops: the floats are scaled by 2**exposure.
+    area_lights: LIGHT.json files lit in every frame.
+    source_fraction: area lights: source coefficients kept per light.
+    target_fraction: area lights: face coefficients propagated per sample.
+    """
+    opened = store if isinstance(store, _wavebake.Store) else Store(store)
+    if area_light_sequence is not None:
+        sequence = _path(area_light_sequence)
+        for frame in range(_wavebake.area_sequence_frames(sequence=sequence)):
+            yield _wavebake.relight_area_frame(
+                store=opened, sequence=sequence, frame=frame, area_lights=_lights(area_lights),
+                exposure=exposure, source_fraction=source_fraction, target_fraction=target_fraction)
+        return
+    if rotate is None and brdf is None:
+        raise InvalidArgument("rotate: give rotate, brdf or area_light_sequence (one entry a frame)")
+    angles = list(rotate) if rotate is not None else None
+    materials = list(brdf) if brdf is not None else None
+    if angles is not None and materials is not None and len(angles) != len(materials):
+        raise InvalidArgument(f"brdf: {len(materials)} entries for {len(angles)} rotations")
+    count = len(angles) if angles is not None else len(materials or [])
+    for frame in range(count):
+        yield relight(opened, env, terms=terms, rotate=angles[frame] if angles is not None else 0.0,
+                      brdf=materials[frame] if materials is not None else "lambert", view=view,
+                      exposure=exposure, area_lights=area_lights, source_fraction=source_fraction,
+                      target_fraction=target_fraction)
+
+
+def eval(store: Store | _Path, env: _Path | ArrayLike | None = None, reference: bool = True,
+         terms: int = 256, rotate: float = 0.0, dense: bool = True,
+         target_rel_se: float = 0.002, brdf: str = "lambert", view: Sequence[float] | None = None,
+         area_lights: Iterable[_Path] = (), source_fraction: float = 0.01,
+         target_fraction: float = 0.30, reference_batches: int = 8) -> dict[str, Any]:
+    """The relighting error, as a dict (reference=True: the report of
+    `wavebake eval --json` with the same options).
+
+    Parameters
+    ----------
+    store: a Store, or the path of one.
+    env: a spec (or, with reference=False, also an (H, 2H, 3) array); None
+        with area_lights.
+    reference: True: against the independent Monte-Carlo reference; False:
+        the n-term relighting against all wavelet lights (no tracing).
     terms: how many wavelet lights.
     rotate: degrees the environment turns about +Y.
     dense: also trace the dense transport (reference=True).
     target_rel_se: the reference's relative standard error to reach.
+    brdf: the material of a visibility store (as for relight).
+    view: the eye (x, y, z) of a visibility store with a mesh layout.
+    area_lights: LIGHT.json files: near-field lights over their area
+        (as `wavebake eval --area-light`); env is then None.
+    source_fraction: area lights: source coefficients kept per light.
+    target_fraction: area lights: face coefficients propagated per sample.
+    reference_batches: area lights: batches of 16x16 points per light and sample.
     """
     return _wavebake.eval(store=_store(store), env=_env(env), reference=reference, terms=terms,
-                          rotate=rotate, dense=dense, target_rel_se=target_rel_se)
+                          rotate=rotate, dense=dense, target_rel_se=target_rel_se, brdf=brdf,
+                          view=view, area_lights=_lights(area_lights),
+                          source_fraction=source_fraction, target_fraction=target_fraction,
+                          reference_batches=reference_batches)
 
 
 def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]:

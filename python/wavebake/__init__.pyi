@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Iterator, Literal, Union, overload
+from typing import Any, Iterable, Iterator, Literal, Sequence, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -59,11 +59,21 @@ class Store:
     def column(self, index: int, domain: Literal["wavelet"]
                ) -> tuple[int, NDArray[np.uint32], NDArray[np.float32]]: ...
 
-def relight(store: Store | _Path, env: _Path | ArrayLike, terms: int = 256,
-            rotate: float = 0.0) -> NDArray[np.float32]: ...
-def eval(store: Store | _Path, env: _Path | ArrayLike, reference: bool = True,
+def relight(store: Store | _Path, env: _Path | ArrayLike | None = None, terms: int = 256,
+            rotate: float = 0.0, brdf: str = "lambert", view: Sequence[float] | None = None,
+            exposure: float = 0.0, area_lights: Iterable[_Path] = (),
+            source_fraction: float = 0.01, target_fraction: float = 0.30) -> NDArray[np.float32]: ...
+def relight_sequence(store: Store | _Path, env: _Path | ArrayLike | None = None,
+                     rotate: Iterable[float] | None = None, brdf: Iterable[str] | None = None,
+                     area_light_sequence: _Path | None = None, terms: int = 256,
+                     view: Sequence[float] | None = None, exposure: float = 0.0,
+                     area_lights: Iterable[_Path] = (), source_fraction: float = 0.01,
+                     target_fraction: float = 0.30) -> Iterator[NDArray[np.float32]]: ...
+def eval(store: Store | _Path, env: _Path | ArrayLike | None = None, reference: bool = True,
          terms: int = 256, rotate: float = 0.0, dense: bool = True,
-         target_rel_se: float = 0.002) -> dict[str, Any]: ...
+         target_rel_se: float = 0.002, brdf: str = "lambert", view: Sequence[float] | None = None,
+         area_lights: Iterable[_Path] = (), source_fraction: float = 0.01,
+         target_fraction: float = 0.30, reference_batches: int = 8) -> dict[str, Any]: ...
 def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]: ...
 
 class Watch(Iterator[dict[str, Any]]):
