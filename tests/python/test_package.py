@@ -10,7 +10,9 @@ import importlib.util
 import inspect
 import os
 import re
+import shutil
 import subprocess
+import sys
 import typing
 from importlib.machinery import SourceFileLoader
 from pathlib import Path
@@ -177,3 +179,16 @@ def test_paths_are_accepted_everywhere(stores, tmp_path):
     out = tmp_path / "baked.wbk"
     job = wavebake.bake("builtin:furnace", out, workers=1, light_res=4, layout="camera:8x8", tile_size=8)
     assert Path(wavebake.Store(out).path) == out and job["tasks_done"] == job["tasks_total"]
+
+
+def test_the_example_type_checks_under_mypy_strict(tmp_path):
+    """docs/python_example.py against the installed stub, as a user's
+    editor or CI would check their code."""
+    source = os.environ.get("WB_SOURCE_DIR")
+    if not source:
+        pytest.skip("WB_SOURCE_DIR names the source tree")
+    mypy = shutil.which("mypy") or "/usr/bin/mypy"
+    run = subprocess.run([mypy, "--strict", "--python-executable", sys.executable, "--cache-dir",
+                          str(tmp_path / "cache"), str(Path(source) / "docs" / "python_example.py")],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
