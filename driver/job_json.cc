@@ -13,7 +13,7 @@ using google::protobuf::FieldDescriptor;
 using google::protobuf::Message;
 using google::protobuf::Reflection;
 
-nlohmann::json Scalar(const Message& m, const Reflection& r, const FieldDescriptor* f, int i) {
+nlohmann::json FieldJson(const Message& m, const Reflection& r, const FieldDescriptor* f, int i) {
   const bool rep = f->is_repeated();
   switch (f->cpp_type()) {
     case FieldDescriptor::CPPTYPE_INT32:
@@ -67,12 +67,12 @@ nlohmann::json MessageJson(const Message& m) {
     const FieldDescriptor* f = d.field(i);
     if (f->is_repeated()) {
       nlohmann::json list = nlohmann::json::array();
-      for (int k = 0; k < r.FieldSize(m, f); ++k) list.push_back(Scalar(m, r, f, k));
+      for (int k = 0; k < r.FieldSize(m, f); ++k) list.push_back(FieldJson(m, r, f, k));
       out[f->name()] = std::move(list);
     } else if (f->containing_oneof() && !r.HasField(m, f)) {
       continue;  // the unset branches of a oneof (scene source, seed presence)
     } else {
-      out[f->name()] = Scalar(m, r, f, 0);
+      out[f->name()] = FieldJson(m, r, f, 0);
     }
   }
   return out;

@@ -52,7 +52,7 @@ def test_a_corrupt_store_is_data_loss(stores, tmp_path):
     shutil.copytree(stores["furnace"], copy)
     zarray = copy / "transport" / "depth" / ".zarray"
     spec = json.loads(zarray.read_text())
-    spec["dtype"] = "<u2"  # not the documented uint8
+    spec["dtype"] = "<i4"  # a dtype the reader knows, not the documented uint8
     zarray.write_text(json.dumps(spec))
     with pytest.raises(wavebake.DataLoss, match="depth"):
         wavebake.relight(copy, "builtin:sky")

@@ -192,7 +192,7 @@ def test_paths_are_accepted_everywhere(stores, tmp_path):
     report = wavebake.eval(path, probe, reference=False, terms=16)
     assert report["terms"] == 16
     out = tmp_path / "baked.wbk"
-    job = wavebake.bake("builtin:furnace", out, workers=1, light_res=4, layout="camera:8x8", tile_size=8)
+    job = wavebake.bake("builtin:furnace", out, workers=1, light_res=8, layout="camera:8x8", tile_size=8)
     assert Path(wavebake.Store(out).path) == out and job["tasks_done"] == job["tasks_total"]
 
 

@@ -29,7 +29,7 @@ def shaded(tmp_path_factory):
     out = {"vis": root / "vis.wbk", "mesh": root / "mesh.wbk", "plane": root / "plane.wbk"}
     for job in (wavebake.bake("builtin:sphere-plane", out["vis"], workers=2, layout="camera:16x16",
                               transport="visibility", **small),
-                wavebake.bake("builtin:sphere-plane", out["mesh"], workers=2, layout="hilbert:32x32",
+                wavebake.bake("builtin:sphere-plane", out["mesh"], workers=2, layout="hilbert:128x64",
                               transport="visibility", **small),
                 wavebake.bake("builtin:furnace", out["plane"], workers=2, layout="camera:16x16",
                               light_res=16, light_domain="plane:4", tile_size=8, column_group=128)):
