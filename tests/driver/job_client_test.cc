@@ -157,9 +157,10 @@ TEST_F(JobClientTest, ABadConfigurationNamesItsSetting) {
                   .status()
                   .message(),
               ::testing::HasSubstr("token_file: "));
-  EXPECT_THAT(
-      Client::Connect({.coordinator = "127.0.0.1:1"}, /*connect_seconds=*/0.2).status().message(),
-      ::testing::StartsWith("coordinator: cannot connect"));
+  EXPECT_THAT(std::string(Client::Connect({.coordinator = "127.0.0.1:1"}, /*connect_seconds=*/0.2)
+                              .status()
+                              .message()),
+              ::testing::StartsWith("coordinator: cannot connect"));
 }
 
 }  // namespace
