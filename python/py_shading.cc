@@ -133,10 +133,10 @@ std::vector<float> RelightArea(PyStore& s, const Shading& shading,
   return Unwrap(std::move(rgb));
 }
 
-py::array_t<float> Relight(const py::object& store, const py::object& env, int terms,
-                           double rotate, const std::string& brdf, const py::object& view,
-                           double exposure, const std::vector<std::string>& area_lights,
-                           double source_fraction, double target_fraction) {
+py::array_t<float> Relight(const py::object& store, const py::object& env, int terms, double rotate,
+                           const std::string& brdf, const py::object& view, double exposure,
+                           const std::vector<std::string>& area_lights, double source_fraction,
+                           double target_fraction) {
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
   CheckFinite(rotate, "rotate", "a finite number of degrees");
@@ -171,10 +171,9 @@ py::array_t<float> Relight(const py::object& store, const py::object& env, int t
 
 // Frame `frame` of an area-light sequence (SEQ.json; runtime/area_light.h)
 // over the fixed area_lights, as `relight --area-light-sequence` renders it.
-py::array_t<float> RelightAreaFrame(const py::object& store, const std::string& sequence,
-                                    int frame, const std::vector<std::string>& area_lights,
-                                    double exposure, double source_fraction,
-                                    double target_fraction) {
+py::array_t<float> RelightAreaFrame(const py::object& store, const std::string& sequence, int frame,
+                                    const std::vector<std::string>& area_lights, double exposure,
+                                    double source_fraction, double target_fraction) {
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
   CheckFinite(exposure, "exposure", "a finite number of stops");
@@ -307,13 +306,13 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
 }  // namespace
 
 void AddShadingBindings(py::module_& m) {
-  m.def("relight", &Relight, py::arg("store"), py::arg("env"), py::arg("terms"),
-        py::arg("rotate"), py::arg("brdf"), py::arg("view"), py::arg("exposure"),
-        py::arg("area_lights"), py::arg("source_fraction"), py::arg("target_fraction"),
+  m.def("relight", &Relight, py::arg("store"), py::arg("env"), py::arg("terms"), py::arg("rotate"),
+        py::arg("brdf"), py::arg("view"), py::arg("exposure"), py::arg("area_lights"),
+        py::arg("source_fraction"), py::arg("target_fraction"),
         "the store relit: an (H, W, 3) float32 array, NaN where masked (wavebake.relight)");
   m.def("relight_area_frame", &RelightAreaFrame, py::arg("store"), py::arg("sequence"),
-        py::arg("frame"), py::arg("area_lights"), py::arg("exposure"),
-        py::arg("source_fraction"), py::arg("target_fraction"),
+        py::arg("frame"), py::arg("area_lights"), py::arg("exposure"), py::arg("source_fraction"),
+        py::arg("target_fraction"),
         "frame `frame` of an area-light sequence (wavebake.relight_sequence)");
   m.def("area_sequence_frames", &AreaSequenceFrames, py::arg("sequence"),
         "the number of frames of an area-light sequence file");

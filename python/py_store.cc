@@ -103,7 +103,9 @@ std::unique_lock<std::mutex> PyStore::Lock() {
 }
 
 PyStore::PyStore(std::string path)
-    : path_(std::move(path)), info_(Unwrap(ReadStoreInfo(path_))), samples_(Unwrap(ReadSamples(path_))) {}
+    : path_(std::move(path)),
+      info_(Unwrap(ReadStoreInfo(path_))),
+      samples_(Unwrap(ReadSamples(path_))) {}
 
 std::pair<OpenedStore*, std::unique_lock<std::mutex>> PyStore::Opened() {
   std::unique_lock lock = Lock();
@@ -118,7 +120,8 @@ std::pair<OpenedStore*, std::unique_lock<std::mutex>> PyStore::Opened() {
   return {&*opened_, std::move(lock)};
 }
 
-std::pair<GlossyStore*, std::unique_lock<std::mutex>> PyStore::Glossy(const GlossyOptions& options) {
+std::pair<GlossyStore*, std::unique_lock<std::mutex>> PyStore::Glossy(
+    const GlossyOptions& options) {
   std::unique_lock lock = Lock();
   absl::Status status;
   {

@@ -12,8 +12,8 @@
 #include "storage/array_range.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
-#include "storage/zarr_array.h"
 #include "storage/store_scene.h"
+#include "storage/zarr_array.h"
 
 namespace wavebake {
 namespace {

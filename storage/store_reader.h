@@ -14,8 +14,8 @@
 namespace wavebake {
 
 struct StoreInfo {
-  nlohmann::json attrs;    // the root .zattrs as written by FINALIZE
-  BakeParams params;       // parsed back from attrs["params"]
+  nlohmann::json attrs;  // the root .zattrs as written by FINALIZE
+  BakeParams params;     // parsed back from attrs["params"]
   // What LoadScene reads here: attrs["scene"] (builtin:NAME, or the scene
   // file's name) located on this machine (storage/store_scene.h).
   std::string scene_spec;

@@ -67,7 +67,7 @@ TEST_F(LeaseTableTest, TilesThenGroupsThenFinalize) {
   EXPECT_EQ(Next(w, &t0), "BAKE_TILE 0");
   EXPECT_EQ(PhaseOf(job), Phase::kBaking);
   EXPECT_EQ(Next(w, &t1), "BAKE_TILE 1");
-  EXPECT_EQ(Next(w), "-");  // groups wait for every tile (§2)
+  EXPECT_EQ(Next(w), "-");                               // groups wait for every tile (§2)
   EXPECT_EQ(table_->Get(job)->rays_estimate, 2 * 1000);  // the planner's, no tile done
   clock_.Advance(500);
   EXPECT_TRUE(Done(w, t1));

@@ -110,9 +110,9 @@ TEST_F(JobClientTest, SubmitWatchStatusAndFetch) {
   // rays over its baking time), not its rays over the watch's milliseconds.
   ASSERT_GT(status->rays_per_second(), 0);
   std::vector<v1::JobEvent> replayed;
-  ASSERT_TRUE(WatchJob(*client_, job->id(),
-                       {.on_event = [&](const v1::JobEvent& e) { replayed.push_back(e); }})
-                  .ok());
+  ASSERT_TRUE(WatchJob(*client_, job->id(), {.on_event = [&](const v1::JobEvent& e) {
+                replayed.push_back(e);
+              }}).ok());
   ASSERT_FALSE(replayed.empty());
   for (const v1::JobEvent& e : replayed)
     EXPECT_DOUBLE_EQ(e.rays_per_second(), status->rays_per_second()) << e.seq();

@@ -105,8 +105,8 @@ TEST(JobTextTest, JsonIsTheWholeMessageWithNumbersAndShortPhases) {
   nlohmann::json expected = nlohmann::json::parse(proto);
   ASSERT_EQ(expected["phase"], "PHASE_BAKING");
   expected["phase"] = "BAKING";
-  for (const char* key :
-       {"rays_traced", "rays_estimate", "bytes_written", "created_ms", "started_ms", "finished_ms"}) {
+  for (const char* key : {"rays_traced", "rays_estimate", "bytes_written", "created_ms",
+                          "started_ms", "finished_ms"}) {
     ASSERT_TRUE(expected[key].is_string()) << key;  // the proto mapping's int64 spelling
     expected[key] = std::stoll(expected[key].get<std::string>());
   }
