@@ -12,18 +12,18 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/brdf.h"
+#include "core/products/brdf.h"
 #include "driver/area_light_commands.h"
+#include "driver/area_relight.h"
 #include "python/py_convert.h"
 #include "python/py_store.h"
-#include "runtime/area_light.h"
-#include "runtime/area_relight.h"
-#include "runtime/env_map.h"
-#include "runtime/eval.h"
-#include "runtime/glossy_store.h"
-#include "runtime/lighting.h"
-#include "runtime/near_field.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/glossy/glossy_store.h"
+#include "runtime/near_field/area_light.h"
+#include "runtime/near_field/near_field.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/store_relight.h"
 
 namespace wavebake::python {
 namespace {
@@ -169,7 +169,7 @@ py::array_t<float> Relight(const py::object& store, const py::object& env, int t
   return ToImage(Unwrap(std::move(rgb)), width, height, exposure);
 }
 
-// Frame `frame` of an area-light sequence (SEQ.json; runtime/area_light.h)
+// Frame `frame` of an area-light sequence (SEQ.json; runtime/near_field/area_light.h)
 // over the fixed area_lights, as `relight --area-light-sequence` renders it.
 py::array_t<float> RelightAreaFrame(const py::object& store, const std::string& sequence, int frame,
                                     const std::vector<std::string>& area_lights, double exposure,
@@ -259,7 +259,7 @@ py::dict EvalAgainstAllLights(PyStore& s, const py::object& env, int terms, doub
   return out;
 }
 
-// reference=True: runtime/eval.h (or runtime/area_eval.h for area lights)
+// reference=True: runtime/reference/eval.h (or runtime/reference/area_eval.h for area lights)
 // against the independent Monte-Carlo reference, as `wavebake eval --json`.
 py::object Eval(const py::object& store, const py::object& env, bool reference, int terms,
                 double rotate, bool dense, double target_rel_se, const std::string& brdf,

@@ -15,10 +15,10 @@
 #include "driver/embedded_bake.h"
 #include "proto/bake_request.h"
 #include "python/py_convert.h"
-#include "runtime/env_map.h"
-#include "runtime/eval.h"
-#include "runtime/lighting.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/store_reader.h"
 
 namespace wavebake::python {

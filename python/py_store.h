@@ -11,9 +11,9 @@
 #include <string>
 #include <utility>
 
-#include "runtime/glossy_store.h"
-#include "runtime/near_field.h"
-#include "runtime/store_relight.h"
+#include "runtime/glossy/glossy_store.h"
+#include "runtime/near_field/near_field.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/store_reader.h"
 
 namespace wavebake::python {

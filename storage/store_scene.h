@@ -12,7 +12,7 @@ namespace wavebake {
 // the working directory, or a path), then beside the store, then in each
 // directory of $WAVEBAKE_SCENE_PATH (':'-separated); the first that exists
 // is returned, else the name as given (loading it then fails, naming it).
-// The caller checks the content hash where it matters (runtime/eval.h).
+// The caller checks the content hash where it matters (runtime/reference/eval.h).
 std::string LocateStoreScene(const std::string& recorded, const std::filesystem::path& store);
 
 // What a store records for a scene loaded from `spec`: builtin:NAME, or the

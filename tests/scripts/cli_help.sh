@@ -2,7 +2,7 @@
 # `--help` tells what the documentation does: every flag a documented
 # command line (README.md, docs/*.md) gives a command appears in that
 # command's --help, and so does every option the layout parser accepts
-# after a uv layout's comma (core/layout.cc names them in its error);
+# after a uv layout's comma (core/layouts/layout.cc names them in its error);
 # `eval --help` marks nothing REQUIRED but the store; `--version` is the
 # CMake project's version.
 set -euo pipefail
@@ -50,8 +50,8 @@ assert checked > 50, checked
 assert not missing, "documented but not in --help:\n" + "\n".join(sorted(set(missing)))
 
 # The uv layout options, as the parser lists them in its error.
-listed = re.search(r"\(allow-overlap, fill=([a-z|-]+)\)", (src / "core" / "layout.cc").read_text())
-assert listed, "core/layout.cc no longer lists its uv options"
+listed = re.search(r"\(allow-overlap, fill=([a-z|-]+)\)", (src / "core" / "layouts" / "layout.cc").read_text())
+assert listed, "core/layouts/layout.cc no longer lists its uv options"
 bake = helptext("bake")
 for option in [",allow-overlap", ",fill="] + listed.group(1).split("|"):
     assert option in bake, f"bake --help does not mention {option}"
