@@ -16,6 +16,8 @@ int Run(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
   CLI::App app{"wavebake: bake, compress and relight all-frequency light transport"};
   app.require_subcommand(1);
+  // The version of the build (CMakeLists.txt's project(), the package's too).
+  app.set_version_flag("--version", WB_VERSION, "print the version (" WB_VERSION ") and exit");
   AddBakeCommand(app);
   AddCoordinatorCommand(app);
   AddWorkerCommand(app);

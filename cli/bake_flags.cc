@@ -14,7 +14,9 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& flags) {
       ->capture_default_str();
   cmd.add_option("--layout", p.layout,
                  "spatial layout: camera[:WxH] | grid | hilbert:WxH | uv[:WxH] | uv1[:WxH] "
-                 "(lightmap texels of UV channel 0 or 1, default 256x256)")
+                 "(lightmap texels of UV channel 0 or 1, default 256x256); uv options after "
+                 "commas: ,fill=zero|push-pull|dilate (texels no chart covers), "
+                 ",allow-overlap (as --allow-uv-overlap)")
       ->capture_default_str();
   cmd.add_flag("--allow-uv-overlap", f.allow_uv_overlap,
                "uv layouts: bake an atlas whose charts overlap (each texel then takes its "

@@ -295,12 +295,24 @@ JobInfo LeaseTable::CountsLocked(const JobState& js) const {
           .tasks_done = r.phase == Phase::kDone ? r.tasks_total() : js.tasks_done,
           .leased_tasks = static_cast<int>(js.leases.size()),
           .rays_traced = r.rays_traced + js.live_rays,
-          .bytes_written = r.bytes_written + js.live_bytes};
+          .bytes_written = r.bytes_written + js.live_bytes,
+          .rays_estimate = r.rays_estimate};
 }
 
 JobInfo LeaseTable::InfoLocked(const JobState& js) const {
   const JobRecord& r = js.rec;
   JobInfo info = CountsLocked(js);
+  // The planner's estimate bounds the rays from above (every sample, column
+  // and direction: brute force); visibility refinement traces a part of it
+  // that depends on the scene, often a tenth. The done tiles say which part:
+  // while baking (every done task is a tile) their rays × tiles / done, once
+  // every tile is done what they traced.
+  if (r.phase == Phase::kBaking && js.tasks_done > 0) {
+    info.rays_estimate = static_cast<int64_t>(static_cast<double>(r.rays_traced) * r.tiles /
+                                              static_cast<double>(js.tasks_done));
+  } else if (r.phase > Phase::kBaking && r.phase <= Phase::kDone) {
+    info.rays_estimate = r.rays_traced;
+  }
   if (r.started_ms <= 0) return info;
   const int64_t now = clock_->NowMs();
   const int64_t end_ms = IsTerminal(r.phase) ? r.finished_ms : now;

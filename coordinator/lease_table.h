@@ -62,6 +62,9 @@ struct JobInfo {
   int64_t bytes_written = 0;
   double rays_per_second = 0;
   double eta_seconds = -1;  // unknown
+  // The expected total: the planner's bound (record.rays_estimate) until a
+  // tile is done, then extrapolated from the done tiles (InfoLocked).
+  int64_t rays_estimate = 0;
 };
 
 struct LeaseGrant {

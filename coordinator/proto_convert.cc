@@ -46,7 +46,7 @@ void ToProto(const JobInfo& info, v1::Job* job) {
   job->set_tasks_done(info.tasks_done);
   job->set_tasks_total(r.tasks_total());
   job->set_rays_traced(info.rays_traced);
-  job->set_rays_estimate(r.rays_estimate);
+  job->set_rays_estimate(info.rays_estimate);
   job->set_rays_per_second(info.rays_per_second);
   job->set_bytes_written(info.bytes_written);
   job->set_eta_seconds(info.eta_seconds);

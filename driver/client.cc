@@ -24,12 +24,12 @@ absl::StatusOr<std::string> ReadTextFile(const std::string& path, const std::str
 }
 
 absl::StatusOr<std::string> ReadTokenFile(const std::string& path) {
-  absl::StatusOr<std::string> text = ReadTextFile(path, "--token-file");
+  absl::StatusOr<std::string> text = ReadTextFile(path, "token_file");
   if (!text.ok()) return text.status();
   std::string token = text->substr(0, text->find('\n'));
   absl::StripAsciiWhitespace(&token);
   if (token.empty())
-    return absl::InvalidArgumentError(absl::StrCat("--token-file: '", path, "' holds no token"));
+    return absl::InvalidArgumentError(absl::StrCat("token_file: '", path, "' holds no token"));
   return token;
 }
 
@@ -42,7 +42,7 @@ absl::StatusOr<Client> Client::Connect(const ClientConfig& config, double connec
   }
   std::shared_ptr<grpc::ChannelCredentials> creds = grpc::InsecureChannelCredentials();
   if (!config.tls_ca.empty()) {
-    absl::StatusOr<std::string> roots = ReadTextFile(config.tls_ca, "--tls-ca");
+    absl::StatusOr<std::string> roots = ReadTextFile(config.tls_ca, "tls_ca");
     if (!roots.ok()) return roots.status();
     grpc::SslCredentialsOptions ssl;
     ssl.pem_root_certs = *roots;
@@ -63,7 +63,7 @@ absl::StatusOr<Client> Client::Connect(const ClientConfig& config, double connec
       !channel->WaitForConnected(
           std::chrono::system_clock::now() +
           std::chrono::milliseconds(static_cast<int64_t>(connect_seconds * 1000)))) {
-    return absl::UnavailableError(absl::StrCat("--coordinator: cannot connect to ",
+    return absl::UnavailableError(absl::StrCat("coordinator: cannot connect to ",
                                                config.coordinator, " within ", connect_seconds,
                                                " s (is it running? does it serve TLS: --tls-ca?)"));
   }

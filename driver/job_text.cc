@@ -1,13 +1,12 @@
 #include "driver/job_text.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "driver/job_json.h"
 
 namespace wavebake::driver {
 
@@ -68,14 +67,6 @@ std::string JobTableRow(const v1::Job& job) {
                          static_cast<double>(job.rays_traced()), job.store_path(), job.error());
 }
 
-std::string JobJson(const v1::Job& job) {
-  std::string json;
-  google::protobuf::util::JsonPrintOptions options;
-  options.always_print_primitive_fields = true;
-  options.preserve_proto_field_names = true;
-  // Serializing a well-formed message cannot fail.
-  (void)google::protobuf::util::MessageToJsonString(job, &json, options);
-  return json + "\n";
-}
+std::string JobJson(const v1::Job& job) { return MessageJson(job).dump() + "\n"; }
 
 }  // namespace wavebake::driver

@@ -25,8 +25,8 @@ std::string ProgressText(const v1::JobEvent& event, double elapsed_seconds);
 std::string JobTableHeader();
 std::string JobTableRow(const v1::Job& job);
 
-// The Job message as one line of JSON with every field (proto names), and
-// its newline.
+// The Job message as one line of JSON (MessageJson: the one shape of a job,
+// driver/job_json.h), and its newline.
 std::string JobJson(const v1::Job& job);
 
 }  // namespace wavebake::driver

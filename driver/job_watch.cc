@@ -79,8 +79,14 @@ std::string NotableEventText(const v1::JobEvent& e) {
 
 absl::StatusOr<v1::Job> WatchJob(const Client& client, const std::string& job_id,
                                  const WatchOptions& options) {
-  if (absl::StatusOr<v1::Job> job = GetJob(client, job_id); !job.ok()) return job.status();
+  absl::StatusOr<v1::Job> job = GetJob(client, job_id);
+  if (!job.ok()) return job.status();
   Seen seen;
+  // Until a progress event says otherwise, the coordinator's rate: the
+  // events of a job that has ended (replayed, with no progress among them)
+  // carry its final rays / (finished - started), not rays over the few
+  // milliseconds this watch has run.
+  seen.rays_per_second = job->rays_per_second() > 0 ? job->rays_per_second() : -1;
   std::optional<std::chrono::steady_clock::time_point> down_since;
   while (!seen.ended) {
     bool progressed = false;

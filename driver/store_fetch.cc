@@ -67,11 +67,11 @@ absl::StatusOr<FetchSummary> FetchStore(const Client& client, const std::string&
                                         const std::filesystem::path& out) {
   std::error_code ec;
   if (std::filesystem::exists(std::filesystem::symlink_status(out, ec)))
-    return absl::AlreadyExistsError(absl::StrCat("--out: ", out.string(), " already exists"));
+    return absl::AlreadyExistsError(absl::StrCat("out: ", out.string(), " already exists"));
   const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
   if (!std::filesystem::is_directory(parent, ec))
     return absl::InvalidArgumentError(
-        absl::StrCat("--out: directory ", parent.string(), " does not exist"));
+        absl::StrCat("out: directory ", parent.string(), " does not exist"));
   absl::StatusOr<ScopedDir> temp = ScopedDir::CreateBeside(out, "fetch");
   if (!temp.ok()) return temp.status();
   // mkdtemp makes it private; the store is an ordinary directory once in place.
@@ -101,7 +101,7 @@ absl::StatusOr<FetchSummary> FetchStore(const Client& client, const std::string&
   summary->arrays = *arrays;
   std::filesystem::rename(temp->path(), out, ec);
   if (ec)
-    return absl::InternalError(absl::StrCat("--out: rename to ", out.string(), ": ", ec.message()));
+    return absl::InternalError(absl::StrCat("out: rename to ", out.string(), ": ", ec.message()));
   return summary;
 }
 

@@ -6,76 +6,15 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "driver/job_json.h"
 
 namespace wavebake::python {
-namespace {
 
 using google::protobuf::FieldDescriptor;
-using google::protobuf::Message;
 using google::protobuf::Reflection;
 
-py::object Scalar(const Message& m, const Reflection& r, const FieldDescriptor* f) {
-  switch (f->cpp_type()) {
-    case FieldDescriptor::CPPTYPE_INT32:
-      return py::int_(r.GetInt32(m, f));
-    case FieldDescriptor::CPPTYPE_INT64:
-      return py::int_(r.GetInt64(m, f));
-    case FieldDescriptor::CPPTYPE_UINT32:
-      return py::int_(r.GetUInt32(m, f));
-    case FieldDescriptor::CPPTYPE_UINT64:
-      return py::int_(r.GetUInt64(m, f));
-    case FieldDescriptor::CPPTYPE_DOUBLE:
-      return py::float_(r.GetDouble(m, f));
-    case FieldDescriptor::CPPTYPE_FLOAT:
-      return py::float_(r.GetFloat(m, f));
-    case FieldDescriptor::CPPTYPE_BOOL:
-      return py::bool_(r.GetBool(m, f));
-    case FieldDescriptor::CPPTYPE_ENUM:
-      return py::str(r.GetEnum(m, f)->name());
-    case FieldDescriptor::CPPTYPE_STRING:
-      if (f->type() == FieldDescriptor::TYPE_BYTES) return py::bytes(r.GetString(m, f));
-      return py::str(r.GetString(m, f));
-    case FieldDescriptor::CPPTYPE_MESSAGE:
-      return MessageToDict(r.GetMessage(m, f));
-  }
-  return py::none();
-}
-
-py::object Repeated(const Message& m, const Reflection& r, const FieldDescriptor* f) {
-  py::list out;
-  for (int i = 0; i < r.FieldSize(m, f); ++i) {
-    if (f->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
-      out.append(MessageToDict(r.GetRepeatedMessage(m, f, i)));
-    } else if (f->cpp_type() == FieldDescriptor::CPPTYPE_STRING) {
-      out.append(py::str(r.GetRepeatedString(m, f, i)));
-    } else if (f->cpp_type() == FieldDescriptor::CPPTYPE_INT32) {
-      out.append(py::int_(r.GetRepeatedInt32(m, f, i)));
-    } else if (f->cpp_type() == FieldDescriptor::CPPTYPE_INT64) {
-      out.append(py::int_(r.GetRepeatedInt64(m, f, i)));
-    } else if (f->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE) {
-      out.append(py::float_(r.GetRepeatedDouble(m, f, i)));
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
-py::dict MessageToDict(const Message& m) {
-  const Reflection& r = *m.GetReflection();
-  const google::protobuf::Descriptor& d = *m.GetDescriptor();
-  py::dict out;
-  for (int i = 0; i < d.field_count(); ++i) {
-    const FieldDescriptor* f = d.field(i);
-    if (f->is_repeated()) {
-      out[py::str(f->name())] = Repeated(m, r, f);
-    } else if (f->containing_oneof() && !r.HasField(m, f)) {
-      continue;  // the unset branches of a oneof (scene source, seed presence)
-    } else {
-      out[py::str(f->name())] = Scalar(m, r, f);
-    }
-  }
-  return out;
+py::dict MessageToDict(const google::protobuf::Message& m) {
+  return JsonToPython(driver::MessageJson(m));
 }
 
 void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields) {
@@ -85,7 +24,7 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields) {
     const std::string name = py::str(key);
     const FieldDescriptor* f = d.FindFieldByName(name);
     if (!f || f->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
-      throw py::value_error(absl::StrCat(name, ": not a bake parameter (BakeRequest field)"));
+      RaiseInvalid(absl::StrCat(name, ": not a bake parameter (BakeRequest field)"));
     }
     try {
       switch (f->cpp_type()) {
@@ -105,7 +44,7 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields) {
           r.SetString(&request, f, value.cast<std::string>());
           break;
         default:
-          throw py::value_error(absl::StrCat(name, ": cannot be set from Python"));
+          RaiseInvalid(absl::StrCat(name, ": cannot be set from Python"));
       }
     } catch (const py::cast_error&) {
       throw py::type_error(absl::StrCat(name, ": ", std::string(py::str(py::type::of(value))),
@@ -119,16 +58,14 @@ py::object JsonToPython(const nlohmann::json& j) {
 }
 
 void Raise(const absl::Status& status) {
-  const std::string message(status.ToString());
-  switch (status.code()) {
-    case absl::StatusCode::kInvalidArgument:
-    case absl::StatusCode::kOutOfRange:
-      throw py::value_error(message);
-    case absl::StatusCode::kNotFound:
-      throw py::key_error(message);
-    default:
-      throw std::runtime_error(message);
-  }
+  // wavebake.Error's subclass for the code (python/wavebake/__init__.py);
+  // the class names the kind, so the message is the status's alone.
+  py::object cls =
+      py::module_::import("wavebake").attr("_error_class")(static_cast<int>(status.code()));
+  PyErr_SetObject(cls.ptr(), py::str(std::string(status.message())).ptr());
+  throw py::error_already_set();
 }
+
+void RaiseInvalid(const std::string& message) { Raise(absl::InvalidArgumentError(message)); }
 
 }  // namespace wavebake::python

@@ -1,6 +1,6 @@
 #pragma once
 // Between Python objects and the project's types: protobuf messages as dicts
-// (enum values by name, int64 as int), BakeRequest fields from keyword
+// (the one JSON shape of driver/job_json.h), BakeRequest fields from keyword
 // arguments, nlohmann::json as Python values, absl errors as exceptions.
 #include <google/protobuf/message.h>
 #include <pybind11/pybind11.h>
@@ -15,7 +15,8 @@ namespace wavebake::python {
 
 namespace py = pybind11;
 
-// Every field, set or not, so a dict has the same keys each time.
+// Every field, set or not, so a dict has the same keys each time; enum
+// values without their prefix ("DONE"), numbers as numbers.
 py::dict MessageToDict(const google::protobuf::Message& message);
 
 // light_res=16, layout="camera:32x32", seed=7, ...: the BakeRequest fields by
@@ -25,10 +26,12 @@ void SetRequestFields(v1::BakeRequest& request, const py::kwargs& fields);
 
 py::object JsonToPython(const nlohmann::json& j);
 
-// Raises ValueError for INVALID_ARGUMENT (and OUT_OF_RANGE), KeyError for
-// NOT_FOUND, RuntimeError otherwise; the message is the status's, which
-// names the code and the bad input.
+// Raises the wavebake.Error subclass of the status's code (InvalidArgument,
+// a ValueError; NotFound, a FileNotFoundError; ...) with the status's
+// message, which names the bad input.
 [[noreturn]] void Raise(const absl::Status& status);
+// wavebake.InvalidArgument(message): an argument the binding itself refuses.
+[[noreturn]] void RaiseInvalid(const std::string& message);
 
 template <typename T>
 T Unwrap(absl::StatusOr<T> value) {

@@ -13,7 +13,6 @@
 
 #include "absl/strings/str_cat.h"
 #include "driver/embedded_bake.h"
-#include "driver/evaluate.h"
 #include "proto/bake_request.h"
 #include "python/py_convert.h"
 #include "runtime/env/env_map.h"
@@ -24,41 +23,6 @@
 
 namespace wavebake::python {
 namespace {
-
-// A finished store (DESIGN.md §3): its metadata and samples at once, the
-// transport matrix on first use (relight, column), kept for later calls.
-class PyStore {
- public:
-  explicit PyStore(std::string path)
-      : path_(std::move(path)),
-        info_(Unwrap(ReadStoreInfo(path_))),
-        samples_(Unwrap(ReadSamples(path_))) {}
-
-  const std::string& path() const { return path_; }
-  const StoreInfo& info() const { return info_; }
-  const SampleSet& samples() const { return samples_; }
-
-  // The opened store with its lock: a Relighter serves one frame at a time.
-  std::pair<OpenedStore*, std::unique_lock<std::mutex>> Opened() {
-    std::unique_lock lock(mu_);
-    if (!opened_) {
-      absl::StatusOr<OpenedStore> s;
-      {
-        py::gil_scoped_release release;
-        s = OpenStore(path_);
-      }
-      opened_.emplace(Unwrap(std::move(s)));
-    }
-    return {&*opened_, std::move(lock)};
-  }
-
- private:
-  std::string path_;
-  StoreInfo info_;
-  SampleSet samples_;
-  std::mutex mu_;
-  std::optional<OpenedStore> opened_;
-};
 
 py::array_t<float> Vec3Array(const std::vector<Vec3>& v) {
   py::array_t<float> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
@@ -100,7 +64,7 @@ py::object Column(PyStore& s, int column, const std::string& domain) {
     std::copy(c.values.begin(), c.values.end(), values.mutable_data());
     return py::make_tuple(c.depth, positions, values);
   }
-  if (domain != "pixel") throw py::value_error("domain: 'pixel' or 'wavelet'");
+  if (domain != "pixel") RaiseInvalid("domain: 'pixel' or 'wavelet'");
   auto [opened, lock] = s.Opened();
   // The column's inverse transform is Eq. 8 with the one light of weight 1.
   const WaveletLight light{static_cast<uint32_t>(column), {1, 1, 1}};
@@ -110,114 +74,6 @@ py::object Column(PyStore& s, int column, const std::string& domain) {
   float* out = image.mutable_data();
   for (size_t cell = 0; cell < rgb.size() / 3; ++cell) out[cell] = rgb[3 * cell];
   return image;
-}
-
-// ENV: a LoadEnvMap spec, or a lat-long float array (H, 2H, 3) of radiance.
-EnvMap EnvFrom(const py::object& env) {
-  if (py::isinstance<py::str>(env)) return Unwrap(LoadEnvMap(env.cast<std::string>()));
-  auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(env);
-  if (!a || a.ndim() != 3 || a.shape(2) != 3 || a.shape(1) != 2 * a.shape(0) || a.shape(0) < 1) {
-    throw py::value_error("env: a spec string or a lat-long array of shape (H, 2H, 3)");
-  }
-  EnvMap map;
-  map.width = static_cast<int>(a.shape(1));
-  map.height = static_cast<int>(a.shape(0));
-  map.rgb.assign(a.data(), a.data() + a.size());
-  for (size_t i = 0; i < map.rgb.size(); ++i) {
-    if (!(std::isfinite(map.rgb[i]) && map.rgb[i] >= 0)) {
-      throw py::value_error(absl::StrCat("env: value ", map.rgb[i], " at flat index ", i,
-                                         " is not a finite non-negative radiance"));
-    }
-  }
-  return map;
-}
-
-PyStore& StoreOf(const py::object& store, std::optional<PyStore>& owned) {
-  if (py::isinstance<PyStore>(store)) return store.cast<PyStore&>();
-  owned.emplace(py::str(store).cast<std::string>());
-  return *owned;
-}
-
-py::array_t<float> ToImage(const std::vector<float>& rgb, int width, int height) {
-  py::array_t<float> image({height, width, 3});
-  std::copy(rgb.begin(), rgb.end(), image.mutable_data());
-  return image;
-}
-
-py::array_t<float> Relight(const py::object& store, const py::object& env, int terms,
-                           double rotate) {
-  std::optional<PyStore> owned;
-  PyStore& s = StoreOf(store, owned);
-  EnvMap map = EnvFrom(env);
-  if (!std::isfinite(rotate)) throw py::value_error("rotate: not a finite number of degrees");
-  auto [opened, lock] = s.Opened();
-  absl::StatusOr<std::vector<float>> rgb;
-  {
-    py::gil_scoped_release release;
-    if (rotate != 0) map = Rotated(map, rotate);
-    rgb = RelightImage(*opened, map, terms);
-  }
-  return ToImage(Unwrap(std::move(rgb)), s.info().width, s.info().height);
-}
-
-// reference=True: runtime/reference/eval.h against the independent Monte-Carlo
-// reference. reference=False: the n-term relighting against all wavelet
-// lights (what the lighting approximation alone costs), no tracing.
-py::object Eval(const py::object& store, const py::object& env, bool reference, int terms,
-                double rotate, bool dense, double target_rel_se) {
-  std::optional<PyStore> owned;
-  PyStore& s = StoreOf(store, owned);
-  if (reference) {
-    if (!py::isinstance<py::str>(env))
-      throw py::type_error("env: eval(reference=True) takes a spec string");
-    EvalOptions options;
-    options.rotate_degrees = rotate;
-    options.dense = dense;
-    options.reference.target_rel_se = target_rel_se;
-    const std::string spec = env.cast<std::string>();
-    absl::StatusOr<EvalReport> report;
-    {
-      py::gil_scoped_release release;
-      report = driver::Evaluate(s.path(), spec, terms, options);
-    }
-    return JsonToPython(EvalReportJson(Unwrap(std::move(report))));
-  }
-  EnvMap map = EnvFrom(env);
-  auto [opened, lock] = s.Opened();
-  struct Result {
-    int terms = 0;
-    double seconds = 0;
-    ErrorStats error;
-  };
-  absl::StatusOr<Result> result;
-  {
-    py::gil_scoped_release release;
-    result = [&]() -> absl::StatusOr<Result> {
-      if (rotate != 0) map = Rotated(map, rotate);
-      Relighter& r = opened->relighter;
-      const auto start = std::chrono::steady_clock::now();
-      absl::StatusOr<LightingCoefficients> lighting =
-          LightingFromEnv(map, r.light_res(), r.row_filter());
-      if (!lighting.ok()) return lighting.status();
-      absl::StatusOr<WaveletLights> lights = SelectWaveletLights(*lighting, terms);
-      if (!lights.ok()) return lights.status();
-      std::vector<float> image(3 * static_cast<size_t>(r.cells())), all(image.size());
-      r.Relight(*lights, image);
-      Result res;
-      res.terms = static_cast<int>(lights->lights.size());
-      res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      r.Relight(AllWaveletLights(*lighting), all);
-      res.error = CompareToReference(image, all);
-      return res;
-    }();
-  }
-  const Result r = Unwrap(std::move(result));
-  py::dict out;
-  out["terms"] = r.terms;
-  out["vs_all_lights"] =
-      py::dict(py::arg("rel_rms") = r.error.rel_rms, py::arg("max_abs") = r.error.max_abs,
-               py::arg("psnr") = r.error.psnr, py::arg("seconds") = r.seconds);
-  return out;
 }
 
 py::dict Bake(const std::string& scene, const std::string& out, int workers,
@@ -236,6 +92,78 @@ py::dict Bake(const std::string& scene, const std::string& out, int workers,
 }
 
 }  // namespace
+
+// Waits for the store with the GIL released: a thread holding the store may
+// be waiting for the GIL.
+std::unique_lock<std::mutex> PyStore::Lock() {
+  std::unique_lock lock(mu_, std::defer_lock);
+  py::gil_scoped_release release;
+  lock.lock();
+  return lock;
+}
+
+PyStore::PyStore(std::string path)
+    : path_(std::move(path)),
+      info_(Unwrap(ReadStoreInfo(path_))),
+      samples_(Unwrap(ReadSamples(path_))) {}
+
+std::pair<OpenedStore*, std::unique_lock<std::mutex>> PyStore::Opened() {
+  std::unique_lock lock = Lock();
+  if (!opened_) {
+    absl::StatusOr<OpenedStore> s;
+    {
+      py::gil_scoped_release release;
+      s = OpenStore(path_);
+    }
+    opened_.emplace(Unwrap(std::move(s)));
+  }
+  return {&*opened_, std::move(lock)};
+}
+
+std::pair<GlossyStore*, std::unique_lock<std::mutex>> PyStore::Glossy(
+    const GlossyOptions& options) {
+  std::unique_lock lock = Lock();
+  absl::Status status;
+  {
+    py::gil_scoped_release release;
+    if (!glossy_ || glossy_eye_.has_value() != options.eye.has_value() ||
+        (options.eye && !(glossy_eye_->x == options.eye->x && glossy_eye_->y == options.eye->y &&
+                          glossy_eye_->z == options.eye->z))) {
+      absl::StatusOr<std::unique_ptr<GlossyStore>> g = GlossyStore::Open(path_, options);
+      if (g.ok()) {
+        glossy_ = *std::move(g);
+        glossy_eye_ = options.eye;
+        glossy_brdf_ = options.brdf;
+      } else {
+        status = g.status();
+      }
+    } else if (glossy_brdf_ != options.brdf) {
+      status = glossy_->SetBrdf(options.brdf);
+      if (status.ok()) glossy_brdf_ = options.brdf;
+    }
+  }
+  Check(status);
+  return {glossy_.get(), std::move(lock)};
+}
+
+std::pair<NearFieldStore*, std::unique_lock<std::mutex>> PyStore::NearField() {
+  std::unique_lock lock = Lock();
+  if (!near_) {
+    absl::StatusOr<NearFieldStore> s;
+    {
+      py::gil_scoped_release release;
+      s = OpenNearFieldStore(path_);
+    }
+    near_.emplace(Unwrap(std::move(s)));
+  }
+  return {&*near_, std::move(lock)};
+}
+
+PyStore& StoreOf(const py::object& store, std::optional<PyStore>& owned) {
+  if (py::isinstance<PyStore>(store)) return store.cast<PyStore&>();
+  owned.emplace(py::str(store).cast<std::string>());
+  return *owned;
+}
 
 void RunInterruptible(const std::function<void(const std::atomic<bool>&)>& work) {
   std::atomic<bool> interrupted{false};
@@ -284,15 +212,6 @@ void AddStoreBindings(py::module_& m) {
         return absl::StrCat("wavebake.Store('", s.path(), "', ", s.info().width, "x",
                             s.info().height, ", N=", s.info().light_res, ")");
       });
-  m.def("relight", &Relight, py::arg("store"), py::arg("env"), py::arg("terms") = 256,
-        py::arg("rotate") = 0.0,
-        "the store relit by `terms` wavelet lights of env (a spec or an (H, 2H, 3) array) "
-        "turned `rotate` degrees about +Y: an (H, W, 3) float32 array, NaN where masked");
-  m.def("eval", &Eval, py::arg("store"), py::arg("env"), py::arg("reference") = true,
-        py::arg("terms") = 256, py::arg("rotate") = 0.0, py::arg("dense") = true,
-        py::arg("target_rel_se") = 0.002,
-        "relighting error: against the independent reference (reference=True, as `wavebake "
-        "eval --json`), or against all wavelet lights (reference=False)");
   m.def("bake", &Bake, py::arg("scene"), py::arg("out"), py::arg("workers") = 0,
         "bake SCENE into the store OUT in this process (as `wavebake bake`); keyword "
         "arguments are BakeRequest fields (light_res=16, layout='camera:32x32', ...)");

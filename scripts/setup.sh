@@ -12,6 +12,7 @@ PKGS=(
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
   slurmctld slurmd slurm-client munge python3-kubernetes iproute2
   libcpp-httplib-dev pybind11-dev python3-dev python3-pytest
+  python3-venv python3-pip python3-setuptools python3-wheel mypy
   chromium chromium-driver python3-selenium python3-prometheus-client
 )
 missing=()

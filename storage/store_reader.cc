@@ -12,6 +12,7 @@
 #include "storage/array_range.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
+#include "storage/store_scene.h"
 #include "storage/zarr_array.h"
 
 namespace wavebake {
@@ -146,7 +147,7 @@ absl::StatusOr<StoreInfo> ReadStoreInfo(const std::filesystem::path& store) {
   for (const char* key : {"scene", "scene_hash"}) {
     if (!a.contains(key) || !a[key].is_string()) return BadAttr(store, key, "missing");
   }
-  info.scene_spec = a["scene"].get<std::string>();
+  info.scene_spec = LocateStoreScene(a["scene"].get<std::string>(), store);
   info.scene_hash = a["scene_hash"].get<std::string>();
   for (auto [key, out] : {std::pair{"W", &info.width}, std::pair{"H", &info.height},
                           std::pair{"N", &info.light_res}, std::pair{"bits", &info.bits}}) {

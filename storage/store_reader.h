@@ -14,9 +14,11 @@
 namespace wavebake {
 
 struct StoreInfo {
-  nlohmann::json attrs;    // the root .zattrs as written by FINALIZE
-  BakeParams params;       // parsed back from attrs["params"]
-  std::string scene_spec;  // attrs["scene"]: builtin:NAME or the scene file path
+  nlohmann::json attrs;  // the root .zattrs as written by FINALIZE
+  BakeParams params;     // parsed back from attrs["params"]
+  // What LoadScene reads here: attrs["scene"] (builtin:NAME, or the scene
+  // file's name) located on this machine (storage/store_scene.h).
+  std::string scene_spec;
   std::string scene_hash;  // attrs["scene_hash"]
   int width = 0, height = 0, light_res = 0, columns = 0, bits = 0;
   // What FINALIZE recorded of its outputs (attrs "S" and stats.nnz); -1 when

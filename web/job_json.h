@@ -1,6 +1,7 @@
 #pragma once
-// Jobs and events as the monitor's pages read them (JSON; numbers stay
-// numbers, unlike the proto JSON mapping's int64 strings).
+// Jobs and events as the monitor's pages read them. A job is the one JSON
+// shape of a job (driver/job_json.h), the same as `wavebake status --json`
+// and Python's dicts.
 #include <nlohmann/json.hpp>
 #include <span>
 
@@ -8,11 +9,8 @@
 
 namespace wavebake::web {
 
-// {"id", "phase" ("BAKING"...), "scene", "layout", "light_res", "store_path",
-//  "tiles", "groups", "tasks_done", "tasks_total", "leased_tasks",
-//  "rays_traced", "rays_estimate", "rays_per_second", "bytes_written",
-//  "eta_seconds" (null: unknown), "error", "created_ms", "started_ms",
-//  "finished_ms", "ended"}
+// The Job message: {"id", "request": {...}, "phase" ("BAKING"...), ...,
+//  "eta_seconds" (< 0: unknown), ...}
 nlohmann::json JobJson(const v1::Job& job);
 nlohmann::json JobsJson(std::span<const v1::Job> jobs);
 

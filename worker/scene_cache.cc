@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "storage/scene_bundle.h"
 #include "storage/sha256.h"
+#include "storage/store_scene.h"
 
 namespace wavebake {
 namespace {
@@ -48,8 +49,10 @@ absl::StatusOr<SceneSpec> SceneCache::Resolve(const v1::SceneSource& source, con
   const v1::SceneRef& ref = source.uploaded();
   if (!IsHexSha256(ref.sha256()))
     return absl::InvalidArgumentError("scene.uploaded.sha256: not 64 lowercase hex digits");
+  // Recorded by its file name, as an uploaded scene is: the store is the
+  // same wherever the file was baked from (storage/store_scene.h).
   if (auto it = local_.find(ref.sha256()); it != local_.end())
-    return SceneSpec{it->second, it->second, nullptr};
+    return SceneSpec{it->second, RecordedSceneName(it->second), nullptr};
   absl::StatusOr<std::filesystem::path> path = Cached(ref, fetch);
   if (!path.ok()) return path.status();
   const bool json = std::filesystem::path(CachedSceneName(ref)).extension() == ".json";

@@ -35,7 +35,7 @@ class SceneCache {
 
   // local: uploaded scenes this process can read where they came from,
   // sha256 → LoadScene spec (the embedded bake); they are neither fetched nor
-  // copied, and the store records that spec, as a local bake would.
+  // copied, and the store records their file name, as for any upload.
   SceneCache(std::filesystem::path dir, std::map<std::string, std::string> local = {});
 
   // builtin:NAME stays itself. An uploaded scene loads from the cache (fetched

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -203,9 +204,15 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
       while (keep_going(est[s])) TraceBatch(caster, sampler, cdf, rec, rng[s], est[s]);
     }
   };
+  std::atomic<int64_t> visited{0};
+  auto visited_one = [&] {
+    const int64_t done = ++visited;
+    if (o.progress) o.progress(done, 2 * int64_t{count});
+  };
   // Pass 1, the pilot: min_rays for everyone (whole batches, at least 8).
   ParallelForWorkers(count, threads, 1, [&](int, int s) {
     run(s, [&](const Estimate& e) { return e.rays() < o.min_rays || e.batches < kMinBatches; });
+    visited_one();
   });
   double sum_sq = 0;
   int64_t terms = 0;
@@ -226,6 +233,7 @@ absl::StatusOr<ReferenceResult> ComputeReference(const RayCaster& caster, const 
       }
       return false;
     });
+    visited_one();
   });
 
   ReferenceResult r;

@@ -41,6 +41,7 @@
 // stratified in their first uniform. Nothing here touches the cubemap, the
 // Haar basis or the store's rows.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -63,6 +64,11 @@ struct ReferenceOptions {
   // above) and, per sample id, the unit direction towards the viewer.
   const Brdf* brdf = nullptr;
   std::span<const Vec3> views;
+  // Called from the tracing threads (so it must be thread-safe) as samples
+  // finish: `done` of `total` sample visits, the pilot pass and the
+  // convergence pass counted each (total = 2 · samples); the last call has
+  // done == total.
+  std::function<void(int64_t done, int64_t total)> progress;
 };
 
 struct ReferenceResult {

@@ -67,7 +67,8 @@ TEST_F(LeaseTableTest, TilesThenGroupsThenFinalize) {
   EXPECT_EQ(Next(w, &t0), "BAKE_TILE 0");
   EXPECT_EQ(PhaseOf(job), Phase::kBaking);
   EXPECT_EQ(Next(w, &t1), "BAKE_TILE 1");
-  EXPECT_EQ(Next(w), "-");  // groups wait for every tile (§2)
+  EXPECT_EQ(Next(w), "-");                               // groups wait for every tile (§2)
+  EXPECT_EQ(table_->Get(job)->rays_estimate, 2 * 1000);  // the planner's, no tile done
   clock_.Advance(500);
   EXPECT_TRUE(Done(w, t1));
   auto mid = table_->Get(job);
@@ -95,6 +96,24 @@ TEST_F(LeaseTableTest, TilesThenGroupsThenFinalize) {
   EXPECT_EQ(info->eta_seconds, 0);
   EXPECT_EQ(Next(w), "-");
   EXPECT_TRUE(cleaned_.empty());  // a DONE job keeps its store
+}
+
+// The planner's bound until a tile is done; then the done tiles' rays
+// extrapolated over every tile; then, every tile done, what they traced.
+TEST_F(LeaseTableTest, RayEstimateFollowsTheDoneTiles) {
+  const int64_t job = AddJob(4, 1);  // the planner says 4 × 1000
+  const int64_t w = Worker();
+  LeaseGrant t[4];
+  for (int i = 0; i < 4; ++i) ASSERT_EQ(Next(w, &t[i]), "BAKE_TILE " + std::to_string(i));
+  EXPECT_EQ(table_->Get(job)->rays_estimate, 4000);
+  ASSERT_TRUE(*table_->Complete(w, t[0].key, {.rays_traced = 100}));
+  EXPECT_EQ(table_->Get(job)->rays_estimate, 400);
+  ASSERT_TRUE(*table_->Complete(w, t[1].key, {.rays_traced = 300}));
+  EXPECT_EQ(table_->Get(job)->rays_estimate, 800);
+  ASSERT_TRUE(*table_->Complete(w, t[2].key, {.rays_traced = 50}));
+  ASSERT_TRUE(*table_->Complete(w, t[3].key, {.rays_traced = 50}));
+  EXPECT_EQ(PhaseOf(job), Phase::kTransforming);
+  EXPECT_EQ(table_->Get(job)->rays_estimate, 500);
 }
 
 TEST_F(LeaseTableTest, OldestJobWithReadyTaskFirst) {

@@ -106,6 +106,16 @@ TEST_F(JobClientTest, SubmitWatchStatusAndFetch) {
   absl::StatusOr<v1::Job> status = GetJob(*client_, job->id());
   ASSERT_TRUE(status.ok()) << status.status();
   EXPECT_EQ(status->tasks_done(), status->tasks_total());
+  // Watching a job that has ended replays its events at its own rate (its
+  // rays over its baking time), not its rays over the watch's milliseconds.
+  ASSERT_GT(status->rays_per_second(), 0);
+  std::vector<v1::JobEvent> replayed;
+  ASSERT_TRUE(WatchJob(*client_, job->id(), {.on_event = [&](const v1::JobEvent& e) {
+                replayed.push_back(e);
+              }}).ok());
+  ASSERT_FALSE(replayed.empty());
+  for (const v1::JobEvent& e : replayed)
+    EXPECT_DOUBLE_EQ(e.rays_per_second(), status->rays_per_second()) << e.seq();
   absl::StatusOr<std::vector<v1::Job>> jobs = ListJobs(*client_, 10, /*active_only=*/false);
   ASSERT_TRUE(jobs.ok()) << jobs.status();
   EXPECT_EQ(jobs->size(), 2u);
@@ -140,14 +150,17 @@ TEST_F(JobClientTest, CancelAQueuedJob) {
   EXPECT_EQ(watched->phase(), v1::PHASE_CANCELLED);
 }
 
-TEST_F(JobClientTest, ABadConfigurationNamesItsFlag) {
+// Named as the setting (Client::Config's field), the same words for the
+// command line and Python.
+TEST_F(JobClientTest, ABadConfigurationNamesItsSetting) {
   EXPECT_THAT(Client::Connect({.coordinator = "127.0.0.1:1", .token_file = "/no/such/token"})
                   .status()
                   .message(),
-              ::testing::HasSubstr("--token-file"));
-  EXPECT_THAT(
-      Client::Connect({.coordinator = "127.0.0.1:1"}, /*connect_seconds=*/0.2).status().message(),
-      ::testing::HasSubstr("--coordinator"));
+              ::testing::HasSubstr("token_file: "));
+  EXPECT_THAT(std::string(Client::Connect({.coordinator = "127.0.0.1:1"}, /*connect_seconds=*/0.2)
+                              .status()
+                              .message()),
+              ::testing::StartsWith("coordinator: cannot connect"));
 }
 
 }  // namespace

@@ -22,25 +22,31 @@ def stores(tmp_path_factory):
     for name in ("furnace", "cubes-wall"):
         path = root / f"{name}.wbk"
         job = wavebake.bake(f"builtin:{name}", str(path), workers=2, layout="camera:16x16", **SMALL)
-        assert job["phase"] == "PHASE_DONE", job
+        assert job["phase"] == "DONE", job
         out[name] = path
     return out
 
 
+class Cluster(tuple):
+    """(address, token file); .http: the coordinator's web monitor (host:port)."""
+
+
 @pytest.fixture(scope="session")
 def coordinator(tmp_path_factory):
-    """A coordinator (with a token) and one worker; yields (address, token file)."""
+    """A coordinator (with a token and its web monitor) and one worker;
+    yields a Cluster (address, token file)."""
     assert BIN, "WB_WAVEBAKE_BIN names the wavebake binary"
     root = tmp_path_factory.mktemp("cluster")
     token = root / "token"
     token.write_text("python-test-token\n")
     address_file = root / "address"
     procs = [subprocess.Popen([BIN, "coordinator", "--listen", "127.0.0.1:0", "--data", str(root / "data"),
-                               "--token-file", str(token), "--address-file", str(address_file)],
+                               "--token-file", str(token), "--address-file", str(address_file),
+                              "--http", "127.0.0.1:0", "--http-address-file", str(root / "http")],
                               stderr=subprocess.DEVNULL)]
     try:
         deadline = time.time() + 30
-        while not address_file.exists():
+        while not (address_file.exists() and (root / "http").exists()):
             assert time.time() < deadline, "coordinator did not start"
             assert procs[0].poll() is None, "coordinator exited"
             time.sleep(0.05)
@@ -48,7 +54,9 @@ def coordinator(tmp_path_factory):
         procs.append(subprocess.Popen([BIN, "worker", "--coordinator", address, "--store-root",
                                        str(root / "data" / "store"), "--token-file", str(token),
                                        "--threads", "2"], stderr=subprocess.DEVNULL))
-        yield address, str(token)
+        cluster = Cluster((address, str(token)))
+        cluster.http = (root / "http").read_text().strip()
+        yield cluster
     finally:
         for p in reversed(procs):
             p.terminate()

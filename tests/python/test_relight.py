@@ -69,7 +69,7 @@ def test_bad_inputs_are_named(stores):
         wavebake.relight(s, "builtin:sky", terms=0)
     with pytest.raises(ValueError, match="rotate"):
         wavebake.relight(s, "builtin:sky", rotate=float("nan"))
-    with pytest.raises(Exception, match="no-such.hdr"):
+    with pytest.raises(wavebake.NotFound, match="no-such.hdr"):
         wavebake.relight(s, "no-such.hdr")
 
 

@@ -100,5 +100,5 @@ def test_bad_column_and_path_are_named(stores, tmp_path):
         s.column(s.columns)
     with pytest.raises(ValueError, match="domain"):
         s.column(0, domain="fourier")
-    with pytest.raises(Exception, match="nothing.wbk"):
+    with pytest.raises(wavebake.NotFound, match="nothing.wbk"):
         wavebake.Store(str(tmp_path / "nothing.wbk"))

@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 #include "core/products/brdf.h"
@@ -254,6 +257,36 @@ TEST(Reference, BitIdenticalForAnyThreadCount) {
   ASSERT_TRUE(one.ok() && two.ok());
   EXPECT_EQ(one->rgb, two->rgb);
   EXPECT_EQ(one->rays, two->rays);
+}
+
+// Progress (what `eval` shows while it traces): each sample reported once
+// per pass, from whichever thread traced it, ending at done == total.
+TEST(Reference, ProgressReportsEverySampleOncePerPass) {
+  auto caster = RayCaster::Build(Floor(0));
+  ASSERT_TRUE(caster.ok());
+  auto env = LoadEnvMap("builtin:sky");
+  ASSERT_TRUE(env.ok());
+  std::vector<Vec3> pos, nrm;
+  for (int i = 0; i < 6; ++i) {
+    pos.push_back({0.1f * i, 0, 0});
+    nrm.push_back({0, 1, 0});
+  }
+  const SampleSet s = ReceiverSamples(pos, nrm);
+  std::mutex mu;
+  std::vector<int64_t> seen;
+  ReferenceOptions o;
+  o.target_rel_se = 0.05;
+  o.threads = 3;
+  o.progress = [&](int64_t done, int64_t total) {
+    std::lock_guard lock(mu);
+    EXPECT_EQ(total, 2 * 6);
+    seen.push_back(done);
+  };
+  ASSERT_TRUE(ComputeReference(*caster, s, *env, o).ok());
+  std::sort(seen.begin(), seen.end());
+  std::vector<int64_t> expected(12);
+  std::iota(expected.begin(), expected.end(), 1);
+  EXPECT_EQ(seen, expected);
 }
 
 TEST(Reference, RejectsBadInput) {

@@ -97,7 +97,7 @@ job_is() { [[ $(job_field "$1" "$2") == "$3" ]]; }
 # kill_now PID: SIGKILL, reaped quietly (no "Killed" line from the shell).
 kill_now() { { kill -9 "$1" && wait "$1"; } 2>/dev/null || true; }
 
-job_phase_is() { [[ $(job_field "$1" phase) == "PHASE_$2" ]]; }
+job_phase_is() { [[ $(job_field "$1" phase) == "$2" ]]; }
 
 # Every file of two stores has the same bytes, and they hold the same files.
 same_store() {

@@ -38,7 +38,7 @@ echo "scancel $victim at $done_at of $total tasks" >&2
 victim_gone() { ! worker_steps | grep -qxF "$victim"; }
 wait_until 20 "step $victim to end" victim_gone
 # The rest of the bake runs on the other step alone.
-[[ $(job_field "$bj" phase "${TOKEN[@]}") != PHASE_DONE ]] || fail "the bake ended before the step did"
+[[ $(job_field "$bj" phase "${TOKEN[@]}") != DONE ]] || fail "the bake ended before the step did"
 (($(worker_steps | wc -l) == 1)) || fail "expected one worker step left: $(worker_steps)"
 wait_slurm_job_end 120 "$job"
 log=$TMP/sbatch-$job.log

@@ -121,7 +121,7 @@ def main():
         driver.find_element(By.CSS_SELECTOR, f"#job-{queued} button.cancel").click()
         wait_for("CANCELLED on screen",
                  lambda: driver.find_element(By.CSS_SELECTOR, f"#job-{queued} td.phase").text == "CANCELLED", 20)
-        assert json.loads(cli("status", queued, "--json", *client))["phase"] == "PHASE_CANCELLED"
+        assert json.loads(cli("status", queued, "--json", *client))["phase"] == "CANCELLED"
 
         wait_for("the slow job DONE on screen",
                  lambda: driver.find_element(By.CSS_SELECTOR, f"#job-{slow} td.phase").text == "DONE", 120, 0.25)

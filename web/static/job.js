@@ -5,6 +5,14 @@
 
 const jobId = location.pathname.split("/").pop();
 const KIND_COLOURS = { BAKE_TILE: "#2f81f7", TRANSFORM_COLUMNS: "#d4a72c", FINALIZE: "#1a7f37" };
+// A job is the Job message as JSON (driver/job_json.h): the scene is in its
+// request, "ended" is a phase from DONE on, an ETA < 0 is unknown.
+const ENDED = new Set(["DONE", "FAILED", "CANCELLED"]);
+function jobEnded(job) { return ENDED.has(job.phase); }
+function jobScene(job) {
+  const s = job.request.scene || {};
+  return s.builtin !== undefined ? s.builtin : s.uploaded ? s.uploaded.file_name : "";
+}
 
 async function getJSON(url) {
   const res = await fetch(url, { cache: "no-store" });
@@ -26,14 +34,14 @@ function setSummary(id, pairs) {
 
 function renderJob(job) {
   document.getElementById("job-id").textContent = job.id;
-  const elapsed = job.started_ms ? ((job.ended ? job.finished_ms : Date.now()) - job.started_ms) / 1000 : 0;
+  const elapsed = job.started_ms ? ((jobEnded(job) ? job.finished_ms : Date.now()) - job.started_ms) / 1000 : 0;
   setSummary("summary", [
     ["phase", job.phase],
-    ["scene", `${job.scene} (${job.layout}, N=${job.light_res})`],
+    ["scene", `${jobScene(job)} (${job.request.layout}, N=${job.request.light_res})`],
     ["tasks", `${job.tasks_done}/${job.tasks_total} (${job.tiles} tiles, ${job.groups} groups, 1 finalize), ${job.leased_tasks} leased`],
     ["rays", `${job.rays_traced.toLocaleString()} of ~${job.rays_estimate.toLocaleString()}, ${(job.rays_per_second / 1e6).toFixed(2)} Mrays/s`],
     ["elapsed", `${elapsed.toFixed(1)} s`],
-    ["ETA", job.ended ? (job.phase === "DONE" ? "0 s" : "–") : (job.eta_seconds === null ? "–" : `${Math.round(job.eta_seconds)} s`)],
+    ["ETA", jobEnded(job) ? (job.phase === "DONE" ? "0 s" : "–") : (job.eta_seconds < 0 ? "–" : `${Math.round(job.eta_seconds)} s`)],
     ["store", job.store_path],
     ["error", job.error || "–"],
   ]);
@@ -44,7 +52,7 @@ function renderTimeline(events, job) {
   const box = document.getElementById("timeline");
   if (!events.length) { box.replaceChildren(); return; }
   const t0 = events[0].unix_ms;
-  const t1 = job.ended ? events[events.length - 1].unix_ms : Date.now();
+  const t1 = jobEnded(job) ? events[events.length - 1].unix_ms : Date.now();
   const open = new Map(), bars = [], phases = [], workers = new Set();
   let retries = 0;
   const perKind = { BAKE_TILE: 0, TRANSFORM_COLUMNS: 0, FINALIZE: 0 };
@@ -173,14 +181,14 @@ async function refresh() {
   let job;
   try {
     job = await getJSON(`/api/jobs/${jobId}`);
-    document.getElementById("link").textContent = job.ended ? "" : "live";
+    document.getElementById("link").textContent = jobEnded(job) ? "" : "live";
     renderJob(job);
     renderTimeline((await getJSON(`/api/jobs/${jobId}/events`)).events, job);
   } catch (e) {
     document.getElementById("link").textContent = e.message;
     return setTimeout(refresh, 2000);
   }
-  if (!job.ended) return setTimeout(refresh, 1000);
+  if (!jobEnded(job)) return setTimeout(refresh, 1000);
   if (job.phase !== "DONE") return;
   try {
     const store = await getJSON(`/api/jobs/${jobId}/store`);

@@ -2,8 +2,17 @@
 // falls back to polling /api/jobs; no reload.
 "use strict";
 
+// A job is the Job message as JSON (driver/job_json.h): the scene is in its
+// request, "ended" is a phase from DONE on, an ETA < 0 is unknown.
+const ENDED = new Set(["DONE", "FAILED", "CANCELLED"]);
+function jobEnded(job) { return ENDED.has(job.phase); }
+function jobScene(job) {
+  const s = job.request.scene || {};
+  return s.builtin !== undefined ? s.builtin : s.uploaded ? s.uploaded.file_name : "";
+}
+
 function fmtSeconds(s) {
-  if (s === null || s === undefined) return "–";
+  if (s === null || s === undefined || s < 0) return "–";
   s = Math.max(0, Math.round(s));
   return s >= 3600 ? `${Math.floor(s / 3600)}h${String(Math.floor(s / 60) % 60).padStart(2, "0")}m`
        : s >= 60 ? `${Math.floor(s / 60)}m${String(s % 60).padStart(2, "0")}s` : `${s}s`;
@@ -52,16 +61,16 @@ function renderJobs(jobs) {
       cell(row, "actions").appendChild(button);
     }
     if (body.children[i] !== row) body.insertBefore(row, body.children[i] || null);
-    cell(row, "scene", `${job.scene} ${job.layout} N=${job.light_res}`);
+    cell(row, "scene", `${jobScene(job)} ${job.request.layout} N=${job.request.light_res}`);
     const phase = cell(row, "phase", job.phase);
     phase.className = `phase phase-${job.phase}`;
     const frac = job.tasks_total > 0 ? job.tasks_done / job.tasks_total : 0;
     row.querySelector(".bar > div").style.width = `${(100 * frac).toFixed(1)}%`;
     cell(row, "tasks", `${job.tasks_done}/${job.tasks_total}`);
     cell(row, "rate", (job.rays_per_second / 1e6).toFixed(2));
-    cell(row, "eta", job.ended ? (job.phase === "DONE" ? "0s" : "–") : fmtSeconds(job.eta_seconds));
+    cell(row, "eta", jobEnded(job) ? (job.phase === "DONE" ? "0s" : "–") : fmtSeconds(job.eta_seconds));
     cell(row, "error", job.error);
-    row.querySelector("button.cancel").hidden = job.ended;
+    row.querySelector("button.cancel").hidden = jobEnded(job);
   });
   for (const row of [...body.children]) if (!keep.has(row.id)) row.remove();
 }
