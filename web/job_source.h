@@ -14,7 +14,7 @@
 #include "absl/status/statusor.h"
 #include "coordinator/client_paths.h"
 #include "coordinator/scheduler_metrics.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "wavebake.pb.h"
 
 namespace wavebake::web {
