@@ -1,5 +1,6 @@
 // Mesh files through assimp.
 #include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -13,6 +14,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "storage/atomic_file.h"
+#include "storage/obj_rewrite.h"
 #include "storage/ply_rewrite.h"
 #include "storage/scene_loader_parts.h"
 
@@ -21,21 +23,33 @@ namespace {
 
 // assimp opens every file through this, the mesh file and those it names (an
 // OBJ's mtllib, a glTF's buffers): a refused one is absent, read-only always.
+// An OBJ's rewrite (storage/obj_rewrite.h) stands in for the file under its
+// own name, so that the material libraries it names resolve as before.
 class ScopedIOSystem final : public Assimp::DefaultIOSystem {
  public:
-  explicit ScopedIOSystem(const SceneFiles& files) : files_(files) {}
+  ScopedIOSystem(const SceneFiles& files, std::string name, std::string_view bytes)
+      : files_(files), name_(std::move(name)), bytes_(bytes) {}
   bool Exists(const char* file) const override {
+    if (Stands(file)) return true;
     const std::optional<std::filesystem::path> p = files_.Open(file);
     return p && DefaultIOSystem::Exists(p->c_str());
   }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
+    if (Stands(file))
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(bytes_.data()),
+                                        bytes_.size());
     const std::optional<std::filesystem::path> p = files_.Open(file);
-    if (!p || std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
+    if (!p) return nullptr;
     return DefaultIOSystem::Open(p->c_str(), mode);
   }
 
  private:
+  bool Stands(const char* file) const { return !name_.empty() && name_ == file; }
+
   const SceneFiles& files_;
+  const std::string name_;  // empty: none
+  const std::string_view bytes_;
 };
 
 class FileErrors {
@@ -106,6 +120,8 @@ std::string MeshName(const aiScene& scene, unsigned i, const std::filesystem::pa
   return absl::StrCat(stem, "/", i, ":", scene.mMeshes[i]->mName.C_Str());
 }
 
+constexpr unsigned kMaxPolygon = 255;  // as PLY and OBJ are checked
+
 // Before post-processing, which would merge NaN vertices away and fail with
 // a puzzling message on a file without faces.
 absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
@@ -125,6 +141,11 @@ absl::Status CheckRaw(const aiScene& scene, const std::filesystem::path& path,
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const unsigned n = m.mFaces[f].mNumIndices;
       if (n == 0) return error("mesh '", MeshName(scene, i, path), "': face ", f, " is empty");
+      // Triangulation costs a polygon's corners squared (a face of 3 M
+      // corners: days), whatever format it came in.
+      if (n > kMaxPolygon)
+        return error("mesh '", MeshName(scene, i, path), "': face ", f, " has ", n,
+                     " corners (at most ", kMaxPolygon, " are read)");
       types |= n == 1   ? aiPrimitiveType_POINT
                : n == 2 ? aiPrimitiveType_LINE
                : n == 3 ? aiPrimitiveType_TRIANGLE
@@ -161,6 +182,23 @@ bool IsPly(const std::filesystem::path& path, std::string_view head) {
   return ext == ".ply" || head.starts_with("ply");
 }
 
+bool IsObj(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj";
+}
+
+// An OBJ reaches assimp only as storage/obj_rewrite.h writes it back.
+absl::StatusOr<std::string> ReadObj(const std::filesystem::path& path, const FileErrors& error) {
+  absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
+  if (!bytes.ok()) return error("cannot read: ", bytes.status().message());
+  absl::StatusOr<std::string> text =
+      RewriteObj(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()));
+  if (!text.ok()) return error(text.status().message());
+  return text;
+}
+
 // A PLY reaches assimp only as storage/ply_rewrite.h writes it back.
 absl::StatusOr<std::string> ReadPly(const std::filesystem::path& path, const FileErrors& error) {
   absl::StatusOr<std::vector<std::byte>> bytes = ReadFile(path);
@@ -187,8 +225,17 @@ absl::StatusOr<std::vector<Mesh>> ReadMeshFile(const std::filesystem::path& path
     if (!text.ok()) return text.status();
     ply = std::move(*text);
   }
+  std::string obj;
+  if (!ply && IsObj(path)) {
+    absl::StatusOr<std::string> text = ReadObj(path, error);
+    if (!text.ok()) return text.status();
+    obj = std::move(*text);
+  }
   Assimp::Importer importer;
-  importer.SetIOHandler(std::make_unique<ScopedIOSystem>(files).release());  // importer owns it
+  // The importer owns the IO system.
+  importer.SetIOHandler(
+      std::make_unique<ScopedIOSystem>(files, IsObj(path) && !ply ? path.string() : "", obj)
+          .release());
   // Read raw first: JoinIdenticalVertices silently merges a NaN vertex into
   // another one, so non-finite input must be caught before it runs.
   const aiScene* raw = ply ? importer.ReadFileFromMemory(ply->data(), ply->size(), 0, "ply")

@@ -31,7 +31,12 @@ absl::Status NotDone(const v1::Job& job) {
 
 class LiveSource final : public JobSource {
  public:
-  LiveSource(Coordinator& c, PlannerOptions planner) : c_(c), planner_(std::move(planner)) {}
+  LiveSource(Coordinator& c, PlannerOptions planner) : c_(c), planner_(std::move(planner)) {
+    // Always, unlike CoordinatorOptions::hide_paths: whoever reaches the
+    // monitor over HTTP need not be the user of this machine.
+    paths_.Hide(c.options().data_dir, "<data dir>");
+    paths_.Hide(c.options().store_root, "<store root>");
+  }
 
   absl::StatusOr<std::vector<v1::Job>> ListJobs(int limit) const override {
     std::vector<v1::Job> jobs;
@@ -85,21 +90,26 @@ class LiveSource final : public JobSource {
   uint64_t WaitForChange(uint64_t seen, int64_t timeout_ms) const override {
     return c_.table().WaitForChange(seen, timeout_ms);
   }
+  const ClientPaths& client_paths() const override { return paths_; }
 
  private:
   Coordinator& c_;
   const PlannerOptions planner_;
+  ClientPaths paths_;
 };
 
 class FrozenSource final : public JobSource {
  public:
   FrozenSource(v1::Job job, std::vector<v1::JobEvent> events, SchedulerSnapshot metrics,
-               absl::StatusOr<Scene> scene, std::filesystem::path store_dir)
+               absl::StatusOr<Scene> scene, std::filesystem::path store_dir, ClientPaths paths)
       : job_(std::move(job)),
         events_(std::move(events)),
         metrics_(std::move(metrics)),
         scene_(std::move(scene)),
-        store_dir_(std::move(store_dir)) {}
+        store_dir_(std::move(store_dir)),
+        paths_(std::move(paths)) {
+    paths_.Hide(store_dir_.parent_path(), "<store root>");
+  }
 
   absl::StatusOr<std::vector<v1::Job>> ListJobs(int limit) const override {
     if (limit < 1) return std::vector<v1::Job>{};
@@ -136,6 +146,7 @@ class FrozenSource final : public JobSource {
     std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
     return 0;
   }
+  const ClientPaths& client_paths() const override { return paths_; }
 
  private:
   const v1::Job job_;
@@ -143,6 +154,7 @@ class FrozenSource final : public JobSource {
   const SchedulerSnapshot metrics_;
   const absl::StatusOr<Scene> scene_;
   const std::filesystem::path store_dir_;
+  ClientPaths paths_;
 };
 
 }  // namespace
@@ -159,7 +171,8 @@ absl::StatusOr<std::shared_ptr<JobSource>> FrozenJob(const JobSource& live, cons
   absl::StatusOr<std::vector<v1::JobEvent>> events = live.JobEvents(id, kMaxEvents);
   if (!events.ok()) return events.status();
   return std::make_shared<FrozenSource>(*std::move(job), *std::move(events), live.Metrics(1),
-                                        live.JobScene(id), std::move(store_dir));
+                                        live.JobScene(id), std::move(store_dir),
+                                        live.client_paths());
 }
 
 }  // namespace wavebake::web

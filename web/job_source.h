@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "coordinator/client_paths.h"
 #include "coordinator/scheduler_metrics.h"
 #include "core/scene/scene.h"
 #include "wavebake.pb.h"
@@ -35,6 +36,12 @@ class JobSource {
   // Blocks until something may have changed or timeout_ms passes; returns a
   // token that differs from `seen` after a change.
   virtual uint64_t WaitForChange(uint64_t seen, int64_t timeout_ms) const = 0;
+  // The server directories an HTTP client must not see (DESIGN.md §4, as
+  // the JobService hides them): every body the monitor sends passes it.
+  virtual const ClientPaths& client_paths() const {
+    static const ClientPaths kNone;
+    return kNone;
+  }
 };
 
 // The source the server reads, replaceable while it serves: Set() returns

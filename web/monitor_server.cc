@@ -1,19 +1,60 @@
 #include "web/monitor_server.h"
 
+#include <openssl/ssl.h>
 #include <spdlog/spdlog.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <system_error>
 
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "web/http_gate.h"
 #include "web/routes.h"
+#include "web/socket_stream.h"
 
 namespace wavebake::web {
 namespace {
 
-// Long-lived event streams hold a thread each; relight frames want a few.
-constexpr size_t kServerThreads = 16;
+// Event streams hold a thread each (at most half of them, routes_jobs.cc);
+// relight frames want a few.
+constexpr int kServerThreads = 16;
+constexpr auto kWriteTimeout = std::chrono::seconds(5);
+
+// cpp-httplib's routing without its accept loop and thread pool: the gate
+// hands over connections whose request has arrived, one request each.
+class GatedServer final : public httplib::Server {
+ public:
+  void ServeOne(httplib::Stream& stream) {
+    bool closed = false;
+    process_request(stream, /*close_connection=*/true, closed, nullptr);
+  }
+  ~GatedServer() override { Shut(); }
+  // A socket of its own for the gate: cpp-httplib ends a chunked response
+  // (an event stream) as soon as its listening socket is gone.
+  int ListenSocket() const { return ::dup(svr_sock_); }
+  // Streams end at their next chunk.
+  void Shut() {
+    const int fd = svr_sock_.exchange(INVALID_SOCKET);
+    if (fd != INVALID_SOCKET) ::close(fd);
+  }
+};
+
+// The certificate chain and key as cpp-httplib's SSLServer loads them.
+SSL_CTX* NewSslContext(const std::filesystem::path& cert, const std::filesystem::path& key) {
+  SSL_CTX* ctx = SSL_CTX_new(TLS_server_method());
+  if (ctx == nullptr) return nullptr;
+  SSL_CTX_set_options(ctx, SSL_OP_NO_COMPRESSION | SSL_OP_NO_SESSION_RESUMPTION_ON_RENEGOTIATION);
+  SSL_CTX_set_min_proto_version(ctx, TLS1_2_VERSION);
+  if (SSL_CTX_use_certificate_chain_file(ctx, cert.c_str()) != 1 ||
+      SSL_CTX_use_PrivateKey_file(ctx, key.c_str(), SSL_FILETYPE_PEM) != 1 ||
+      SSL_CTX_check_private_key(ctx) != 1) {
+    SSL_CTX_free(ctx);
+    return nullptr;
+  }
+  return ctx;
+}
 
 // Paths reachable without the token: the probe endpoint and the login page.
 bool IsOpenPath(const std::string& path) {
@@ -55,29 +96,21 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   if (tls) {
     if (absl::Status s = CheckReadable(options.tls_cert, "tls_cert"); !s.ok()) return s;
     if (absl::Status s = CheckReadable(options.tls_key, "tls_key"); !s.ok()) return s;
-    auto ssl =
-        std::make_unique<httplib::SSLServer>(options.tls_cert.c_str(), options.tls_key.c_str());
-    if (!ssl->is_valid())
+    m->ssl_ctx_ = {NewSslContext(options.tls_cert, options.tls_key), SSL_CTX_free};
+    if (!m->ssl_ctx_)
       return absl::InvalidArgumentError(
           absl::StrCat("tls_cert/tls_key: ", options.tls_cert.string(), " and ",
                        options.tls_key.string(), " are not a PEM certificate and its key"));
-    m->server_ = std::move(ssl);
-  } else {
-    m->server_ = std::make_unique<httplib::Server>();
   }
+  auto gated = std::make_unique<GatedServer>();
+  GatedServer& server = *gated;
+  m->server_ = std::move(gated);
   m->options_ = options;
   m->source_.Set(std::move(source));
   m->context_ = std::make_unique<RouteContext>(&m->source_, options.token, options.probes,
                                                options.pages_dir, tls);
 
-  httplib::Server& server = *m->server_;
-  // httplib owns and deletes the queue it is given.
-  server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
-  server.set_keep_alive_max_count(1000);  // the relight view asks frame after frame
-  server.set_tcp_nodelay(true);           // a frame is headers then body: no Nagle wait
-  server.set_read_timeout(10);
-  server.set_write_timeout(10);
-  server.set_payload_max_length(1 << 16);  // only small forms and queries come in
+  server.set_payload_max_length(HeadLimits{}.max_body);  // the gate refuses more anyway
   RouteContext& ctx = *m->context_;
   server.set_pre_routing_handler([&ctx](const httplib::Request& req, httplib::Response& res) {
     if (IsOpenPath(req.path) ||
@@ -96,6 +129,16 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
     }
     return httplib::Server::HandlerResponse::Handled;
   });
+  // No error leaves with a server directory in it (DESIGN.md §4): the
+  // store's messages name its files. Here, before cpp-httplib sizes and
+  // compresses the body; the jobs' own errors are redacted by their routes.
+  server.set_error_handler(
+      httplib::Server::HandlerWithResponse([&ctx](const httplib::Request&, httplib::Response& res) {
+        if (!res.body.empty())
+          if (SourceSlot::Use source = ctx.source->Get())
+            res.body = source->client_paths()(std::move(res.body));
+        return httplib::Server::HandlerResponse::Unhandled;
+      }));
   AddPageRoutes(server, ctx);
   AddJobRoutes(server, ctx);
   AddStoreRoutes(server, ctx);
@@ -107,7 +150,17 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
     return absl::UnavailableError(
         absl::StrCat("listen: cannot listen on \"", options.listen, "\""));
   }
-  m->thread_ = std::thread([&server] { server.listen_after_bind(); });
+  SSL_CTX* ssl = m->ssl_ctx_.get();
+  m->gate_ = std::make_unique<HttpGate>(server.ListenSocket(),
+                                        GateOptions{.threads = kServerThreads, .tls = tls},
+                                        [&server, ssl](int fd, StreamClock::time_point deadline) {
+                                          {
+                                            SocketStream stream(fd, ssl, deadline, kWriteTimeout);
+                                            if (stream.Handshake()) server.ServeOne(stream);
+                                          }
+                                          ::shutdown(fd, SHUT_RDWR);
+                                          ::close(fd);
+                                        });
   spdlog::info("web monitor: serving {}", m->url());
   return m;
 }
@@ -122,10 +175,9 @@ std::string MonitorServer::url() const {
 }
 
 void MonitorServer::Stop() {
-  if (!server_) return;
   if (context_) context_->stopping = true;
-  server_->stop();
-  if (thread_.joinable()) thread_.join();
+  if (server_) static_cast<GatedServer&>(*server_).Shut();
+  if (gate_) gate_->Stop();
 }
 
 MonitorServer::~MonitorServer() { Stop(); }

@@ -6,14 +6,17 @@
 // bearer token. Served by `wavebake coordinator --http ADDR` and `wavebake
 // bake --serve ADDR`. /healthz stays open, like gRPC health checking, so
 // probes need no secret; everything else answers 401 without the token.
+// Served by its own accept path (web/http_gate.h), one request per
+// connection, so that no client holds a serving thread while it sends.
 #include <filesystem>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "absl/status/statusor.h"
 #include "web/job_source.h"
 #include "web/probe_catalogue.h"
+
+struct ssl_ctx_st;
 
 namespace httplib {
 class Server;
@@ -22,6 +25,7 @@ class Server;
 namespace wavebake::web {
 
 struct RouteContext;  // web/routes.h
+class HttpGate;       // web/http_gate.h
 
 struct MonitorOptions {
   std::string listen = "127.0.0.1:0";           // host:port; port 0 picks a free one
@@ -35,7 +39,7 @@ struct MonitorOptions {
 
 class MonitorServer {
  public:
-  // Binds and serves on a thread of its own. Errors: an address it cannot
+  // Binds and serves on threads of its own. Errors: an address it cannot
   // listen on (named as `listen`), half of a TLS pair, unreadable PEM files.
   static absl::StatusOr<std::unique_ptr<MonitorServer>> Start(MonitorOptions options,
                                                               std::shared_ptr<JobSource> source);
@@ -45,7 +49,7 @@ class MonitorServer {
   void SetSource(std::shared_ptr<JobSource> source) { source_.Set(std::move(source)); }
   std::string address() const;  // host:port
   std::string url() const;      // http(s)://host:port/
-  // Ends open event streams, stops accepting, joins the serving thread.
+  // Ends open event streams, stops accepting, joins the serving threads.
   void Stop();
 
  private:
@@ -53,9 +57,10 @@ class MonitorServer {
   MonitorOptions options_;
   SourceSlot source_;
   std::unique_ptr<RouteContext> context_;
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<httplib::Server> server_;  // the routes; the gate serves them
+  std::unique_ptr<ssl_ctx_st, void (*)(ssl_ctx_st*)> ssl_ctx_{nullptr, nullptr};
+  std::unique_ptr<HttpGate> gate_;
   int port_ = 0;
-  std::thread thread_;
 };
 
 }  // namespace wavebake::web

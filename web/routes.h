@@ -13,6 +13,7 @@
 #include "web/job_source.h"
 #include "web/pages.h"
 #include "web/relight_service.h"
+#include "web/stream_slots.h"
 #include "web/web_auth.h"
 
 namespace wavebake::web {
@@ -30,6 +31,9 @@ struct RouteContext {
   RelightService relight;
   Pages pages;
   bool tls = false;
+  // Half the serving threads at most (web/monitor_server.cc has 16); a
+  // browser's tabs past four poll instead.
+  StreamSlots streams{8, 4};
   std::atomic<bool> stopping{false};
 };
 
@@ -38,9 +42,13 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx);
 void AddStoreRoutes(httplib::Server& server, RouteContext& ctx);
 
 // JSON bodies; errors as {"error": message} with the status's HTTP code
-// (INVALID_ARGUMENT 400, NOT_FOUND 404, FAILED_PRECONDITION 409, ...).
-void SendJson(httplib::Response& res, const nlohmann::json& body, int status = 200);
-void SendError(httplib::Response& res, const absl::Status& status);
+// (INVALID_ARGUMENT 400, NOT_FOUND 404, FAILED_PRECONDITION 409, ...). The
+// server's error handler hides server directories in every error body; a
+// body that carries a job's own error passes `paths` itself.
+void SendJson(httplib::Response& res, const nlohmann::json& body, int status = 200,
+              const ClientPaths* paths = nullptr);
+// `http_status` 0: the status code's own (above).
+void SendError(httplib::Response& res, const absl::Status& status, int http_status = 0);
 // The source, or 503 sent when there is none yet.
 SourceSlot::Use SourceOr503(const RouteContext& ctx, httplib::Response& res);
 

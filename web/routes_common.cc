@@ -27,19 +27,21 @@ int HttpStatus(const absl::Status& s) {
 
 }  // namespace
 
-void SendJson(httplib::Response& res, const nlohmann::json& body, int status) {
+void SendJson(httplib::Response& res, const nlohmann::json& body, int status,
+              const ClientPaths* paths) {
   res.status = status;
   res.set_header("Cache-Control", "no-store");
   // Replace, never throw, on invalid UTF-8 from a message or a file name.
-  res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                  "application/json");
+  std::string text = body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (paths != nullptr) text = (*paths)(std::move(text));
+  res.set_content(text, "application/json");
 }
 
-void SendError(httplib::Response& res, const absl::Status& status) {
+void SendError(httplib::Response& res, const absl::Status& status, int http_status) {
   SendJson(
       res,
       {{"error", std::string(status.message())}, {"code", absl::StatusCodeToString(status.code())}},
-      HttpStatus(status));
+      http_status != 0 ? http_status : HttpStatus(status));
 }
 
 SourceSlot::Use SourceOr503(const RouteContext& ctx, httplib::Response& res) {

@@ -21,8 +21,10 @@ constexpr auto kKeepAliveInterval = std::chrono::seconds(15);
 std::string JobsPayload(const SourceSlot::Use& source) {
   if (!source) return "[]";
   absl::StatusOr<std::vector<v1::Job>> jobs = source->ListJobs(kListedJobs);
-  if (!jobs.ok()) return nlohmann::json{{"error", std::string(jobs.status().message())}}.dump();
-  return JobsJson(*jobs).dump();
+  const ClientPaths& paths = source->client_paths();
+  if (!jobs.ok())
+    return nlohmann::json{{"error", paths(std::string(jobs.status().message()))}}.dump();
+  return paths(JobsJson(*jobs).dump());
 }
 
 // One client's stream: the jobs list whenever it changed, a comment line as
@@ -73,19 +75,30 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(JobsPayload(source), "application/json");
   });
-  server.Get("/api/jobs/stream", [&ctx](const httplib::Request&, httplib::Response& res) {
+  server.Get("/api/jobs/stream", [&ctx](const httplib::Request& req, httplib::Response& res) {
     res.set_header("Cache-Control", "no-store");
+    StreamSlots::Grant grant = ctx.streams.Take(req.remote_addr);
+    if (!grant.slot) {
+      res.set_header("Retry-After", "10");
+      return SendError(
+          res,
+          absl::UnavailableError(grant.status == 429 ? "too many event streams from this address"
+                                                     : "too many event streams open"),
+          grant.status);
+    }
     auto stream = std::make_shared<JobStream>();
     res.set_chunked_content_provider(
         "text/event-stream",
-        [&ctx, stream](size_t, httplib::DataSink& sink) { return stream->Next(ctx, sink); });
+        [&ctx, stream, slot = std::move(grant.slot)](size_t, httplib::DataSink& sink) {
+          return stream->Next(ctx, sink);
+        });
   });
   server.Get(R"(/api/jobs/(\d+))", [&ctx](const httplib::Request& req, httplib::Response& res) {
     SourceSlot::Use source = SourceOr503(ctx, res);
     if (!source) return;
     absl::StatusOr<v1::Job> job = source->GetJob(req.matches[1].str());
     if (!job.ok()) return SendError(res, job.status());
-    SendJson(res, JobJson(*job));
+    SendJson(res, JobJson(*job), 200, &source->client_paths());
   });
   server.Post(
       R"(/api/jobs/(\d+)/cancel)", [&ctx](const httplib::Request& req, httplib::Response& res) {
@@ -98,7 +111,7 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx) {
         if (!source) return;
         absl::StatusOr<v1::Job> job = source->CancelJob(req.matches[1].str());
         if (!job.ok()) return SendError(res, job.status());
-        SendJson(res, JobJson(*job));
+        SendJson(res, JobJson(*job), 200, &source->client_paths());
       });
   server.Get(R"(/api/jobs/(\d+)/events)",
              [&ctx](const httplib::Request& req, httplib::Response& res) {
@@ -109,7 +122,8 @@ void AddJobRoutes(httplib::Server& server, RouteContext& ctx) {
                if (!events.ok()) return SendError(res, events.status());
                nlohmann::json out = nlohmann::json::array();
                for (const v1::JobEvent& e : *events) out.push_back(EventJson(e));
-               SendJson(res, {{"events", out}, {"truncated", out.size() >= kTimelineEvents}});
+               SendJson(res, {{"events", out}, {"truncated", out.size() >= kTimelineEvents}}, 200,
+                        &source->client_paths());
              });
 }
 

@@ -288,6 +288,23 @@ TEST_F(MonitorServerTest, ClientsNameProbesNeverFiles) {
   EXPECT_THAT(Get("/api/probes", true), HasSubstr("builtin:sky"));
 }
 
+// An error of the store reaches the client with the store root as a label,
+// as the JobService hides it: no directory of the server in any body.
+TEST_F(MonitorServerTest, StoreErrorsNameNoServerDirectory) {
+  Bake("camera:16x16");
+  const std::filesystem::path data = dir_.path() / "out.wbk" / "transport" / "data";
+  ASSERT_TRUE(std::filesystem::is_directory(data));
+  for (const auto& chunk : std::filesystem::directory_iterator(data))
+    std::filesystem::remove_all(chunk.path());
+  httplib::Result r = Frame("probe=builtin:sky");
+  ASSERT_TRUE(r);
+  EXPECT_GE(r->status, 400);
+  EXPECT_THAT(r->body, HasSubstr("<store root>"));
+  EXPECT_EQ(r->body.find(dir_.path().string()), std::string::npos) << r->body;
+  const nlohmann::json error = nlohmann::json::parse(r->body);  // still whole JSON
+  EXPECT_TRUE(error.contains("error"));
+}
+
 // --http-pages: the built-in file names, read from the directory; no other
 // file of it is served.
 TEST(MonitorPagesTest, APagesDirectoryServesOnlyTheBuiltInNames) {
