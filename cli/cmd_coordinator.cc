@@ -3,9 +3,11 @@
 // monitor and /metrics, until SIGINT or SIGTERM.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <future>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "cli/client_flags.h"
@@ -14,6 +16,7 @@
 #include "cli/web_flags.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
+#include "driver/exit_deadline.h"
 #include "driver/signal_watcher.h"
 #include "storage/atomic_file.h"
 #include "web/coordinator_source.h"
@@ -25,8 +28,22 @@ struct CoordinatorFlags {
   CoordinatorOptions options{.listen_address = "", .wait_ms = 100};
   std::string token_file, address_file;
   int64_t max_upload_mb = 1024;
+  int64_t test_plan_delay_ms = 0;
   WebFlags web;
 };
+
+// Shutdown gives running calls 2 s (Coordinator::Shutdown), then this.
+constexpr std::chrono::milliseconds kShutdownBound{5000};
+
+// For tests of shutdown: every plan first waits this long, so a submit is
+// deterministically busy when SIGTERM comes.
+PlanFn SlowPlanner(PlanFn plan, int64_t delay_ms) {
+  if (delay_ms <= 0) return plan;
+  return [plan = std::move(plan), delay_ms](const v1::BakeRequest& request) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    return plan(request);
+  };
+}
 
 void Run(CoordinatorFlags f) {
   spdlog::set_level(spdlog::level::info);  // its log is its output
@@ -41,7 +58,8 @@ void Run(CoordinatorFlags f) {
   const PlannerOptions planner{
       .data_dir = options.data_dir, .store_root = options.store_root, .local_scenes = {}};
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator =
-      Coordinator::Start(options, MakeJobPlanner(planner), MakeJobCleanup(options.store_root));
+      Coordinator::Start(options, SlowPlanner(MakeJobPlanner(planner), f.test_plan_delay_ms),
+                         MakeJobCleanup(options.store_root));
   if (!coordinator.ok()) Fail("coordinator", coordinator.status());
   // The same token and certificate as gRPC (DESIGN.md §4).
   f.web.options.token = options.token;
@@ -54,8 +72,12 @@ void Run(CoordinatorFlags f) {
       Fail("coordinator", absl::StrCat("--address-file: ", s.message()));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");
+  // Bounded (driver/exit_deadline.h): a call stuck in a long planning step
+  // must not keep a stopped coordinator alive.
+  driver::ExitDeadline deadline(kShutdownBound, "coordinator", 1);
   if (monitor) monitor->Stop();  // it reads the coordinator
   (*coordinator)->Shutdown();
+  coordinator->reset();  // its server's threads end here, still within the bound
 }
 
 }  // namespace
@@ -93,6 +115,10 @@ void AddCoordinatorCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--address-file", f->address_file,
                   "write the address it listens on (host:port) to this file once serving");
+  // Hidden (no group): a test hook, not an option for users.
+  cmd->add_option("--test-plan-delay-ms", f->test_plan_delay_ms,
+                  "tests only: every plan sleeps this long first")
+      ->group("");
   AddWebFlags(*cmd, f->web, "--http",
               "also serve the web monitor, /metrics and /healthz over HTTP on host:port "
               "(HTTPS with --tls-cert; the same --token-file)");
