@@ -3,6 +3,7 @@
 // --http the web monitor and /metrics, until SIGINT or SIGTERM.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -12,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/web_flags.h"
 #include "driver/coordinator_run.h"
+#include "driver/exit_deadline.h"
 #include "driver/signal_watcher.h"
 #include "web/coordinator_source.h"
 
@@ -22,8 +24,12 @@ struct CoordinatorFlags {
   CoordinatorOptions options{.listen_address = "", .wait_ms = 100};
   std::string token_file, address_file;
   int64_t max_upload_mb = 1024;
+  int64_t test_plan_delay_ms = 0;
   WebFlags web;
 };
+
+// Shutdown gives running calls 2 s (Coordinator::Shutdown), then this.
+constexpr std::chrono::milliseconds kShutdownBound{5000};
 
 void Run(CoordinatorFlags f) {
   spdlog::set_level(spdlog::level::info);  // its log is its output
@@ -34,7 +40,8 @@ void Run(CoordinatorFlags f) {
   CoordinatorOptions& options = f.options;
   options.max_upload_bytes = f.max_upload_mb << 20;
   options.token = TokenOrFail(f.token_file, "coordinator");
-  absl::StatusOr<driver::CoordinatorRun> run = driver::StartCoordinator(options, f.address_file);
+  absl::StatusOr<driver::CoordinatorRun> run =
+      driver::StartCoordinator(options, f.address_file, f.test_plan_delay_ms);
   if (!run.ok()) Fail("coordinator", run.status());
   Coordinator& coordinator = *run->coordinator;
   // The same token and certificate as gRPC (DESIGN.md §4).
@@ -44,8 +51,12 @@ void Run(CoordinatorFlags f) {
       StartMonitor("coordinator", f.web, web::CoordinatorSource(coordinator, run->planner));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");
+  // Bounded (driver/exit_deadline.h): a call stuck in a long planning step
+  // must not keep a stopped coordinator alive.
+  driver::ExitDeadline deadline(kShutdownBound, "coordinator", 1);
   if (monitor) monitor->Stop();  // it reads the coordinator
   coordinator.Shutdown();
+  run->coordinator.reset();  // its server's threads end here, still within the bound
 }
 
 }  // namespace
@@ -83,6 +94,10 @@ void AddCoordinatorCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--address-file", f->address_file,
                   "write the address it listens on (host:port) to this file once serving");
+  // Hidden (no group): a test hook, not an option for users.
+  cmd->add_option("--test-plan-delay-ms", f->test_plan_delay_ms,
+                  "tests only: every plan sleeps this long first")
+      ->group("");
   AddWebFlags(*cmd, f->web, "--http",
               "also serve the web monitor, /metrics and /healthz over HTTP on host:port "
               "(HTTPS with --tls-cert; the same --token-file)");

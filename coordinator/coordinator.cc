@@ -7,11 +7,14 @@
 #include <spdlog/spdlog.h>
 
 #include <fstream>
+#include <limits>
+#include <set>
 #include <sstream>
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
+#include "coordinator/orphan_stores.h"
 #include "storage/store_root_marker.h"
 
 namespace wavebake {
@@ -79,6 +82,17 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
       return absl::InvalidArgumentError(
           absl::StrCat("data_dir: ", dir.string(), ": ", ec.message()));
   }
+  absl::StatusOr<DataDirLock> lock = DataDirLock::Acquire(o.data_dir, "data_dir");
+  if (!lock.ok()) return lock.status();
+  lock_ = std::move(*lock);
+  // The store root too, when it is not the data dir: two coordinators on one
+  // store root would name their jobs' stores alike and remove each other's
+  // partial stores as orphans.
+  if (!std::filesystem::equivalent(o.data_dir, o.store_root, ec)) {
+    absl::StatusOr<DataDirLock> root_lock = DataDirLock::Acquire(o.store_root, "store_root");
+    if (!root_lock.ok()) return root_lock.status();
+    store_root_lock_ = std::move(*root_lock);
+  }
   // Workers compare this with the marker at their --store-root at start.
   absl::StatusOr<std::string> store_root_id = EnsureStoreRootMarker(o.store_root);
   if (!store_root_id.ok()) return store_root_id.status();
@@ -94,6 +108,13 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
       LeaseTable::Create(store_.get(), clock, lease_options, std::move(cleanup_fn));
   if (!table.ok()) return table.status();
   table_ = std::move(*table);
+  {
+    std::set<std::string> live;
+    for (const JobInfo& job : table_->List(std::numeric_limits<int>::max(), /*active_only=*/true))
+      live.insert(job.record.store_path);
+    if (absl::StatusOr<int> removed = RemoveOrphanPartialStores(o.store_root, live); !removed.ok())
+      spdlog::warn("coordinator: {}", removed.status().ToString());
+  }
   scenes_ = std::make_unique<SceneStore>(o.data_dir, store_.get(), clock, o.max_upload_bytes);
   auth_ = std::make_unique<TokenAuth>(o.token);
   ServiceDeps deps{.table = table_.get(),
@@ -108,6 +129,7 @@ absl::Status Coordinator::Init(PlanFn plan_fn, CleanupFn cleanup_fn) {
   if (o.hide_paths) {
     deps.client_paths.Hide(o.data_dir, "<data dir>");
     deps.client_paths.Hide(o.store_root, "<store root>");
+    deps.hide_worker_paths = true;
   }
   job_service_ = std::make_unique<JobServiceImpl>(deps);
   worker_service_ = std::make_unique<WorkerServiceImpl>(deps);
@@ -144,14 +166,19 @@ void Coordinator::ReapLoop(std::stop_token stop) {
   const int64_t period_ms = std::clamp<int64_t>(table_->options().lease_ms / 4, 10, 1000);
   std::unique_lock lock(reap_mu_);
   absl::Status last_error;
+  grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
   while (!stop.stop_requested()) {
     reap_cv_.wait_for(lock, stop, std::chrono::milliseconds(period_ms), [] { return false; });
     if (stop.stop_requested()) break;
+    // Also the recovery of a stopped table (a full disk freed since).
+    absl::Status s = table_->ExpireLeases();
     // Once per distinct error: a stopped table fails every tick the same way.
-    if (absl::Status s = table_->ExpireLeases(); !s.ok() && s != last_error) {
-      spdlog::error("coordinator: {}", s.ToString());
-      last_error = s;
-    }
+    if (!s.ok() && s != last_error) spdlog::error("coordinator: {}", s.ToString());
+    if (s.ok() && !last_error.ok()) spdlog::info("coordinator: recovered; serving again");
+    // Health says what the table can do: NOT_SERVING while it cannot
+    // record a change (clients and probes see it, not a SERVING that fails).
+    if (health && s.ok() != last_error.ok()) health->SetServingStatus(s.ok());
+    last_error = s;
   }
 }
 

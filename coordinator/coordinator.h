@@ -4,8 +4,10 @@
 // the grpc::Server. The same object serves `wavebake bake` in one process:
 // workers then talk to it through InProcessChannel().
 //
-// Files under data_dir: state.sqlite (+ WAL), scenes/<sha256>, and the store
-// root (default data_dir/store) that workers share (--store-root).
+// Files under data_dir: state.sqlite (+ WAL), scenes/<sha256>, the store
+// root (default data_dir/store) that workers share (--store-root), and
+// .wavebake-coordinator.lock, which keeps a second coordinator off the same data_dir
+// (coordinator/data_dir_lock.h).
 #include <grpcpp/channel.h>
 #include <grpcpp/server.h>
 
@@ -14,11 +16,13 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "absl/status/statusor.h"
 #include "coordinator/auth.h"
+#include "coordinator/data_dir_lock.h"
 #include "coordinator/job_service.h"
 #include "coordinator/job_store.h"
 #include "coordinator/lease_table.h"
@@ -72,6 +76,8 @@ class Coordinator {
   void ReapLoop(std::stop_token stop);
 
   CoordinatorOptions options_;
+  std::optional<DataDirLock> lock_;  // before the store: released after it closes
+  std::optional<DataDirLock> store_root_lock_;
   std::unique_ptr<JobStore> store_;
   std::unique_ptr<LeaseTable> table_;
   std::unique_ptr<SceneStore> scenes_;

@@ -15,6 +15,7 @@
 #include "core/layouts/layout.h"
 #include "core/layouts/sample_layout.h"
 #include "proto/bake_request.h"
+#include "storage/atomic_file.h"
 #include "storage/scene_bundle.h"
 #include "storage/scene_files.h"
 #include "storage/scene_loader.h"
@@ -86,8 +87,11 @@ absl::Status ReservePartialStore(const std::filesystem::path& store_root,
   if (ec)
     return absl::InternalError(absl::StrCat("store root: ", partial.string(), ": ", ec.message()));
   const std::filesystem::path marker = partial / kPartialMarker;
-  if (!(std::ofstream(marker) << "wavebake partial store\n")) {
-    return absl::InternalError(absl::StrCat("store root: cannot write ", marker.string()));
+  // A full disk is ResourceExhausted, as everywhere (storage/atomic_file.h);
+  // the directory is not left reserved: it would block this name for good.
+  if (absl::Status s = AtomicWriteText(marker, "wavebake partial store\n"); !s.ok()) {
+    std::filesystem::remove_all(partial, ec);
+    return absl::Status(s.code(), absl::StrCat("store root: ", s.message()));
   }
   return absl::OkStatus();
 }

@@ -245,6 +245,9 @@ absl::Status JobStore::UpsertWorker(const WorkerRecord& w) {
 
 absl::Status JobStore::Commit(const Transition& t) {
   std::lock_guard lock(write_mu_);
+  if (full_for_testing_) {
+    return absl::ResourceExhaustedError("state.sqlite: No space left on device (injected)");
+  }
   absl::StatusOr<SqliteTxn> txn = SqliteTxn::Begin(writer_.get());
   if (!txn.ok()) return txn.status();
   for (const JobRecord& j : t.jobs) {
@@ -315,6 +318,16 @@ absl::StatusOr<std::vector<TaskRecord>> JobStore::ReadTasks(int64_t job_id) {
       [&](const SqliteCursor& c) { out.push_back(TaskFromRow(c)); });
   if (!s.ok()) return s;
   return out;
+}
+
+absl::Status JobStore::LimitGrowthForTesting(int64_t pages) {
+  std::lock_guard lock(write_mu_);
+  int64_t count = 0;
+  absl::Status s = ForEachRow(writer_.get(), "PRAGMA page_count",
+                              [&](const SqliteCursor& c) { count = c.Int(0); });
+  if (!s.ok()) return s;
+  return ForEachRow(writer_.get(), absl::StrCat("PRAGMA max_page_count = ", count + pages),
+                    [](const SqliteCursor&) {});
 }
 
 absl::Status JobStore::PutScene(const SceneRecord& scene) {

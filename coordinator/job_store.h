@@ -4,6 +4,7 @@
 // tasks, events, workers, scenes. The store holds no scheduling logic: the
 // LeaseTable decides every transition and commits it here as one Transition
 // = one SQLite transaction, so a crash never leaves half a transition.
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <map>
@@ -53,6 +54,14 @@ class JobStore {
   absl::StatusOr<std::vector<EventRecord>> ReadEvents(int64_t job_id, int64_t after_seq, int limit);
   absl::StatusOr<std::vector<TaskRecord>> ReadTasks(int64_t job_id);
 
+  // Fault injection for tests: the database may grow by at most `pages` more
+  // pages (SQLite's max_page_count), after which a commit that needs one
+  // fails as on a full disk (ResourceExhausted). A large value lifts it.
+  absl::Status LimitGrowthForTesting(int64_t pages);
+  // While set, every Commit fails as on a full disk before it writes
+  // anything, however little it needs (an update in place fits any page).
+  void SetFullForTesting(bool full) { full_for_testing_ = full; }
+
   // Content-addressed scenes: inserting a known hash is a no-op.
   absl::Status PutScene(const SceneRecord& scene);
   absl::StatusOr<std::optional<SceneRecord>> GetScene(const std::string& sha256);
@@ -69,6 +78,7 @@ class JobStore {
   sqlite3* reader() { return reader_ ? reader_.get() : writer_.get(); }
   std::mutex& reader_mu() { return reader_ ? read_mu_ : write_mu_; }
 
+  std::atomic<bool> full_for_testing_{false};
   std::mutex write_mu_;
   std::mutex read_mu_;
   SqliteDb writer_;

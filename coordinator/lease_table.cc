@@ -13,6 +13,11 @@
 namespace wavebake {
 namespace {
 
+// What a RESUMED event says happened.
+constexpr absl::string_view kRestarted = "coordinator restarted";
+constexpr absl::string_view kRecovered =
+    "the database refused a change (a full disk?), state reloaded from it";
+
 // Task index range [begin, end) of the stage a phase stands for (§2).
 std::pair<int, int> StageRange(const JobRecord& r, Phase phase) {
   switch (phase) {
@@ -67,38 +72,65 @@ LeaseTable::LeaseTable(Key, JobStore* store, const Clock* clock, LeaseTableOptio
       cleanup_(std::move(cleanup)) {}
 
 absl::Status LeaseTable::Load() {
-  absl::StatusOr<StoreSnapshot> snap = store_->Load();
-  if (!snap.ok()) return snap.status();
-  Transition tx;
-  Cleanups cleanups;
   {
     std::lock_guard lock(mu_);
-    for (WorkerRecord& w : snap->workers) {
-      next_worker_id_ = std::max(next_worker_id_, w.id + 1);
-      workers_[w.id].rec = std::move(w);
-    }
-    for (JobRecord& rec : snap->jobs) {
-      next_job_id_ = std::max(next_job_id_, rec.id + 1);
-      JobState& js = jobs_[rec.id];
-      js.rec = std::move(rec);
-      js.last_event_seq = snap->last_event_seq[js.rec.id];
-    }
-    for (TaskRecord& t : snap->tasks) jobs_[t.job_id].tasks.push_back(std::move(t));
-    for (auto& [id, js] : jobs_) {
-      if (!IsTerminal(js.rec.phase)) {
-        if (absl::Status s = ResumeJob(js, tx); !s.ok()) return s;
-      }
-      MaybeCleanup(js, cleanups);  // a cleanup the previous run did not finish
-    }
-    if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+    broken_ = absl::UnavailableError("not loaded yet");
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
   }
-  RunCleanups(cleanups);
+  RunCleanups({});
   return absl::OkStatus();
+}
+
+absl::Status LeaseTable::ReloadLocked(absl::string_view why, Transition& tx) {
+  absl::StatusOr<StoreSnapshot> snap = store_->Load();
+  if (!snap.ok()) return snap.status();
+  // What the database does not hold but must survive: when workers were last
+  // seen, and the ids handed out (a reserved job id or a worker id whose
+  // commit failed is never given again).
+  std::map<int64_t, int64_t> last_seen;
+  for (const auto& [id, w] : workers_) last_seen[id] = w.last_seen_ms;
+  jobs_.clear();
+  deferred_cleanups_.clear();  // scheduled again below if still due
+  runnable_.clear();
+  deadlines_.clear();
+  workers_.clear();
+  for (WorkerRecord& w : snap->workers) {
+    next_worker_id_ = std::max(next_worker_id_, w.id + 1);
+    WorkerState& ws = workers_[w.id];
+    ws.rec = std::move(w);
+    if (auto it = last_seen.find(ws.rec.id); it != last_seen.end()) ws.last_seen_ms = it->second;
+  }
+  for (JobRecord& rec : snap->jobs) {
+    next_job_id_ = std::max(next_job_id_, rec.id + 1);
+    JobState& js = jobs_[rec.id];
+    js.rec = std::move(rec);
+    js.last_event_seq = snap->last_event_seq[js.rec.id];
+  }
+  for (TaskRecord& t : snap->tasks) jobs_[t.job_id].tasks.push_back(std::move(t));
+  for (auto& [id, js] : jobs_) {
+    if (!IsTerminal(js.rec.phase)) {
+      if (absl::Status s = ResumeJob(js, why, tx); !s.ok()) return s;
+    }
+    MaybeCleanup(js, deferred_cleanups_);  // a cleanup the previous run did not finish
+  }
+  return absl::OkStatus();
+}
+
+absl::Status LeaseTable::RecoverLocked() {
+  if (broken_.ok() || !store_) return absl::OkStatus();
+  Transition tx;
+  absl::Status s = ReloadLocked(loaded_ ? kRecovered : kRestarted, tx);
+  if (s.ok() && !(tx.jobs.empty() && tx.tasks.empty() && tx.events.empty())) s = store_->Commit(tx);
+  broken_ = s;
+  loaded_ = true;
+  ++generation_;
+  changed_.notify_all();
+  return s;
 }
 
 // A job of a previous coordinator: its leases are void, so leased tasks are
 // pending again without being charged an attempt (§4 "resumes after a restart").
-absl::Status LeaseTable::ResumeJob(JobState& js, Transition& tx) {
+absl::Status LeaseTable::ResumeJob(JobState& js, absl::string_view why, Transition& tx) {
   if (static_cast<int>(js.tasks.size()) != js.rec.tasks_total()) {
     return absl::DataLossError(absl::StrCat("job ", js.rec.id, ": ", js.tasks.size(),
                                             " task rows, expected ", js.rec.tasks_total()));
@@ -124,7 +156,7 @@ absl::Status LeaseTable::ResumeJob(JobState& js, Transition& tx) {
   // The stage's clock restarts here; earlier task times died with the old process.
   if (js.rec.started_ms > 0) js.stages[StageOf(js.rec.phase)].opened_ms = clock_->NowMs();
   AddEvent(js, tx, EventKind::kResumed, nullptr,
-           absl::StrCat("coordinator restarted; ", requeued, " leased tasks back to pending"));
+           absl::StrCat(why, "; ", requeued, " leased tasks back to pending"));
   return absl::OkStatus();
 }
 
@@ -145,8 +177,20 @@ absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int 
     return absl::InternalError(
         absl::StrCat("plan: store_path \"", plan.store_path, "\" is not a relative path"));
   }
+  bool store_is_ours = false;
+  absl::StatusOr<JobInfo> added =
+      AddJobLocked(id, std::move(request), max_attempts, plan, store_is_ours);
+  RunCleanups({});
+  // A job that is not in the database is not anywhere: the store its planner
+  // reserved is removed, so a failed submit leaves nothing behind, not even
+  // on a full disk (it would hold space and block the name).
+  if (!added.ok() && store_is_ours && cleanup_) cleanup_({.id = id, .store_path = plan.store_path});
+  return added;
+}
+
+absl::StatusOr<JobInfo> LeaseTable::AddJobLocked(int64_t id, std::string request, int max_attempts,
+                                                 const PlannedJob& plan, bool& store_is_ours) {
   std::lock_guard lock(mu_);
-  if (!broken_.ok()) return broken_;
   if (jobs_.contains(id) || id <= 0 || id >= next_job_id_) {
     return absl::InternalError(absl::StrCat("job id ", id, " was not reserved"));
   }
@@ -156,7 +200,11 @@ absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int 
                                                    "\" is the store of running job ", other_id));
     }
   }
-  JobState& js = jobs_[id];
+  store_is_ours = true;  // reserved for this id, and no other job's
+  if (absl::Status s = RecoverLocked(); !s.ok()) return s;
+  // Built aside and published only once committed: a job the database
+  // refused is never seen, listed or leased.
+  JobState js;
   js.rec = {.id = id,
             .request = std::move(request),
             .phase = Phase::kQueued,
@@ -179,13 +227,14 @@ absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int 
                                                            : 0;
     if (t.kind == TaskKind::kBakeTile) js.ready.insert(i);
   }
-  runnable_.insert(id);
   Transition tx;
   tx.jobs.push_back(js.rec);
   tx.tasks = js.tasks;
   AddEvent(js, tx, EventKind::kSubmitted);
   if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
-  return InfoLocked(js);
+  JobState& added = jobs_[id] = std::move(js);
+  runnable_.insert(id);
+  return InfoLocked(added);
 }
 
 absl::StatusOr<JobInfo> LeaseTable::Get(int64_t id) const {
@@ -209,7 +258,7 @@ absl::StatusOr<JobInfo> LeaseTable::Cancel(int64_t id) {
   JobInfo info;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     auto it = jobs_.find(id);
     if (it == jobs_.end()) return absl::NotFoundError(absl::StrCat("job ", id, " not found"));
     JobState& js = it->second;
@@ -221,12 +270,13 @@ absl::StatusOr<JobInfo> LeaseTable::Cancel(int64_t id) {
       Transition tx;
       EndJob(js, Phase::kCancelled, "cancelled", tx);
       tx.jobs.push_back(js.rec);
+      // A failed commit restores the job as the database holds it (CommitLocked).
       if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
       MaybeCleanup(js, cleanups);
     }
     info = InfoLocked(js);
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   return info;
 }
 
@@ -393,16 +443,24 @@ void LeaseTable::MaybeCleanup(JobState& js, Cleanups& cleanups) {
 }
 
 // Outside the lock: a cleanup removes files and may take a while.
-void LeaseTable::RunCleanups(const Cleanups& cleanups) {
+void LeaseTable::RunCleanups(Cleanups cleanups) {
+  {
+    std::lock_guard lock(mu_);
+    cleanups.insert(cleanups.end(), deferred_cleanups_.begin(), deferred_cleanups_.end());
+    deferred_cleanups_.clear();
+  }
   for (const JobRecord& rec : cleanups) {
     if (cleanup_) cleanup_(rec);
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return;
-    JobState& js = jobs_[rec.id];
-    js.rec.cleaned = true;
+    // Stopped: the job is marked when the table recovers (its reload
+    // schedules the cleanup again; removing twice is harmless).
+    if (!broken_.ok()) continue;
+    auto it = jobs_.find(rec.id);
+    if (it == jobs_.end() || it->second.rec.cleaned) continue;
+    it->second.rec.cleaned = true;
     Transition tx;
-    tx.jobs.push_back(js.rec);
-    (void)CommitLocked(tx);  // on failure the table is stopped; the next start cleans again
+    tx.jobs.push_back(it->second.rec);
+    (void)CommitLocked(tx);  // on failure the table is stopped; its recovery cleans again
   }
 }
 
@@ -412,8 +470,43 @@ absl::Status LeaseTable::CommitLocked(Transition& tx) {
   if (!store_ || (tx.jobs.empty() && tx.tasks.empty() && tx.events.empty() && tx.workers.empty())) {
     return absl::OkStatus();
   }
-  broken_ = store_->Commit(tx);
-  return broken_;
+  absl::Status s = store_->Commit(tx);
+  // A full disk, and the transition ends jobs whose stores no worker writes
+  // any more: those stores are garbage whatever happens, and removing them
+  // first is what lets the end be recorded (a FINALIZE that failed for want
+  // of space, a cancel to make room). Then once more.
+  if (s.code() == absl::StatusCode::kResourceExhausted && FreeEndedStoresLocked(tx)) {
+    s = store_->Commit(tx);
+  }
+  if (s.ok()) return s;
+  // Memory is ahead of the database: put it back as the database holds it,
+  // and stop until a commit succeeds again (RecoverLocked, at the next call
+  // or reaper tick). The reload's cleanups run at that recovery.
+  broken_ = s;
+  Transition resumed;
+  (void)ReloadLocked(kRecovered, resumed);
+  return s;
+}
+
+bool LeaseTable::FreeEndedStoresLocked(Transition& tx) {
+  bool freed = false;
+  for (JobRecord& rec : tx.jobs) {
+    if (rec.phase != Phase::kFailed && rec.phase != Phase::kCancelled) continue;
+    auto it = jobs_.find(rec.id);
+    if (it == jobs_.end() || !it->second.leases.empty() || it->second.rec.cleaned) continue;
+    JobState& js = it->second;
+    if (cleanup_) cleanup_(js.rec);
+    js.rec.cleaned = true;
+    js.cleanup_scheduled = true;
+    freed = true;
+  }
+  if (freed) {
+    for (JobRecord& rec : tx.jobs) {
+      auto it = jobs_.find(rec.id);
+      if (it != jobs_.end() && it->second.rec.cleaned) rec.cleaned = true;
+    }
+  }
+  return freed;
 }
 
 absl::Status LeaseTable::broken() const {

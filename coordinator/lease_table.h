@@ -18,11 +18,16 @@
 //   directory that was just removed.
 //
 // Every transition is applied in memory and committed to the JobStore (if
-// any) as one transaction together with its events. If a commit fails the
-// table stops (fail-stop): memory is ahead of the database, and a restart
-// reloads the last committed state, in which the leases of the dead
-// coordinator are void and their tasks pending again (a restart is nobody's
-// failure: attempts are not charged).
+// any) as one transaction together with its events. A new job or worker is
+// published in memory only once its rows are committed. If a commit fails
+// (a full disk), memory is put back as the database holds it, as a restart
+// would load it: leases are void and their tasks pending again (nobody's
+// failure: attempts are not charged). The table then refuses every change
+// with that error, and each call (and the coordinator's reaper) tries to
+// recover: reload and commit the requeue; the first that succeeds ends it,
+// without a restart. A failed commit on a full disk that ends jobs (FAILED,
+// CANCELLED) with no lease outstanding first removes their stores and
+// commits once more, so such a job frees the space its end needs.
 #include <array>
 #include <condition_variable>
 #include <cstdint>
@@ -119,7 +124,10 @@ class LeaseTable {
              CleanupFn cleanup);
 
   // Jobs. Submit = ReserveJobId (so the planner can name the store after the
-  // job) + AddJob; the planner runs in between without any lock held.
+  // job) + AddJob; the planner runs in between without any lock held. When
+  // AddJob fails after its checks (the id was reserved, the store is no other
+  // running job's), it runs the cleanup on plan.store_path: the store the
+  // planner reserved goes with the job that never was.
   int64_t ReserveJobId();
   absl::StatusOr<JobInfo> AddJob(int64_t id, std::string request, int max_attempts,
                                  const PlannedJob& plan);
@@ -158,8 +166,8 @@ class LeaseTable {
                                                       int limit) const;
 
   const LeaseTableOptions& options() const { return options_; }
-  // The failed commit that stopped the table (a full disk under SQLite: every
-  // change after it fails with it); OK while the table works.
+  // The failed commit that stopped the table (a full disk under SQLite),
+  // until a recovery succeeds; OK while the table works.
   absl::Status broken() const;
 
   // Counters, jobs by phase, workers alive (seen within lease_ms and not
@@ -200,7 +208,17 @@ class LeaseTable {
   using Cleanups = std::vector<JobRecord>;
 
   absl::Status Load();
-  absl::Status ResumeJob(JobState& js, Transition& tx);
+  // Memory := the store's last committed state; tx gets the resumed jobs' requeues.
+  // `why` goes into the RESUMED events; the cleanups it finds due go to
+  // deferred_cleanups_.
+  absl::Status ReloadLocked(absl::string_view why, Transition& tx);
+  // OK when not stopped; otherwise reloads, commits the requeue, and is OK
+  // once that commit succeeds.
+  absl::Status RecoverLocked();
+  absl::Status ResumeJob(JobState& js, absl::string_view why, Transition& tx);
+  // store_is_ours: set once the checks show plan.store_path is this job's alone.
+  absl::StatusOr<JobInfo> AddJobLocked(int64_t id, std::string request, int max_attempts,
+                                       const PlannedJob& plan, bool& store_is_ours);
   // The counts (done, leased, rays, bytes); InfoLocked adds rays/s and the ETA.
   JobInfo CountsLocked(const JobState& js) const;
   JobInfo InfoLocked(const JobState& js) const;
@@ -221,8 +239,14 @@ class LeaseTable {
   // Complete's transition into tx; NotFound for a lease never granted.
   absl::StatusOr<bool> CompleteLocked(int64_t worker_id, const LeaseKey& key,
                                       const TaskReport& report, Transition& tx, Cleanups& cleanups);
+  // On failure the table is stopped and memory reloaded: no JobState& the
+  // caller holds is valid any more.
   absl::Status CommitLocked(Transition& tx);
-  void RunCleanups(const Cleanups& cleanups);
+  // Runs the cleanup of the jobs tx ends (FAILED, CANCELLED) with no lease
+  // left, marking them cleaned in tx; true if it removed any.
+  bool FreeEndedStoresLocked(Transition& tx);
+  // Also runs deferred_cleanups_.
+  void RunCleanups(Cleanups cleanups);
 
   JobStore* const store_;
   const Clock* const clock_;
@@ -232,7 +256,11 @@ class LeaseTable {
   mutable std::mutex mu_;
   mutable std::condition_variable changed_;
   uint64_t generation_ = 0;
-  absl::Status broken_;  // a failed commit stops the table (see above)
+  absl::Status broken_;  // a failed commit stops the table until it recovers (see above)
+  bool loaded_ = false;  // the first load (a start) is done
+  // Found due by a reload; run by the next RunCleanups (the reaper's tick at
+  // the latest), whatever the call that reloaded went on to do.
+  Cleanups deferred_cleanups_;
   int64_t next_job_id_ = 1;
   int64_t next_worker_id_ = 1;
   std::map<int64_t, JobState> jobs_;                       // by id: oldest first

@@ -1,6 +1,7 @@
 // LeaseTable, worker side (DESIGN.md §4): register, lease, heartbeat,
 // complete, fail, and the expiry of leases that were not renewed in time.
 #include <algorithm>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
@@ -10,15 +11,21 @@
 namespace wavebake {
 
 absl::StatusOr<int64_t> LeaseTable::RegisterWorker(std::string name, int threads) {
-  std::lock_guard lock(mu_);
-  if (!broken_.ok()) return broken_;
-  const int64_t id = next_worker_id_++;
-  WorkerState& w = workers_[id];
-  w.rec = {.id = id, .name = std::move(name), .threads = threads, .registered_ms = clock_->NowMs()};
-  w.last_seen_ms = w.rec.registered_ms;
-  Transition tx;
-  tx.workers.push_back(w.rec);
-  if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+  int64_t id = 0;
+  {
+    std::lock_guard lock(mu_);
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
+    id = next_worker_id_++;
+    WorkerState w;
+    w.rec = {
+        .id = id, .name = std::move(name), .threads = threads, .registered_ms = clock_->NowMs()};
+    w.last_seen_ms = w.rec.registered_ms;
+    Transition tx;
+    tx.workers.push_back(w.rec);
+    if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
+    workers_[id] = std::move(w);  // known once the database holds it
+  }
+  RunCleanups({});  // what a recovery found due
   return id;
 }
 
@@ -83,7 +90,7 @@ absl::StatusOr<ExchangeResult> LeaseTable::Exchange(int64_t worker_id,
   absl::Status refused;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
       return UnknownWorkerError(worker_id);
@@ -104,7 +111,7 @@ absl::StatusOr<ExchangeResult> LeaseTable::Exchange(int64_t worker_id,
     }
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   if (!refused.ok()) return refused;
   return result;
 }
@@ -115,7 +122,7 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
   HeartbeatResult result;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     auto w = workers_.find(worker_id);
     if (w == workers_.end()) {
       return UnknownWorkerError(worker_id);
@@ -157,7 +164,7 @@ absl::StatusOr<HeartbeatResult> LeaseTable::Heartbeat(int64_t worker_id,
     }
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;  // also wakes Watch for progress
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   return result;
 }
 
@@ -167,7 +174,7 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
   absl::StatusOr<bool> accepted;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     if (!workers_.contains(worker_id)) {
       return UnknownWorkerError(worker_id);
     }
@@ -175,7 +182,7 @@ absl::StatusOr<bool> LeaseTable::Complete(int64_t worker_id, const LeaseKey& key
     accepted = CompleteLocked(worker_id, key, report, tx, cleanups);
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   return accepted;
 }
 
@@ -240,7 +247,7 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
   bool counted = false;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     if (!workers_.contains(worker_id)) {
       return UnknownWorkerError(worker_id);
     }
@@ -266,7 +273,7 @@ absl::StatusOr<bool> LeaseTable::Fail(int64_t worker_id, const LeaseKey& key,
       MaybeCleanup(js, cleanups);
     }
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   return counted;
 }
 
@@ -274,12 +281,12 @@ absl::Status LeaseTable::ExpireLeases() {
   Cleanups cleanups;
   {
     std::lock_guard lock(mu_);
-    if (!broken_.ok()) return broken_;
+    if (absl::Status s = RecoverLocked(); !s.ok()) return s;
     Transition tx;
     ExpireLocked(clock_->NowMs(), tx, cleanups);
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
   }
-  RunCleanups(cleanups);
+  RunCleanups(std::move(cleanups));
   return absl::OkStatus();
 }
 

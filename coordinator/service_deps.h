@@ -26,6 +26,9 @@ struct ServiceDeps {
   int chunk_bytes = 1 << 20;    // ReadStore / FetchScene chunk size
   const std::atomic<bool>* stopping = nullptr;  // ends Watch streams at shutdown
   ClientPaths client_paths;  // applied to every message a JobService client receives
+  // Rewrite the paths in workers' failure reasons before they are stored
+  // (coordinator/worker_paths.h); with client_paths, off for the embedded bake.
+  bool hide_worker_paths = false;
 };
 
 }  // namespace wavebake

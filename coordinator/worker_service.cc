@@ -7,6 +7,7 @@
 #include "absl/strings/string_view.h"
 #include "coordinator/lease_id.h"
 #include "coordinator/proto_convert.h"
+#include "coordinator/worker_paths.h"
 
 namespace wavebake {
 namespace {
@@ -165,10 +166,14 @@ grpc::Status WorkerServiceImpl::Fail(grpc::ServerContext* context, const v1::Tas
   if (!worker.ok()) return ToGrpc(worker.status());
   absl::StatusOr<LeaseKey> key = ParseLease("lease_id", request->lease_id());
   if (!key.ok()) return ToGrpc(key.status());
-  absl::string_view reason = request->reason();
+  std::string reason = request->reason().substr(0, kMaxReasonBytes);
   if (reason.empty()) reason = "no reason given";
+  if (deps_.hide_worker_paths) {
+    absl::StatusOr<JobInfo> job = deps_.table->Get(key->job_id);
+    reason = HideWorkerPaths(reason, job.ok() ? job->record.store_path : std::string());
+  }
   absl::StatusOr<bool> counted = deps_.table->Fail(
-      *worker, *key, reason.substr(0, kMaxReasonBytes),
+      *worker, *key, reason,
       request->permanent() ? LeaseTable::Failure::kPermanent : LeaseTable::Failure::kTransient);
   if (!counted.ok()) return ToGrpc(counted.status());
   reply->set_accepted(*counted);

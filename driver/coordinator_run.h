@@ -4,6 +4,7 @@
 // coordinator/, its address written for scripts. The command line adds the
 // web monitor (web/coordinator_source.h) and waits for a signal
 // (driver/signal_watcher.h), as it does for driver/worker_run.h.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 
@@ -21,9 +22,11 @@ struct CoordinatorRun {
 // options.store_root defaults to DATA/store. address_file (if not empty)
 // gets "host:port\n" once serving (for scripts that listen on port 0),
 // atomically. Errors: Coordinator::Start's; the address file's, naming
-// --address-file.
+// --address-file. test_plan_delay_ms > 0 (a hidden flag for tests of
+// shutdown) makes every plan wait that long first.
 absl::StatusOr<CoordinatorRun> StartCoordinator(CoordinatorOptions options,
-                                                const std::filesystem::path& address_file);
+                                                const std::filesystem::path& address_file,
+                                                int64_t test_plan_delay_ms = 0);
 
 // `address` and a newline written whole (rename) to `file`: a script polling
 // for the file never reads half an address.

@@ -58,16 +58,20 @@ std::filesystem::path TempName(const std::filesystem::path& dir,
   return dir / absl::StrFormat(".%s.%d.%016x.partial", path.filename().string(), ::getpid(), r);
 }
 
+}  // namespace
+
 // The names TempName makes: ".NAME.PID.<16 hex>.partial".
-bool IsTempName(const std::string& name) {
+bool IsAtomicTempName(std::string_view full) {
+  const absl::string_view name(full.data(), full.size());  // Debian's absl has its own
   constexpr absl::string_view kSuffix = ".partial";
   if (name.size() < 1 + 1 + 17 + kSuffix.size() || name[0] != '.' || !absl::EndsWith(name, kSuffix))
     return false;
-  const absl::string_view hex =
-      absl::string_view(name).substr(name.size() - kSuffix.size() - 16, 16);
+  const absl::string_view hex = name.substr(name.size() - kSuffix.size() - 16, 16);
   return name[name.size() - kSuffix.size() - 17] == '.' &&
          std::all_of(hex.begin(), hex.end(), [](char c) { return absl::ascii_isxdigit(c); });
 }
+
+namespace {
 
 // Errors name the file being written (`path`), not its temporary name.
 absl::Status WriteAll(int fd, std::span<const std::byte> data, const std::filesystem::path& path) {
@@ -205,7 +209,7 @@ absl::Status RemoveAbandonedTempFiles(const std::filesystem::path& dir) {
   std::error_code ec;
   for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
-    if (it->is_regular_file(ec) && IsTempName(it->path().filename().string()))
+    if (it->is_regular_file(ec) && IsAtomicTempName(it->path().filename().string()))
       std::filesystem::remove(it->path(), ec);
   }
   if (ec) return absl::InternalError(absl::StrCat(dir.string(), ": ", ec.message()));

@@ -28,6 +28,10 @@ absl::Status AtomicWriteFileParts(const std::filesystem::path& path, FileParts p
 // The same for text (CSV, JSON, an address file).
 absl::Status AtomicWriteText(const std::filesystem::path& path, std::string_view text);
 
+// Whether `name` (a file name, no directory) is one of AtomicWriteFile's temp
+// names: what a writer that died, or one still writing, leaves beside a file.
+bool IsAtomicTempName(std::string_view name);
+
 // Removes, under `dir` and its subdirectories, the temp files of AtomicWriteFile
 // calls whose writer died between write and rename (a worker killed mid-task).
 // Only for when no writer of `dir` is left: FINALIZE, which has a store's last

@@ -291,6 +291,10 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
                           .bits_needed = steps.bits_needed,
                           .max_column_bits = steps.max_column_bits};
 
+  // Nothing but the store's own files, even where a killed worker left a temp
+  // file; removed before the sizes are counted (StoreBytes also skips temp
+  // files a stale writer may still be creating).
+  if (absl::Status s = RemoveAbandonedTempFiles(store); !s.ok()) return s;
   nlohmann::json stats_json = stats.ToJson();
   stats_json["bytes"] = StoreBytes(ctx, store);
   stats_json["quantization"] = {{"step", steps.step},
@@ -298,8 +302,6 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
                                 {"overflow_columns", steps.overflow_columns},
                                 {"expected_energy", steps.expected_energy},
                                 {"budget", steps.budget}};
-  // Nothing but the store's own files, even where a killed worker left a temp file.
-  if (absl::Status s = RemoveAbandonedTempFiles(store); !s.ok()) return s;
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
   if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/bake/bake_params_io.h"
+#include "storage/atomic_file.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
@@ -107,7 +108,10 @@ uint64_t DirectoryBytes(const std::filesystem::path& dir) {
   uint64_t total = 0;
   std::error_code ec;
   for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec)) {
-    if (e.is_regular_file(ec)) total += e.file_size(ec);
+    // A temp file is not the store's: another writer's (a stale worker of
+    // FINALIZE whose lease expired) may appear at any time during the count.
+    if (e.is_regular_file(ec) && !IsAtomicTempName(e.path().filename().string()))
+      total += e.file_size(ec);
   }
   return total;
 }

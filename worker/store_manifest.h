@@ -19,7 +19,8 @@ struct ManifestBits {
 
 nlohmann::json StoreManifest(const BakeContext& ctx, ManifestBits bits, nlohmann::json stats);
 
-// On-disk bytes of every file under `dir` (an array: its chunks and .zarray).
+// On-disk bytes of every file under `dir` (an array: its chunks and .zarray),
+// without AtomicWriteFile's temp files (storage/atomic_file.h).
 uint64_t DirectoryBytes(const std::filesystem::path& dir);
 
 // "bytes" of the stats: each final array's size on disk, the transport total,

@@ -4,6 +4,7 @@
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <future>
@@ -375,6 +376,66 @@ TEST_F(GrpcTest, CancelAnswersHeartbeatAndRemovesPartialStore) {
   v1::FileChunk chunk;
   EXPECT_FALSE(files->Read(&chunk));
   EXPECT_EQ(files->Finish().error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+}
+
+// A worker whose --store-root is spelled unlike the coordinator's (another
+// mount): its failure reason reaches clients without the worker's path.
+TEST_F(GrpcTest, JobErrorCarriesNoPathOfTheWorker) {
+  Start();
+  v1::Job job;
+  ASSERT_TRUE(Submit(testing::BuiltinRequest(), &job).ok());
+  std::string worker_id;
+  const v1::Task task = LeaseOne(&worker_id);
+  v1::TaskFailure failure;
+  failure.set_worker_id(worker_id);
+  failure.set_lease_id(task.lease_id());
+  failure.set_permanent(true);
+  failure.set_reason("cannot write /mnt/elsewhere/store/" + task.store_path() +
+                     "/staging/transport/0.5: No space left on device");
+  v1::FailReply fail_reply;
+  ASSERT_TRUE(workers_->Fail(CallContext("").get(), failure, &fail_reply).ok());
+  v1::JobId id;
+  id.set_id(job.id());
+  v1::Job failed;
+  ASSERT_TRUE(jobs_->Get(CallContext("").get(), id, &failed).ok());
+  EXPECT_EQ(failed.phase(), v1::PHASE_FAILED);
+  EXPECT_THAT(failed.error(), HasSubstr("cannot write <store root>/" + task.store_path() +
+                                        "/staging/transport/0.5: No space"));
+  EXPECT_THAT(failed.error(), ::testing::Not(HasSubstr("/mnt/elsewhere")));
+}
+
+// Two coordinators on one data directory would diverge from its database.
+TEST_F(GrpcTest, SecondCoordinatorOnTheSameDataDirIsRefused) {
+  Start();
+  auto second =
+      Coordinator::Start({.listen_address = "", .data_dir = dir_.path()}, FakePlan, nullptr);
+  ASSERT_FALSE(second.ok());
+  EXPECT_EQ(second.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(second.status().message(),
+              HasSubstr(absl::StrCat("in use by another coordinator (pid ", ::getpid())));
+  coordinator_.reset();  // its lock goes with it
+  auto third =
+      Coordinator::Start({.listen_address = "", .data_dir = dir_.path()}, FakePlan, nullptr);
+  EXPECT_TRUE(third.ok()) << third.status();
+}
+
+// A partial store whose job never reached the database (a coordinator that
+// died between planning and committing; a submit that failed on a full disk
+// before submits were transactional) holds space and blocks its name: the
+// next start removes it and keeps the unfinished jobs' own.
+TEST_F(GrpcTest, StartRemovesPartialStoresOfNoUnfinishedJob) {
+  Start();
+  v1::Job job;
+  ASSERT_TRUE(Submit(testing::BuiltinRequest(), &job).ok());
+  coordinator_.reset();
+  const std::filesystem::path store = dir_.path() / "store";
+  const std::filesystem::path live = store / ("." + job.store_path() + ".partial");
+  const std::filesystem::path orphan = store / ".job-99.wbk.partial";
+  std::filesystem::create_directories(live / "staging");
+  std::filesystem::create_directories(orphan / "staging");
+  Start();
+  EXPECT_TRUE(std::filesystem::exists(live));
+  EXPECT_FALSE(std::filesystem::exists(orphan));
 }
 
 TEST_F(GrpcTest, RestartedCoordinatorKnowsItsJobs) {

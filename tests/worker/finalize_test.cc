@@ -19,6 +19,7 @@
 #include "storage/zarr_array.h"
 #include "tests/worker/column_test_support.h"
 #include "worker/group_result.h"
+#include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
 
 namespace wavebake {
@@ -397,6 +398,46 @@ TEST(FinalizeTest, PublishedStoreHoldsNoAbandonedTempFile) {
   const absl::Status s = Finalize(*ctx, store, {});
   ASSERT_TRUE(s.ok()) << s;
   EXPECT_FALSE(std::filesystem::exists(store / "..zgroup.4242.00000000deadbeef.partial"));
+}
+
+// Bytes of the files under `dir` as the filesystem reports them: the
+// oracle for stats.bytes, counted here without the code under test.
+uint64_t FileBytes(const std::filesystem::path& dir) {
+  uint64_t total = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) total += e.file_size();
+  return total;
+}
+
+// A stale FINALIZE worker (its lease expired, it resumed while its successor
+// finalizes) writes temp files into the arrays; stats.bytes must count only
+// the store's own files, which are all that is left once it is published.
+TEST(FinalizeTest, StatsBytesCountOnlyTheStoresOwnFiles) {
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(SmallJob());
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, store);
+  const std::filesystem::path data = store::Path(store, store::kData);
+  std::filesystem::create_directories(data);
+  const std::filesystem::path stray = data / ".0.4242.00000000deadbeef.partial";
+  std::ofstream(stray) << std::string(100000, 'x');
+  const absl::Status s = Finalize(*ctx, store, {});
+  ASSERT_TRUE(s.ok()) << s;
+  EXPECT_FALSE(std::filesystem::exists(stray));
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
+  ASSERT_TRUE(info.ok()) << info.status();
+  const nlohmann::json& bytes = info->attrs["stats"]["bytes"];
+  EXPECT_EQ(bytes["arrays"][store::kData].get<uint64_t>(), FileBytes(data));
+  uint64_t transport = 0;
+  for (const char* name :
+       {store::kIndptr, store::kIndices, store::kData, store::kDepth, store::kScale})
+    transport += FileBytes(store::Path(store, name));
+  EXPECT_EQ(bytes["transport"].get<uint64_t>(), transport);
+  // One appearing while the sizes are counted is not counted either.
+  const uint64_t real = FileBytes(data);
+  std::ofstream(stray) << std::string(100000, 'x');
+  EXPECT_EQ(DirectoryBytes(data), real);
 }
 
 TEST(FinalizeTest, RefusesMissingGroupsAndMissingStaging) {
