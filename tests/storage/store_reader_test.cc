@@ -16,7 +16,7 @@
 #include <limits>
 
 #include "absl/strings/str_cat.h"
-#include "core/quantizer.h"
+#include "core/columns/quantizer.h"
 #include "storage/params_json.h"
 #include "storage/store_check.h"
 #include "storage/store_layout.h"
