@@ -17,6 +17,7 @@
 #include "python/py_convert.h"
 #include "runtime/env/env_map.h"
 #include "runtime/reference/eval.h"
+#include "runtime/relight/finite_output.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/store_relight.h"
 #include "storage/store_reader.h"
@@ -122,12 +123,9 @@ EnvMap EnvFrom(const py::object& env) {
   map.width = static_cast<int>(a.shape(1));
   map.height = static_cast<int>(a.shape(0));
   map.rgb.assign(a.data(), a.data() + a.size());
-  for (size_t i = 0; i < map.rgb.size(); ++i) {
-    if (!(std::isfinite(map.rgb[i]) && map.rgb[i] >= 0)) {
-      throw py::value_error(absl::StrCat("env: value ", map.rgb[i], " at flat index ", i,
-                                         " is not a finite non-negative radiance"));
-    }
-  }
+  // The bound files get (kMaxEnvRadiance): a finite 3e38 relit to all NaN.
+  if (absl::Status s = CheckEnvRadiance("env (array)", map); !s.ok())
+    throw py::value_error(std::string(s.message()));
   return map;
 }
 
@@ -206,7 +204,17 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
       res.terms = static_cast<int>(lights->lights.size());
       res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       r.Relight(AllWaveletLights(*lighting), all);
-      res.error = CompareToReference(image, all);
+      // Masked cells are NaN in both; any other NaN or inf is an overflow to
+      // report, not a perfect score (an all-NaN `all` used to mask it all).
+      for (const std::vector<float>* v : {&image, &all}) {
+        if (absl::Status st = CheckRelitFinite(*v, opened->samples.grid, opened->samples.width,
+                                               "the environment");
+            !st.ok())
+          return st;
+      }
+      absl::StatusOr<ErrorStats> error = CompareFinite(image, all, "the n-term relighting");
+      if (!error.ok()) return error.status();
+      res.error = *error;
       return res;
     }();
   }

@@ -52,7 +52,10 @@ absl::StatusOr<EvalReport> EvaluateGlossy(const std::filesystem::path& store,
   absl::StatusOr<std::vector<float>> compressed = g.RelightImage(*env, terms);
   if (!compressed.ok()) return compressed.status();
   const double compressed_seconds = GlossySecondsSince(t0);
-  report.compressed = CompareToReference(*compressed, reference->rgb);
+  absl::StatusOr<ErrorStats> compressed_error =
+      CompareFinite(*compressed, reference->rgb, "the compressed relighting");
+  if (!compressed_error.ok()) return compressed_error.status();
+  report.compressed = *compressed_error;
   report.compressed.seconds = compressed_seconds;
 
   if (options.dense) {
@@ -63,7 +66,10 @@ absl::StatusOr<EvalReport> EvaluateGlossy(const std::filesystem::path& store,
     absl::StatusOr<DenseTraceResult> dense =
         TraceDenseGlossy(*caster, samples, cube, dense_options, g.brdf(), g.views());
     if (!dense.ok()) return dense.status();
-    report.dense = CompareToReference(dense->rgb, reference->rgb);
+    absl::StatusOr<ErrorStats> dense_error =
+        CompareFinite(dense->rgb, reference->rgb, "the dense relighting");
+    if (!dense_error.ok()) return dense_error.status();
+    report.dense = *dense_error;
     report.dense.seconds = GlossySecondsSince(t0);
     report.has_dense = true;
     report.dense_rays = dense->rays;
