@@ -106,6 +106,13 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
   absl::StatusOr<std::unique_ptr<GlossyStore>> opened = GlossyStore::Open(store, first);
   if (!opened.ok()) return opened.status();
   GlossyStore& g = **opened;
+  // The parameter moves monotonically: the sharpest lobe is at one end.
+  if (absl::StatusOr<std::unique_ptr<Brdf>> last = ParseBrdf(o.sequence.At(o.sequence.total() - 1));
+      !last.ok()) {
+    return last.status();
+  } else if (absl::Status s = CheckBrdfResolvable(**last, g.info().light_res); !s.ok()) {
+    return s;
+  }
   absl::StatusOr<EnvMap> env = LoadEnvMap(env_spec);
   if (!env.ok()) return env.status();
   absl::StatusOr<LightingCoefficients> lighting =
@@ -146,7 +153,9 @@ absl::StatusOr<std::vector<MaterialFrame>> RelightMaterialSequence(
     f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relighter.Transport(factor, *full, exact);
     relighter.ApplyAlbedo(exact, exact);
-    f.rel_rms = CompareToReference(frame, exact).rel_rms;
+    absl::StatusOr<ErrorStats> error = CompareFinite(frame, exact, absl::StrCat("frame ", i));
+    if (!error.ok()) return error.status();
+    f.rel_rms = error->rel_rms;
     frames.push_back(f);
     if (!o.out_dir.empty()) {
       if (absl::Status s = WriteRelit(g.info(), g.samples(), frame, o.exposure_stops,

@@ -43,7 +43,10 @@ absl::StatusOr<double> ReferenceMeasure::DenseError(int light_res) const {
   absl::StatusOr<DenseTraceResult> dense =
       TraceDenseRelight(ctx_->caster, ctx_->samples, cube, options);
   if (!dense.ok()) return dense.status();
-  return CompareToReference(dense->rgb, reference_.rgb).rel_rms;
+  absl::StatusOr<ErrorStats> error =
+      CompareFinite(dense->rgb, reference_.rgb, "the dense relighting");
+  if (!error.ok()) return error.status();
+  return error->rel_rms;
 }
 
 absl::StatusOr<double> ReferenceMeasure::StagingError(const BakeContext& trace_ctx,
@@ -54,7 +57,9 @@ absl::StatusOr<double> ReferenceMeasure::StagingError(const BakeContext& trace_c
   if (rgb->size() != reference_.rgb.size())
     return absl::FailedPreconditionError(
         absl::StrCat("traced: ", traced.string(), " has another sample grid than the reference"));
-  return CompareToReference(*rgb, reference_.rgb).rel_rms;
+  absl::StatusOr<ErrorStats> error = CompareFinite(*rgb, reference_.rgb, "the staged relighting");
+  if (!error.ok()) return error.status();
+  return error->rel_rms;
 }
 
 absl::StatusOr<std::vector<double>> ReferenceMeasure::StoreErrors(
@@ -69,7 +74,10 @@ absl::StatusOr<std::vector<double>> ReferenceMeasure::StoreErrors(
     if (rgb->size() != reference_.rgb.size())
       return absl::FailedPreconditionError(
           absl::StrCat("store: ", store.string(), " has another sample grid than the reference"));
-    errors.push_back(CompareToReference(*rgb, reference_.rgb).rel_rms);
+    absl::StatusOr<ErrorStats> error =
+        CompareFinite(*rgb, reference_.rgb, "the store's relighting");
+    if (!error.ok()) return error.status();
+    errors.push_back(error->rel_rms);
   }
   return errors;
 }

@@ -91,7 +91,9 @@ absl::StatusOr<std::vector<SequenceFrame>> RelightSequence(const std::filesystem
     }
     f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relighter.Relight(AllWaveletLights(*lighting), best);
-    f.rel_rms = CompareToReference(frame, best).rel_rms;
+    absl::StatusOr<ErrorStats> error = CompareFinite(frame, best, absl::StrCat("frame ", i));
+    if (!error.ok()) return error.status();
+    f.rel_rms = error->rel_rms;
     frames.push_back(f);
     if (!o.out_dir.empty()) {
       if (absl::Status s = WriteRelit(*opened, frame, o.exposure_stops,

@@ -27,6 +27,8 @@ class Fd {
     if (fd_ >= 0) ::close(fd_);
   }
   int get() const { return fd_; }
+  // Gives up ownership without closing.
+  void Release() { fd_ = -1; }
   // Closes now so that a close() failure (e.g. a deferred NFS write error) is reported.
   int Close() {
     const int rc = ::close(fd_);
@@ -121,15 +123,38 @@ absl::StatusOr<std::filesystem::path> WriteTemp(const std::filesystem::path& dir
   }
 }
 
+// Opens `path` for reading only if it is a regular file. O_NONBLOCK makes the
+// open itself safe: a plain open of a FIFO blocks until a writer appears (a
+// FIFO planted as a chunk or as .zattrs hung `relight` forever), and a
+// device such as /dev/zero never ends. fstat then looks at what was opened,
+// so nothing can be swapped in between the check and the read. Regular files
+// ignore O_NONBLOCK, so the reads that follow behave as without it.
+absl::StatusOr<int> OpenRegularForReading(const std::filesystem::path& path, struct stat& st) {
+  const int raw = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (raw < 0) return ErrnoError("cannot open", path, errno);
+  Fd fd(raw);
+  if (::fstat(fd.get(), &st) != 0) return ErrnoError("cannot stat", path, errno);
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISFIFO(st.st_mode)   ? "a FIFO"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                       : S_ISDIR(st.st_mode)  ? "a directory"
+                                              : "not a regular file";
+    return absl::InternalError(absl::StrCat(path.string(), ": not a regular file (", kind, ")"));
+  }
+  const int out = fd.get();
+  fd.Release();
+  return out;
+}
+
 // The whole of `path` into `data`, resized to the file's size.
 template <class Buffer>
 absl::Status ReadWholeFile(const std::filesystem::path& path, Buffer& data) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
   struct stat st {};
-  if (::fstat(fd.get(), &st) != 0) return ErrnoError("cannot stat", path, errno);
-  if (!S_ISREG(st.st_mode))
-    return absl::InternalError(absl::StrCat(path.string(), ": not a regular file"));
+  absl::StatusOr<int> opened = OpenRegularForReading(path, st);
+  if (!opened.ok()) return opened.status();
+  Fd fd(*opened);
   data.resize(static_cast<size_t>(st.st_size));
   size_t done = 0;
   while (done < data.size()) {
@@ -183,8 +208,10 @@ absl::Status ReadFileInto(const std::filesystem::path& path, ByteBuffer& data) {
 
 absl::Status ReadFileRangeInto(const std::filesystem::path& path, uint64_t offset, size_t size,
                                ByteBuffer& data) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) return ErrnoError("cannot open", path, errno);
+  struct stat st {};
+  absl::StatusOr<int> opened = OpenRegularForReading(path, st);
+  if (!opened.ok()) return opened.status();
+  Fd fd(*opened);
   data.resize(size);
   size_t done = 0;
   while (done < size) {

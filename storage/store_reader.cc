@@ -1,5 +1,6 @@
 #include "storage/store_reader.h"
 
+#include <cmath>
 #include <span>
 
 #include "absl/strings/str_cat.h"
@@ -91,6 +92,11 @@ absl::Status DecodeColumn(const StoreInfo& info, int column, int depth, float sc
                           std::span<const uint32_t> positions, std::span<const int16_t> q,
                           std::vector<float>* values) {
   const int cells = info.width * info.height;
+  // A NaN or infinite step would decode to a column of NaN or inf that turns
+  // every relit pixel the column touches into NaN, reported as success.
+  if (!std::isfinite(scale))
+    return absl::DataLossError(absl::StrCat(store::kScale, "[", column, "] = ", scale,
+                                            " is not a finite quantization step"));
   if (depth > MaxDepth(info.width, info.height))
     return absl::DataLossError(absl::StrCat("transport/depth[", column, "] = ", depth,
                                             " exceeds the grid's maximum depth"));
@@ -106,6 +112,13 @@ absl::Status DecodeColumn(const StoreInfo& info, int column, int depth, float sc
   values->resize(positions.size());
   Dequantize(q, positions, levels, info.params.level_scaling, scale, info.params.seed, column,
              *values);
+  // A finite step so large that code × step overflows float is damage too.
+  for (size_t i = 0; i < values->size(); ++i) {
+    if (!std::isfinite((*values)[i]))
+      return absl::DataLossError(absl::StrCat(store::kScale, "[", column, "] = ", scale,
+                                              " overflows: entry ", i, " of column ", column,
+                                              " decodes to ", (*values)[i]));
+  }
   return absl::OkStatus();
 }
 

@@ -1,6 +1,8 @@
 #include "storage/store_samples.h"
 
 #include <algorithm>
+#include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -49,7 +51,20 @@ absl::StatusOr<std::vector<T>> ReadArray(const std::filesystem::path& store, con
     return absl::DataLossError(absl::StrCat(a->dir().string(), ": shape [",
                                             absl::StrJoin(a->spec().shape, ", "), "], expected [",
                                             absl::StrJoin(shape, ", "), "]"));
-  return a->ReadAll<T>();
+  absl::StatusOr<std::vector<T>> values = a->ReadAll<T>();
+  if (!values.ok()) return values;
+  if constexpr (std::is_floating_point_v<T>) {
+    // A NaN or infinite position, normal or albedo poisons its sample's
+    // relit value (NaN passed for success); a finished store has none.
+    const int64_t row = shape.size() == 2 ? shape[1] : 1;
+    for (size_t i = 0; i < values->size(); ++i) {
+      if (std::isfinite((*values)[i])) continue;
+      return absl::DataLossError(absl::StrCat(a->dir().string(), "[", int64_t(i) / row,
+                                              row > 1 ? absl::StrCat(", ", int64_t(i) % row) : "",
+                                              "] = ", (*values)[i], " is not finite"));
+    }
+  }
+  return values;
 }
 
 absl::Status WriteUvCharts(const std::filesystem::path& store, const std::vector<UvChart>& charts) {

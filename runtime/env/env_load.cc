@@ -16,29 +16,6 @@ namespace wavebake {
 
 namespace {
 
-// Radiance must be finite and non-negative: one bad texel would poison every
-// relit pixel through T·L. And it must stay below kMaxEnvRadiance (env_map.h),
-// or the relighting's single-precision sums overflow and the image is
-// silently black (an RGBE exponent of 255 is 1.7e38).
-absl::Status CheckRadiance(const std::filesystem::path& path, const EnvMap& image) {
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      const Vec3 p = image.Pixel(x, y);
-      for (int c = 0; c < 3; ++c) {
-        if (std::isfinite(p[c]) && p[c] >= 0 && p[c] <= kMaxEnvRadiance) continue;
-        const bool huge = std::isfinite(p[c]) && p[c] > 0;
-        return absl::InvalidArgumentError(absl::StrCat(
-            path.string(), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]), " is ",
-            huge ? absl::StrCat(p[c]) : std::to_string(p[c]),
-            huge ? absl::StrCat("; radiance above ", kMaxEnvRadiance,
-                                " overflows the relighting's float sums (scale the map down)")
-                 : "; radiance must be finite and non-negative"));
-      }
-    }
-  }
-  return absl::OkStatus();
-}
-
 absl::StatusOr<EnvMap> ToLatLong(const std::filesystem::path& path, EnvMap image) {
   const int w = image.width, h = image.height;
   if (w > 0 && w == 2 * h) return image;
@@ -54,6 +31,29 @@ std::string Lowercase(std::string s) {
 }
 
 }  // namespace
+
+// Radiance must be finite and non-negative: one bad texel would poison every
+// relit pixel through T·L. And it must stay below kMaxEnvRadiance (env_map.h),
+// or the relighting's single-precision sums overflow and the image is
+// silently black (an RGBE exponent of 255 is 1.7e38).
+absl::Status CheckEnvRadiance(std::string_view source, const EnvMap& image) {
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const Vec3 p = image.Pixel(x, y);
+      for (int c = 0; c < 3; ++c) {
+        if (std::isfinite(p[c]) && p[c] >= 0 && p[c] <= kMaxEnvRadiance) continue;
+        const bool huge = std::isfinite(p[c]) && p[c] > 0;
+        return absl::InvalidArgumentError(absl::StrCat(
+            std::string(source), ": pixel (", x, ", ", y, ") channel ", std::string(1, "RGB"[c]),
+            " is ", huge ? absl::StrCat(p[c]) : std::to_string(p[c]),
+            huge ? absl::StrCat("; radiance above ", kMaxEnvRadiance,
+                                " overflows the relighting's float sums (scale the map down)")
+                 : "; radiance must be finite and non-negative"));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
 
 absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec) {
   if (spec == "builtin:constant") return MakeConstantEnv();
@@ -78,7 +78,7 @@ absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec) {
                                                    ext, "' (expected .hdr or .exr)"));
   }
   if (!image.ok()) return image.status();
-  if (absl::Status s = CheckRadiance(path, *image); !s.ok()) return s;
+  if (absl::Status s = CheckEnvRadiance(path.string(), *image); !s.ok()) return s;
   return ToLatLong(path, *std::move(image));
 }
 

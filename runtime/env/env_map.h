@@ -43,6 +43,12 @@ absl::StatusOr<EnvMap> LoadEnvMap(std::string_view spec);
 // an unclipped sun included, stay below 1e10.
 inline constexpr float kMaxEnvRadiance = 1e30f;
 
+// OK if every radiance of `image` is finite, non-negative and at most
+// kMaxEnvRadiance; else InvalidArgument naming `source` (a file, "env"), the
+// first bad pixel (x, y) and its channel. LoadEnvMap applies it to files;
+// environments given as arrays (Python) need it as much.
+absl::Status CheckEnvRadiance(std::string_view source, const EnvMap& image);
+
 // Radiance arriving from direction d (need not be normalized): the value of
 // the pixel whose footprint holds d. A pixel is the mean radiance over its
 // footprint, so the map is piecewise constant; the cubemap resampling

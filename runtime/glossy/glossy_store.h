@@ -36,14 +36,37 @@ struct GlossyOptions {
   int threads = 0;               // relighting threads; 0 = all cores
 };
 
-// "X,Y,Z" (three finite numbers); errors name the `view` flag.
+// "X,Y,Z" (three finite numbers of magnitude ≤ kMaxEyeCoordinate, so that
+// they are floats and eye − sample stays finite); errors name the `view` flag.
+inline constexpr double kMaxEyeCoordinate = 1e30;
 absl::StatusOr<Vec3> ParseView(std::string_view spec);
+
+// The unit direction from `from` to `eye`, computed without overflow for any
+// finite floats (double, scaled by the largest component); `fallback` when
+// they coincide.
+Vec3 UnitTowards(Vec3 eye, Vec3 from, Vec3 fallback);
 
 // Per grid cell, the unit direction from the sample to the eye (masked
 // cells: zero). Errors: an eye given for a camera layout, none for a mesh
 // layout when `needed`.
 absl::StatusOr<std::vector<Vec3>> ViewDirections(const StoreInfo& info, const SampleSet& samples,
                                                  std::optional<Vec3> eye, bool needed);
+
+// Whether the store's cubemap (N texels per face edge) can hold the BRDF's
+// lobe. The widest texel, at a face's centre, spans atan(2/N) (the face is
+// [−1, 1]² at distance 1, cut into N); a lobe narrower than that lives
+// inside one texel: its texel means smear it over the texel, the lighting is
+// averaged over the texel, and the Q jittered quadrature points per texel
+// (runtime/glossy/brdf_slices.h) hit its peak or miss it — at N = 32, ggx:0.001
+// relit 264 % off the reference and ggx:1e-8 1.5e10 times too bright; at
+// N = 8, ggx:1e-8 was black. Refused (InvalidArgument naming `brdf`, the
+// width, the texel and the sharpest accepted parameter) when the lobe's full
+// width at half maximum at normal incidence,
+//   FWHM = 2·acos(Brdf::Support(n, n, ½).cos_angle)
+//        ≈ 2.57 α (ggx: 4·atan(α·√(√2 − 1))), 2.35/√E (phong), 4.71/√E (blinn),
+// is below atan(2/N): ggx needs α ≥ 0.095 at N = 8, 0.024 at N = 32 (≈ 0.78/N),
+// phong E ≤ 92, 1423 (≈ 1.39 N²), blinn E ≤ 369, 5693 (≈ 5.6 N²).
+absl::Status CheckBrdfResolvable(const Brdf& brdf, int light_res);
 
 // The error for a store whose rows cannot feed the triple product, or OK.
 absl::Status CheckVisibilityStore(const StoreInfo& info);

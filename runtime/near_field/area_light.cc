@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <numbers>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
@@ -51,6 +52,32 @@ absl::Status CheckTexture(const std::string& where, const EnvMap& t) {
   return absl::OkStatus();
 }
 
+// A length (centre, height, size) the float geometry can square: the
+// reference samples the light in float world coordinates, and |d|² of a
+// point 1e19 away already overflows (FLT_MAX 3.4e38). A size of 1e308 made
+// the light's bounding box infinite and the light vanish, rc 0.
+absl::Status CheckLength(const std::string& where, const std::string& field, double v) {
+  if (std::fabs(v) <= kMaxAreaLightLength) return absl::OkStatus();
+  return Bad(where, field, v, " is beyond ±", kMaxAreaLightLength,
+             " scene units (float geometry would overflow)");
+}
+
+// The brightest texel times `radiance` within the environment's bound
+// (kMaxEnvRadiance, runtime/env/env_map.h): the same single-precision sums carry
+// it. float(1e39) is inf, and 3e38 overflowed the relighting.
+absl::Status CheckEmitted(const std::string& where, const AreaLight& l) {
+  float texel = 1;
+  if (l.texture.width > 0) texel = *std::max_element(l.texture.rgb.begin(), l.texture.rgb.end());
+  for (int c = 0; c < 3; ++c) {
+    const double emitted = double(l.radiance[c]) * texel;
+    if (emitted <= kMaxEnvRadiance) continue;
+    return Bad(where, l.texture.width > 0 ? "radiance × texture" : "radiance", "channel ",
+               std::string(1, "RGB"[c]), " emits ", emitted, ", above ", kMaxEnvRadiance,
+               " (the relighting's float sums would overflow; scale it down)");
+  }
+  return absl::OkStatus();
+}
+
 absl::StatusOr<EnvMap> LoadTexture(const std::filesystem::path& path, const std::string& where) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -94,15 +121,31 @@ absl::StatusOr<AreaLight> ParseAreaLight(const json& j, const std::string& where
   if (!size.ok()) return size.status();
   if (!((*size)[0] > 0 && (*size)[1] > 0)) return Bad(where, "size", "edges must be > 0");
   l.size = *size;
+  for (int i = 0; i < 2; ++i) {
+    if (absl::Status s = CheckLength(where, absl::StrCat("centre[", i, "]"), l.centre[i]); !s.ok())
+      return s;
+    if (absl::Status s = CheckLength(where, absl::StrCat("size[", i, "]"), l.size[i]); !s.ok())
+      return s;
+  }
+  if (absl::Status s = CheckLength(where, "height", l.height); !s.ok()) return s;
   if (j.contains("rotation_degrees")) {
     absl::StatusOr<double> r = Number(j["rotation_degrees"], where, "rotation_degrees");
     if (!r.ok()) return r.status();
+    // 1e308° × π overflowed to inf and the light vanished; a million degrees
+    // is thousands of turns, more than any animation needs.
+    if (std::fabs(*r) > kMaxAreaLightDegrees)
+      return Bad(where, "rotation_degrees", *r, " is beyond ±", kMaxAreaLightDegrees);
     l.rotation_degrees = *r;
   }
   if (j.contains("radiance")) {
     absl::StatusOr<std::array<double, 3>> c = Numbers<3>(j["radiance"], where, "radiance");
     if (!c.ok()) return c.status();
     if ((*c)[0] < 0 || (*c)[1] < 0 || (*c)[2] < 0) return Bad(where, "radiance", "must be ≥ 0");
+    for (int i = 0; i < 3; ++i) {
+      if ((*c)[i] > kMaxEnvRadiance)
+        return Bad(where, absl::StrCat("radiance[", i, "]"), (*c)[i], " is above ", kMaxEnvRadiance,
+                   " (the relighting's float sums would overflow)");
+    }
     l.radiance = {float((*c)[0]), float((*c)[1]), float((*c)[2])};
   }
   if (j.contains("resolution")) {
@@ -121,6 +164,7 @@ absl::StatusOr<AreaLight> ParseAreaLight(const json& j, const std::string& where
     l.texture = *std::move(t);
     l.texture_path = path.string();
   }
+  if (absl::Status s = CheckEmitted(where, l); !s.ok()) return s;
   return l;
 }
 
@@ -143,6 +187,10 @@ absl::StatusOr<std::vector<AreaLight>> LoadAreaLights(const std::filesystem::pat
   if (!l.ok()) return l.status();
   lights.push_back(*std::move(l));
   return lights;
+}
+
+double AreaLight::RotationRadians() const {
+  return std::fmod(rotation_degrees, 360.0) * std::numbers::pi / 180;
 }
 
 AreaLight AreaLightSequence::Frame(int f) const {

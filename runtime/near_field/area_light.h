@@ -39,6 +39,14 @@
 
 namespace wavebake {
 
+// Bounds of a light's numbers (ParseAreaLight refuses beyond them): lengths
+// whose squares stay far inside float (1e30 of FLT_MAX 3.4e38, room for sums
+// of three and the scene's own coordinates), and rotations of at most a
+// million degrees. Radiance (× the brightest texel) is held to
+// kMaxEnvRadiance like an environment's.
+inline constexpr double kMaxAreaLightLength = 1e15;
+inline constexpr double kMaxAreaLightDegrees = 1e6;
+
 struct AreaLight {
   std::array<double, 2> centre{0, 0};
   double height = 1;
@@ -48,6 +56,9 @@ struct AreaLight {
   EnvMap texture;            // width 0: none
   std::string texture_path;  // as resolved, for messages
   int resolution = 32;
+  // rotation_degrees in radians, reduced modulo 360° first (fmod is exact),
+  // so that a large angle keeps its precision.
+  double RotationRadians() const;
 };
 
 // Reads LIGHT.json (one light or an array). Errors name the file and field.

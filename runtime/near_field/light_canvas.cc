@@ -36,7 +36,7 @@ AffineMap2d LightCanvas::MapAt(double ps, double pt, double z, double face_size)
 }
 
 LightCanvas DrawLight(const AreaLight& light, int supersample) {
-  const double a = light.rotation_degrees * std::numbers::pi / 180;
+  const double a = light.RotationRadians();
   const CanvasFrame f{std::cos(a), std::sin(a)};
   // The rotated rectangle's bounding box.
   const double hs = 0.5 * (std::fabs(f.cs) * light.size[0] + std::fabs(f.sn) * light.size[1]);

@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/products/target_selection.h"
 #include "core/util/parallel_for.h"
+#include "runtime/relight/finite_output.h"
 #include "runtime/relight/relighter.h"
 
 namespace wavebake {
@@ -131,6 +132,10 @@ absl::StatusOr<NearFieldStats> RelightNearField(const NearFieldStore& store,
         targets_total += my_targets;
       });
   MultiplyAlbedo(samples, rgb_out);
+  if (absl::Status s = CheckRelitFinite(rgb_out, samples.grid, samples.width,
+                                        "the area lights' radiance and geometry");
+      !s.ok())
+    return s;
   stats.lit_samples = lit;
   stats.targets = targets_total;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -50,14 +50,22 @@ absl::StatusOr<AreaEvalReport> EvaluateAreaLights(const NearFieldStore& store,
   if (!stats.ok()) return stats.status();
   report.near_stats = *stats;
   const std::vector<float> facing = FacingOnly(store.samples, store.face.frame(), ref->rgb);
-  report.near_field = CompareToReference(rgb, ref->rgb);
+  absl::StatusOr<ErrorStats> near = CompareFinite(rgb, ref->rgb, "the near-field relighting");
+  if (!near.ok()) return near.status();
+  report.near_field = *near;
   report.near_field.seconds = stats->seconds;
-  report.near_facing = CompareToReference(rgb, facing);
+  near = CompareFinite(rgb, facing, "the near-field relighting");
+  if (!near.ok()) return near.status();
+  report.near_facing = *near;
   if (options.distant) {
     const auto t0 = std::chrono::steady_clock::now();
     RelightDistant(store, lights, SampleCentre(store.samples), rgb);
-    report.distant = CompareToReference(rgb, ref->rgb);
-    report.distant_facing = CompareToReference(rgb, facing);
+    absl::StatusOr<ErrorStats> distant = CompareFinite(rgb, ref->rgb, "the distant relighting");
+    if (!distant.ok()) return distant.status();
+    report.distant = *distant;
+    distant = CompareFinite(rgb, facing, "the distant relighting");
+    if (!distant.ok()) return distant.status();
+    report.distant_facing = *distant;
     report.distant.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report.has_distant = true;

@@ -30,7 +30,7 @@ struct Emitter {
 };
 
 Emitter MakeEmitter(const AreaLight& l, const FaceFrame& f) {
-  const double a = l.rotation_degrees * std::numbers::pi / 180;
+  const double a = l.RotationRadians();
   const Vec3 u_dir = f.s_axis * float(std::cos(a)) + f.t_axis * float(std::sin(a));
   const Vec3 v_dir = f.t_axis * float(std::cos(a)) - f.s_axis * float(std::sin(a));
   const Vec3 centre =

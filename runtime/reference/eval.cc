@@ -48,11 +48,39 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
     ++count;
   }
   ErrorStats s;
+  if (!std::isfinite(sq) || !std::isfinite(ref_sq)) {
+    // A NaN difference used to vanish in max() and in "sq > 0", scoring a
+    // NaN image as identical (psnr inf).
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    s.rel_rms = s.max_abs = s.psnr = nan;
+    return s;
+  }
   s.rel_rms = ref_sq > 0 ? std::sqrt(sq / ref_sq) : std::sqrt(sq);
   s.max_abs = max_abs;
   s.psnr = sq > 0 ? 10 * std::log10(peak * peak / (sq / count))
                   : std::numeric_limits<double>::infinity();
   return s;
+}
+
+absl::StatusOr<ErrorStats> CompareFinite(std::span<const float> image,
+                                         std::span<const float> reference, std::string_view what) {
+  if (image.size() != reference.size())
+    return absl::InternalError(absl::StrCat(std::string(what), ": ", image.size(),
+                                            " values against ", reference.size(),
+                                            " of the reference"));
+  for (size_t i = 0; i < reference.size(); ++i) {
+    if (std::isnan(reference[i])) continue;  // masked cell
+    const bool ref_bad = !std::isfinite(reference[i]);
+    if (ref_bad || !std::isfinite(image[i])) {
+      const float v = ref_bad ? reference[i] : image[i];
+      return absl::InvalidArgumentError(absl::StrCat(
+          ref_bad ? "the reference" : std::string(what), ": value ", i % 3, " of cell ", i / 3,
+          " is ", std::isnan(v) ? "NaN" : "infinite",
+          "; the lighting overflowed single precision, no error can be measured (scale the "
+          "lighting down)"));
+    }
+  }
+  return CompareToReference(image, reference);
 }
 
 absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
@@ -90,7 +118,10 @@ absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const S
   absl::StatusOr<std::vector<float>> image = compressed();
   if (!image.ok()) return image.status();
   const double compressed_seconds = SecondsSince(t0);
-  report.compressed = CompareToReference(*image, reference->rgb);
+  absl::StatusOr<ErrorStats> compressed_error =
+      CompareFinite(*image, reference->rgb, "the compressed relighting");
+  if (!compressed_error.ok()) return compressed_error.status();
+  report.compressed = *compressed_error;
   report.compressed.seconds = compressed_seconds;
 
   if (dense) {
@@ -98,7 +129,10 @@ absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const S
     absl::StatusOr<DenseTraceResult> traced = dense();
     if (!traced.ok()) return traced.status();
     const double dense_seconds = SecondsSince(t0);
-    report.dense = CompareToReference(traced->rgb, reference->rgb);
+    absl::StatusOr<ErrorStats> dense_error =
+        CompareFinite(traced->rgb, reference->rgb, "the dense relighting");
+    if (!dense_error.ok()) return dense_error.status();
+    report.dense = *dense_error;
     report.dense.seconds = dense_seconds;
     report.has_dense = true;
     report.dense_rays = traced->rays;

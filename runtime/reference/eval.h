@@ -39,7 +39,15 @@ struct EvalOptions {
 struct ErrorStats {
   double rel_rms = 0, max_abs = 0, psnr = 0, seconds = 0;
 };
+// A NaN or infinite image value where the reference has one, or an infinite
+// reference value, makes every field NaN (never a perfect score).
 ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference);
+// The same where a number is reported (eval, sequences' errors.csv, Python):
+// InvalidArgument instead of any non-finite input, naming the cell and
+// whether `what` (the image: "the compressed relighting") or the reference
+// holds it.
+absl::StatusOr<ErrorStats> CompareFinite(std::span<const float> image,
+                                         std::span<const float> reference, std::string_view what);
 
 // The scene a store was baked from, rebuilt for ray casting; FailedPrecondition
 // if its file no longer hashes to the baked scene.

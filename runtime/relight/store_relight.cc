@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/layouts/layout.h"
 #include "runtime/io/image_io.h"
+#include "runtime/relight/finite_output.h"
 #include "runtime/relight/lighting.h"
 #include "storage/scene_loader.h"
 
@@ -81,6 +82,10 @@ absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap
   if (!lights.ok()) return lights.status();
   std::vector<float> rgb(3 * static_cast<size_t>(r.cells()));
   r.Relight(*lights, rgb);
+  if (absl::Status s = CheckRelitFinite(rgb, store.samples.grid, store.samples.width,
+                                        "the environment's radiance");
+      !s.ok())
+    return s;
   return rgb;
 }
 
@@ -101,6 +106,9 @@ absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::sp
                         float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   const int w = samples.width, h = samples.height;
+  // The last check before any export: whatever path produced `rgb`, a
+  // non-finite value is not written as a picture.
+  if (absl::Status s = CheckRelitFinite(rgb, samples.grid, w, "the lighting"); !s.ok()) return s;
   if (!samples.uv_charts.empty())
     return WriteLightmapOutput(info, samples, rgb, exposure_stops, out);
   if (ext == ".png") return WritePng(out, w, h, rgb, exposure_stops, Vec3{0, 0, 0});

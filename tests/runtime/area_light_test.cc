@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
+#include "absl/strings/str_cat.h"
 #include "core/wavelets/wavelet2d.h"
 #include "runtime/near_field/light_canvas.h"
 #include "tests/testing/scratch_dir.h"
@@ -67,6 +69,65 @@ TEST(AreaLight, ErrorsNameTheFileAndTheField) {
     EXPECT_NE(l.status().message().find(path.string()), std::string::npos) << l.status();
     EXPECT_NE(l.status().message().find(c.field), std::string::npos) << l.status();
   }
+}
+
+// Numbers that pass as finite JSON yet overflow the float geometry or sums:
+// radiance 1e39 is inf as a float, 3e38 overflowed the relighting (rc 0,
+// error null or 1.0); size 1e308 and rotation 1e308° (× π = inf) made the
+// light vanish. Each is refused, naming the field.
+TEST(AreaLight, OverflowingNumbersAreRefusedNamingTheField) {
+  TempDir dir;
+  const struct {
+    const char* extra;
+    const char* field;
+  } cases[] = {
+      {R"("radiance": [1e39, 5, 5])", "radiance[0]"},
+      {R"("radiance": [5, 3e38, 5])", "radiance[1]"},
+      {R"("radiance": [5, 5, 2e30])", "radiance[2]"},
+      {R"("rotation_degrees": 1e308)", "rotation_degrees"},
+      {R"("rotation_degrees": -2e6)", "rotation_degrees"},
+  };
+  for (const auto& c : cases) {
+    const auto path =
+        Write(dir, "bad.json",
+              absl::StrCat(R"({"centre": [0, 0], "height": 1, "size": [1, 1], )", c.extra, "}"));
+    absl::StatusOr<std::vector<AreaLight>> l = LoadAreaLights(path);
+    ASSERT_FALSE(l.ok()) << c.extra;
+    EXPECT_NE(l.status().message().find(c.field), std::string::npos) << l.status();
+  }
+  for (const char* geometry : {R"("centre": [0, 0], "height": 1, "size": [1e308, 1e308])",
+                               R"("centre": [0, 0], "height": 1, "size": [1, 2e15])",
+                               R"("centre": [1e16, 0], "height": 1, "size": [1, 1])",
+                               R"("centre": [0, 0], "height": -1e300, "size": [1, 1])"}) {
+    const auto path = Write(dir, "geo.json", absl::StrCat("{", geometry, "}"));
+    absl::StatusOr<std::vector<AreaLight>> l = LoadAreaLights(path);
+    ASSERT_FALSE(l.ok()) << geometry;
+    EXPECT_NE(l.status().message().find("scene units"), std::string::npos) << l.status();
+  }
+  // At the bounds a light is accepted and draws finite values.
+  absl::StatusOr<std::vector<AreaLight>> edge =
+      LoadAreaLights(Write(dir, "edge.json",
+                           R"({"centre": [1e15, -1e15], "height": 1e15, "size": [1e15, 1e15],
+                "rotation_degrees": 1e6, "radiance": [1e30, 1e30, 1e30]})"));
+  ASSERT_TRUE(edge.ok()) << edge.status();
+  const LightCanvas c = DrawLight((*edge)[0]);
+  for (float v : c.rgb) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_TRUE(std::isfinite(c.extent_s) && c.extent_s > 0);
+}
+
+// Rotations reduce modulo 360° before the product with π: exact for any
+// size, and a turn plus 90° draws as 90° does.
+TEST(AreaLight, LargeRotationsAreReducedExactly) {
+  AreaLight l;
+  l.rotation_degrees = 90;
+  const double quarter = l.RotationRadians();
+  EXPECT_DOUBLE_EQ(quarter, std::numbers::pi / 2);
+  l.rotation_degrees = 360.0 * 2000 + 90;
+  EXPECT_DOUBLE_EQ(l.RotationRadians(), quarter);
+  l.size = {2, 1};
+  const LightCanvas turned = DrawLight(l);
+  EXPECT_NEAR(turned.extent_s, 1, 1e-9);
+  EXPECT_NEAR(turned.extent_t, 2, 1e-9);
 }
 
 TEST(AreaLight, SequenceInterpolatesAndKeepsTheTexture) {

@@ -3,12 +3,19 @@
 // formula of DESIGN.md §1 and levels read off the Mallat layout by hand.
 #include "storage/store_reader.h"
 
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
+#include <future>
+#include <limits>
 
+#include "absl/strings/str_cat.h"
 #include "core/columns/quantizer.h"
 #include "storage/params_json.h"
 #include "storage/store_check.h"
@@ -213,6 +220,91 @@ TEST(StoreReaderTest, AMissingChunkIsDataLossNamingIt) {
       EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss) << name << ": " << s;
       EXPECT_THAT(s.message(), HasSubstr(chunk.string())) << s;
     }
+  }
+}
+
+// A NaN or inf step decodes to NaN/inf everywhere its column reaches: the
+// relit image was all NaN with rc 0. A finite step so large that the codes
+// overflow is the same damage.
+TEST(StoreReaderTest, ANonFiniteOrOverflowingScaleIsDataLossNamingTheColumn) {
+  const HandColumn& victim = Columns()[0];
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity(), 3e38f}) {
+    TempDir tmp;
+    const auto store = tmp.path() / "s.wbk";
+    WriteStore(store);
+    std::vector<float> scale(kM, 0.0f);
+    for (const HandColumn& c : Columns()) scale[c.column] = c.scale;
+    scale[victim.column] = bad;
+    Write(store, store::kScale, scale, 100);
+    for (absl::Status s :
+         {ReadTransport(store).status(), ReadColumn(store, victim.column).status()}) {
+      EXPECT_EQ(s.code(), absl::StatusCode::kDataLoss) << bad << ": " << s;
+      EXPECT_THAT(s.message(), HasSubstr(absl::StrCat("transport/scale[", victim.column, "]")))
+          << s;
+    }
+    // Another column still reads: the check is per column.
+    EXPECT_TRUE(ReadColumn(store, Columns()[1].column).ok());
+  }
+}
+
+// The same for the per-sample floats: a NaN normal or an inf albedo is
+// named by array and index.
+TEST(StoreReaderTest, ANonFiniteSampleValueIsDataLossNamingIt) {
+  for (const char* name : {store::kPosition, store::kNormal, store::kAlbedo}) {
+    TempDir tmp;
+    const auto store = tmp.path() / "s.wbk";
+    WriteStore(store);
+    SampleSet s;
+    s.width = kW;
+    s.height = kH;
+    s.grid.assign(kW * kH, -1);
+    for (int i = 0; i < 3; ++i) {
+      s.grid[i] = i;
+      s.position.push_back({float(i), 0, 0});
+      s.normal.push_back({0, 1, 0});
+      s.albedo.push_back({0.5f, 0.5f, 0.5f});
+    }
+    std::vector<Vec3>& victim = std::string(name) == store::kPosition ? s.position
+                                : std::string(name) == store::kNormal ? s.normal
+                                                                      : s.albedo;
+    victim[2].y = std::string(name) == store::kAlbedo ? std::numeric_limits<float>::infinity()
+                                                      : std::numeric_limits<float>::quiet_NaN();
+    ASSERT_TRUE(WriteSamples(store, s).ok());
+    const absl::Status read = ReadSamples(store).status();
+    EXPECT_EQ(read.code(), absl::StatusCode::kDataLoss) << name << ": " << read;
+    EXPECT_THAT(read.message(), HasSubstr(absl::StrCat(name, "[2, 1]"))) << read;
+  }
+}
+
+// A FIFO where the reader expects a file: a plain open() blocks until a
+// writer comes, and `relight` hung. Every file of the store is opened
+// without blocking and refused unless it is a regular file. Should the read
+// block after all (the code before this fix), the test opens the FIFO's
+// write end to free the reader and fails instead of hanging.
+TEST(StoreReaderTest, AFifoInTheStoreIsRefusedWithoutBlocking) {
+  for (const std::string& name : {std::string(".zattrs"), std::string(store::kScale) + "/0",
+                                 std::string(store::kData) + "/.zarray"}) {
+    TempDir tmp;
+    const auto store = tmp.path() / "s.wbk";
+    WriteStore(store);
+    const std::filesystem::path fifo = store / name;
+    ASSERT_TRUE(std::filesystem::remove(fifo)) << fifo;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << fifo;
+    std::future<absl::Status> read =
+        std::async(std::launch::async, [&] { return ReadTransport(store).status(); });
+    if (read.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+      // Free the blocked reader: a writer that opens and closes is an EOF.
+      const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) ::close(fd);
+      read.wait();
+      ADD_FAILURE() << name << ": reading the store blocked on the FIFO";
+      continue;
+    }
+    const absl::Status s = read.get();
+    EXPECT_FALSE(s.ok()) << name;
+    EXPECT_THAT(s.message(), HasSubstr(fifo.string())) << s;
+    EXPECT_THAT(s.message(), HasSubstr("not a regular file (a FIFO)")) << s;
   }
 }
 
