@@ -27,6 +27,7 @@ int Run(int argc, char** argv) {
   AddHealthCommand(app);
   AddRelightCommand(app);
   AddEvalCommand(app);
+  AddExportCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
