@@ -28,6 +28,7 @@ int Run(int argc, char** argv) {
   AddRelightCommand(app);
   AddEvalCommand(app);
   AddExportCommand(app);
+  AddViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
