@@ -28,8 +28,8 @@
 #include <string>
 #include <vector>
 
-#include "core/refined_row.h"
-#include "core/transport_row.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "worker/bake_context.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"

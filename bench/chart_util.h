@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/parallel_for.h"
+#include "core/util/parallel_for.h"
 
 namespace wavebake::charts {
 

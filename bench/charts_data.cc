@@ -14,7 +14,7 @@
 // probes of ../shared/data against the dense T (the error users see), and
 // chart 2 brute force against visibility refinement (rays, time) and the
 // relighting error under a probe against the independent Monte-Carlo
-// reference (runtime/reference.h). A plain main(): the file is
+// reference (runtime/reference/reference.h). A plain main(): the file is
 // linked with Google Benchmark like every bench/*.cc but uses none of it.
 #include <unistd.h>
 
@@ -30,15 +30,15 @@
 
 #include "absl/status/statusor.h"
 #include "bench/chart_util.h"
-#include "core/bake_params.h"
-#include "core/bake_params_io.h"
-#include "core/cubemap.h"
+#include "core/bake/bake_params.h"
+#include "core/bake/bake_params_io.h"
+#include "core/directions/cubemap.h"
 #include "driver/reference_measure.h"
 #include "driver/staged_relight.h"
-#include "runtime/env_map.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "worker/bake_context.h"

@@ -9,10 +9,10 @@
 //
 // glossy_error.csv: per (env, brdf, lighting terms, BRDF terms) the relit
 // image's relative RMS against the independent Monte-Carlo reference traced
-// with that BRDF (runtime/reference.h; `ref`), against the same store at
+// with that BRDF (runtime/reference/reference.h; `ref`), against the same store at
 // every term of both (`all`: what the two approximations alone cost), and
 // the dense visibility path's error against the reference (`dense`: the
-// cubemap's own floor, no Haar basis, runtime/dense_trace.h).
+// cubemap's own floor, no Haar basis, runtime/reference/dense_trace.h).
 // glossy_time.csv: thread CPU seconds of one frame (one core, fastest of 5)
 // per (brdf, lighting terms, BRDF terms), grace.hdr.
 // Full: builtin:sphere-plane camera:64x64, N = 32; quick: camera:32x32, N = 8.
@@ -26,14 +26,14 @@
 #include <vector>
 
 #include "bench/chart_util.h"
-#include "core/cubemap.h"
+#include "core/directions/cubemap.h"
 #include "driver/embedded_bake.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/glossy_store.h"
-#include "runtime/lighting.h"
-#include "runtime/reference.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/glossy/glossy_store.h"
+#include "runtime/reference/dense_trace.h"
+#include "runtime/reference/eval.h"
+#include "runtime/reference/reference.h"
+#include "runtime/relight/lighting.h"
 
 namespace wavebake {
 namespace {

@@ -5,7 +5,7 @@
 // Stores: builtin:cubes-wall, camera:64x64, plane:4, N = 32, target 1 %
 // (quick: 32x32, N = 16), baked once into OUT_DIR/work. Errors are eval's
 // relative RMS against the Monte-Carlo reference over the light's area
-// (runtime/area_reference.h), traced for every light.
+// (runtime/reference/area_reference.h), traced for every light.
 //
 // Chart 9, near_height.csv: error against the light's height (size 1.0) and
 // against its size (height 1.2), for this method (1 % source, 30 % target
@@ -36,10 +36,10 @@
 
 #include "bench/chart_util.h"
 #include "driver/embedded_bake.h"
-#include "runtime/area_eval.h"
-#include "runtime/area_reference.h"
-#include "runtime/eval.h"
-#include "runtime/near_field.h"
+#include "runtime/near_field/near_field.h"
+#include "runtime/reference/area_eval.h"
+#include "runtime/reference/area_reference.h"
+#include "runtime/reference/eval.h"
 
 namespace wavebake {
 namespace {

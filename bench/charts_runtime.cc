@@ -4,7 +4,7 @@
 //   build/bench_charts_runtime OUT_DIR [--quick] [--threads T]
 //
 // Chart 3, relight_time.csv (4D paper Fig. 9): seconds per Eq. 8 frame
-// (runtime/relighter.h) against the number of wavelet lights n, for a 2d and
+// (runtime/relight/relighter.h) against the number of wavelet lights n, for a 2d and
 // an adaptive store of the same scene baked at the same target error (their
 // measured matrix errors are in the CSV). Time is the median thread CPU time
 // of several frames (the machine is shared; CPU time is what the frame
@@ -34,16 +34,16 @@
 
 #include "absl/status/statusor.h"
 #include "bench/chart_util.h"
-#include "core/bake_params.h"
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params.h"
+#include "core/bake/bake_params_io.h"
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
-#include "runtime/env_map.h"
-#include "runtime/eval.h"
-#include "runtime/incremental.h"
-#include "runtime/lighting.h"
-#include "runtime/relighter.h"
-#include "runtime/row_basis.h"
+#include "runtime/env/env_map.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/incremental.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/relighter.h"
+#include "runtime/relight/row_basis.h"
 #include "storage/store_reader.h"
 
 namespace wavebake {

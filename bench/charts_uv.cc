@@ -4,7 +4,7 @@
 // — and each compression setting reruns only TRANSFORM_COLUMNS × groups and
 // FINALIZE on that staging (as bench/charts_data.cc does):
 //   uv_size.csv   2d and adaptive over a range of targets, per layout;
-//   uv_fill.csv   the uncovered-texel fills (core/uncovered_fill.h) at
+//   uv_fill.csv   the uncovered-texel fills (core/columns/uncovered_fill.h) at
 //                 target 0.01, adaptive and full depth, per uv size.
 //
 //   build/bench_charts_uv OUT_DIR [--quick] [--threads T] [--sizes 128,256,512]
@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "bench/chart_util.h"
-#include "core/bake_params.h"
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params.h"
+#include "core/bake/bake_params_io.h"
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "worker/bake_context.h"

@@ -1,4 +1,4 @@
-// CodeColumn (core/column_coding.h) alone, on every column of a real job's
+// CodeColumn (core/columns/column_coding.h) alone, on every column of a real job's
 // staged T held in memory: the per-column math of TRANSFORM_COLUMNS without
 // its I/O. --case=bunny (hilbert 64×64, N=32, default) or cubes-wall (camera
 // 64×64, N=32), traced by brute force, K=4.
@@ -7,7 +7,7 @@
 //
 // Counters: ns per column cell (ns/cell), the kept coefficients, and the
 // share of columns whose energy fits in the budget (they keep nothing).
-#include "core/column_coding.h"
+#include "core/columns/column_coding.h"
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>

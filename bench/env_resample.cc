@@ -2,7 +2,7 @@
 // beside naive centre point sampling, on grace.hdr (tiny, very bright
 // sources) at N = 32 and 128. Prints the time ratio and each method's error
 // in ∫ L dω (Σ_m L_m Ω_m against SphereIntegral) after the table.
-#include "runtime/env_resample.h"
+#include "runtime/env/env_resample.h"
 
 #include <benchmark/benchmark.h>
 
@@ -11,9 +11,9 @@
 #include <map>
 #include <string>
 
-#include "core/cubemap.h"
-#include "runtime/env_map.h"
-#include "runtime/sphere_overlap.h"
+#include "core/directions/cubemap.h"
+#include "runtime/env/env_map.h"
+#include "runtime/env/sphere_overlap.h"
 
 namespace wavebake {
 namespace {

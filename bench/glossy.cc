@@ -1,4 +1,4 @@
-// Glossy frame rate (runtime/glossy_relighter.h: the Haar triple product of
+// Glossy frame rate (runtime/glossy/glossy_relighter.h: the Haar triple product of
 // a visibility store) on one core, beside the brute-force per-sample product
 // of dense decoded rows measured in the same run.
 //
@@ -34,12 +34,12 @@
 #include <tuple>
 #include <vector>
 
-#include "core/haar_product.h"
-#include "core/haar_tree.h"
+#include "core/products/haar_product.h"
+#include "core/products/haar_tree.h"
 #include "driver/embedded_bake.h"
-#include "runtime/glossy_store.h"
-#include "runtime/lighting.h"
-#include "runtime/row_basis.h"
+#include "runtime/glossy/glossy_store.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/row_basis.h"
 #include "storage/scoped_dir.h"
 
 namespace wavebake {
@@ -73,7 +73,7 @@ struct Fixture {
 };
 
 // Every nonzero tripling coefficient of one n×n face (Theorem 7; the
-// ordered triples, C as core/tripling.h has it).
+// ordered triples, C as core/products/tripling.h has it).
 struct Triple {
   uint16_t i, j, k;
   float c;

@@ -1,8 +1,8 @@
-// Near-field relighting frame rate (runtime/near_field.h) at 128×128
+// Near-field relighting frame rate (runtime/near_field/near_field.h) at 128×128
 // samples on one core, with the paper's truncation (1 % source, 30 % target
 // terms, Sun & Ramamoorthi Fig. 11), beside the brute force of the same
 // frame — per sample, the light resampled onto the face in pixels and a
-// dense dot product with the pixel-basis row (runtime/near_field_brute.h) —
+// dense dot product with the pixel-basis row (runtime/near_field/near_field_brute.h) —
 // measured in the same run. `x_brute` is the brute-force frame time over
 // this benchmark's frame time (thread CPU time, so other load on the
 // machine counts less); `x_separable` the same against a stronger baseline
@@ -17,7 +17,7 @@
 // 128: the brute force's resampling grows with R², the wavelet path with
 // the source terms kept.
 //   ./build/bench_near_field --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-#include "runtime/near_field.h"
+#include "runtime/near_field/near_field.h"
 
 #include <benchmark/benchmark.h>
 #include <time.h>
@@ -31,8 +31,8 @@
 #include <optional>
 
 #include "driver/embedded_bake.h"
-#include "runtime/area_light.h"
-#include "runtime/near_field_brute.h"
+#include "runtime/near_field/area_light.h"
+#include "runtime/near_field/near_field_brute.h"
 
 namespace wavebake {
 namespace {

@@ -1,7 +1,7 @@
-// SelectForBudget / CountForBudget (core/nla.h) on column-sized inputs, beside
+// SelectForBudget / CountForBudget (core/columns/nla.h) on column-sized inputs, beside
 // a full sort of the same magnitudes (what the halving quickselect avoids).
 //   ./build/bench_nla --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-#include "core/nla.h"
+#include "core/columns/nla.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
-// Visibility refinement row by row (core/refined_row.h) against brute force
-// (core/transport_row.h) on the same samples, one thread, in the same run:
+// Visibility refinement row by row (core/transport/refined_row.h) against brute force
+// (core/transport/transport_row.h) on the same samples, one thread, in the same run:
 // rays per row, time per row, traced rays/s, and the error refinement costs
 // per row. Scenes: builtin:cubes-wall (camera layout), the bunny and spot
 // (hilbert layout); light resolutions 32, 64 and 128; 128 samples spread
@@ -27,9 +27,9 @@
 #include <string>
 #include <vector>
 
-#include "core/refined_row.h"
-#include "core/texel_irradiance.h"
-#include "core/transport_row.h"
+#include "core/directions/texel_irradiance.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "worker/bake_context.h"
 
 namespace wavebake {
@@ -76,7 +76,7 @@ Case& GetCase(int scene, int light_res) {
   return c;
 }
 
-// A traced texel's value from brute force's rays (core/refined_row.h): the
+// A traced texel's value from brute force's rays (core/transport/refined_row.h): the
 // exact integral of its part above the horizon times the cosine-weighted
 // visible fraction of its rays there.
 std::vector<float> ExactFromBrute(const BakeContext& ctx, const std::vector<float>& brute, Vec3 n) {

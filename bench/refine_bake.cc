@@ -13,7 +13,7 @@
 //     (same samples, seed and ray offset) traced once and used for both
 //     stores (driver/reference_measure.h);
 // and at N = 128 the rays alone: refinement's, traced row by row, against the
-// rays brute force would trace (core/transport_row.h BruteForceRays, counted
+// rays brute force would trace (core/transport/transport_row.h BruteForceRays, counted
 // without tracing).
 //
 // Targets: refined rays ≤ 0.25× brute force (≤ 0.12× at N = 128), whole-bake
@@ -32,8 +32,8 @@
 #include <vector>
 
 #include "bench/bake_run.h"
-#include "core/refined_row.h"
-#include "core/transport_row.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "driver/reference_measure.h"
 #include "worker/bake_context.h"
 

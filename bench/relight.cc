@@ -1,6 +1,6 @@
-// Relighting frame rate (runtime/relighter.h, Eq. 8 of the 4D paper) at 128²
+// Relighting frame rate (runtime/relight/relighter.h, Eq. 8 of the 4D paper) at 128²
 // and 256² samples with 64, 256 and 1024 wavelet lights of grace.hdr, one
-// core, beside the dense T·L of the same matrix (runtime/relight_oracles.h
+// core, beside the dense T·L of the same matrix (runtime/reference/relight_oracles.h
 // DenseRelight over all 6N² columns) in the same run. `x_dense` is the dense
 // frame time over the Eq. 8 frame time (both thread CPU time).
 //
@@ -19,12 +19,12 @@
 #include <random>
 #include <vector>
 
-#include "core/wavelet2d.h"
-#include "runtime/env_map.h"
-#include "runtime/lighting.h"
-#include "runtime/relight_oracles.h"
-#include "runtime/relighter.h"
-#include "runtime/row_basis.h"
+#include "core/wavelets/wavelet2d.h"
+#include "runtime/env/env_map.h"
+#include "runtime/reference/relight_oracles.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/relighter.h"
+#include "runtime/relight/row_basis.h"
 
 namespace wavebake {
 namespace {

@@ -1,4 +1,4 @@
-// Throughput of the bake's hot loop, TransportRow (core/transport_row.h), on
+// Throughput of the bake's hot loop, TransportRow (core/transport/transport_row.h), on
 // a tessellated sphere over a tessellated plane (~6k triangles), N=32, K=4,
 // one thread — beside, measured in the same run, a baseline (the row's M·K
 // directions traced one by one with rtcOccluded1 and no horizon culling) and
@@ -26,10 +26,10 @@
 #include <optional>
 #include <vector>
 
-#include "core/cubemap.h"
-#include "core/jitter_pattern.h"
-#include "core/ray_caster.h"
-#include "core/transport_row.h"
+#include "core/directions/cubemap.h"
+#include "core/directions/jitter_pattern.h"
+#include "core/transport/ray_caster.h"
+#include "core/transport/transport_row.h"
 
 namespace wavebake {
 namespace {

@@ -1,5 +1,5 @@
 // Full-depth forward and inverse 2D wavelet transforms of every filter
-// (core/wavelet2d.h) on 256² and 1024² float images, beside a memcpy of the
+// (core/wavelets/wavelet2d.h) on 256² and 1024² float images, beside a memcpy of the
 // same bytes. Each transform also reports `x_memcpy`: its time per image over
 // the copy time of that image measured in the same process just before, so
 // the ratio is readable without lining up rows.
@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "core/bake_params_io.h"
-#include "core/wavelet2d.h"
+#include "core/bake/bake_params_io.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {

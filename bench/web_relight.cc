@@ -1,6 +1,6 @@
 // Relight view frame rate (web/relight_service.h, web/monitor_server.h): the
 // frames a page following the rotation slider gets, beside the bare Eq. 8
-// relight of the same store with the same lights (runtime/relighter.h) in the
+// relight of the same store with the same lights (runtime/relight/relighter.h) in the
 // same run. `x_relight` is a frame's wall time over the bare relight's; the
 // CPU column of Service/* is the frame's CPU time (the service runs on the
 // benchmark's thread), beside the bare relight's CPU time printed at start.
@@ -22,9 +22,9 @@
 #include <filesystem>
 
 #include "driver/embedded_bake.h"
-#include "runtime/env_map.h"
-#include "runtime/lighting.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/store_relight.h"
 #include "web/monitor_server.h"
 #include "web/relight_service.h"
 

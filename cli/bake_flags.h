@@ -1,10 +1,10 @@
 #pragma once
 // The bake flags of DESIGN.md §5, shared by `bake` and `submit`. Numbers bind
-// straight to BakeParams; names are parsed by core/bake_param_words.h, so the
+// straight to BakeParams; names are parsed by core/bake/bake_param_words.h, so the
 // command line, the RPC and the store refuse the same strings.
 #include <CLI/CLI.hpp>
 
-#include "core/bake_param_words.h"
+#include "core/bake/bake_param_words.h"
 
 namespace wavebake::cli {
 

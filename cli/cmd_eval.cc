@@ -1,13 +1,13 @@
 // `wavebake eval OUT.wbk --env ENV --reference [--terms n] [--json]`
 // (DESIGN.md §5): the store's relighting error, and the uncompressed T's,
-// against an independently traced Monte-Carlo reference (runtime/eval.h);
-// with --area-light, near-field lights over their area (runtime/area_eval.h).
+// against an independently traced Monte-Carlo reference (runtime/reference/eval.h);
+// with --area-light, near-field lights over their area (runtime/reference/area_eval.h).
 #include <cstdio>
 
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
-#include "runtime/eval.h"
+#include "runtime/reference/eval.h"
 
 namespace wavebake::cli {
 namespace {

@@ -3,7 +3,7 @@
 // store under an environment, written as an image (camera layouts), a
 // vertex-coloured mesh (mesh layouts) or a lightmap and a glTF carrying it
 // (uv layouts); a visibility store through the triple product with --brdf
-// (runtime/glossy_store.h), --brdf-sequence editing its material; with
+// (runtime/glossy/glossy_store.h), --brdf-sequence editing its material; with
 // --rotate-sequence a rotating environment over many frames, its frames and
 // errors.csv into --out (driver/relight_command.h). With --area-light,
 // near-field planar lights instead (driver/area_light_commands.h).

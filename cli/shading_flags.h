@@ -1,11 +1,11 @@
 #pragma once
-// The flags `relight` and `eval` share: the material (runtime/glossy_store.h)
+// The flags `relight` and `eval` share: the material (runtime/glossy/glossy_store.h)
 // and the near-field lights (driver/area_light_commands.h).
 #include <CLI/CLI.hpp>
 #include <string>
 
 #include "driver/area_light_commands.h"
-#include "runtime/glossy_store.h"
+#include "runtime/glossy/glossy_store.h"
 
 namespace wavebake::cli {
 

@@ -11,9 +11,9 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "coordinator/scene_store.h"
-#include "core/job_plan.h"
-#include "core/layout.h"
-#include "core/sample_layout.h"
+#include "core/bake/job_plan.h"
+#include "core/layouts/layout.h"
+#include "core/layouts/sample_layout.h"
 #include "proto/bake_request.h"
 #include "storage/scene_bundle.h"
 #include "storage/scene_files.h"
@@ -134,7 +134,7 @@ absl::StatusOr<Scene> LoadRequestScene(const v1::BakeRequest& request,
 }
 
 int64_t EstimateRays(int64_t samples, int columns, int supersample) {
-  // K is rounded up to a square (core/jitter_pattern.h).
+  // K is rounded up to a square (core/directions/jitter_pattern.h).
   const int64_t strata = static_cast<int64_t>(std::ceil(std::sqrt(double(supersample)) - 1e-9));
   return samples * columns * strata * strata / 2;
 }

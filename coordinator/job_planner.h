@@ -4,7 +4,7 @@
 //
 // Planning loads the scene (a built-in, or the uploaded bytes under the data
 // dir) and cuts the job into BAKE_TILE and TRANSFORM_COLUMNS tasks with the
-// same arithmetic the workers use (core/job_plan.h), from the layout's grid
+// same arithmetic the workers use (core/bake/job_plan.h), from the layout's grid
 // size alone: no ray is traced in the coordinator. A scene that does not load
 // is INVALID_ARGUMENT naming the scene field. Planning also reserves the job's
 // partial store directory (proto/bake_request.h PartialStorePath), so two
@@ -18,7 +18,7 @@
 
 #include "absl/status/statusor.h"
 #include "coordinator/job_types.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "wavebake.pb.h"
 
 namespace wavebake {

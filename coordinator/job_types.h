@@ -47,7 +47,7 @@ enum class EventKind : int {
 };
 
 // What the planning callback returns for a request (coordinator/job_planner.h
-// is the real planner). Not core/job_plan.h's JobPlan, which describes the
+// is the real planner). Not core/bake/job_plan.h's JobPlan, which describes the
 // tiles and groups themselves: both live in namespace wavebake and meet in
 // the planner and in wb_cli.
 struct PlannedJob {

@@ -5,10 +5,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "core/coupling_table.h"
-#include "runtime/area_eval.h"
-#include "runtime/area_relight.h"
-#include "runtime/store_relight.h"
+#include "core/products/coupling_table.h"
+#include "runtime/near_field/area_relight.h"
+#include "runtime/reference/area_eval.h"
+#include "runtime/relight/store_relight.h"
 
 namespace wavebake::driver {
 namespace {

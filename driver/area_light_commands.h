@@ -1,7 +1,7 @@
 #pragma once
 // What `relight --area-light` and `eval --reference --area-light` do, for the
 // command line (and anything else that wants the same words): the near-field
-// path of runtime/area_relight.h and runtime/area_eval.h behind one request,
+// path of runtime/near_field/area_relight.h and runtime/reference/area_eval.h behind one request,
 // returning the text to print.
 #include <string>
 #include <vector>

@@ -1,9 +1,9 @@
 #pragma once
 // `wavebake bake SCENE --auto --target-error E [--env ENV]...`: the
-// orchestration of the search in runtime/auto_search.h, judged by every ENV
+// orchestration of the search in runtime/auto/auto_search.h, judged by every ENV
 // given (the worst error counts: a store chosen for one lighting can miss E
 // under another of the same kind). It traces the independent reference
-// (runtime/reference.h) once per ENV for the scene's samples; traces each
+// (runtime/reference/reference.h) once per ENV for the scene's samples; traces each
 // light resolution N once (worker/recode.h TraceStaging), into a temporary
 // directory beside the output, and measures e_disc(N) by relighting that
 // dense traced T itself (driver/staged_relight.h); codes every candidate
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/bake_params.h"
-#include "runtime/auto_search.h"
+#include "core/bake/bake_params.h"
+#include "runtime/auto/auto_search.h"
 
 namespace wavebake::driver {
 

@@ -13,7 +13,7 @@
 #include "absl/status/statusor.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/job_planner.h"
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 #include "wavebake.pb.h"
 
 namespace wavebake::driver {

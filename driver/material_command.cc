@@ -4,7 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "runtime/material_sequence.h"
+#include "runtime/glossy/material_sequence.h"
 
 namespace wavebake::driver {
 

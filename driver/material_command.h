@@ -1,12 +1,12 @@
 #pragma once
 // What `relight --brdf-sequence` does, for the command line (and anything
 // else that wants the same words): material editing of a visibility store
-// (runtime/material_sequence.h, Overbeck ch. 4) behind one request,
+// (runtime/glossy/material_sequence.h, Overbeck ch. 4) behind one request,
 // returning the summary to print.
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "runtime/glossy_store.h"
+#include "runtime/glossy/glossy_store.h"
 
 namespace wavebake::driver {
 

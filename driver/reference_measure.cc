@@ -1,12 +1,12 @@
 #include "driver/reference_measure.h"
 
 #include "absl/strings/str_cat.h"
-#include "core/cubemap.h"
+#include "core/directions/cubemap.h"
 #include "driver/staged_relight.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/reference/dense_trace.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/store_relight.h"
 #include "worker/bake_context.h"
 
 namespace wavebake::driver {

@@ -1,10 +1,10 @@
 #pragma once
-// Relighting errors against the independent reference (runtime/reference.h)
+// Relighting errors against the independent reference (runtime/reference/reference.h)
 // for one scene, layout and environment, with the reference traced once:
-// the dense cubemap T at any N (runtime/dense_trace.h, the discretization
+// the dense cubemap T at any N (runtime/reference/dense_trace.h, the discretization
 // error e_disc(N)) and any baked store of that scene (the total e_tot).
 // Shared by `bake --auto` (driver/auto_bake.h) and the light-resolution chart
-// (bench/charts_data.cc). The metric is eval's rel_rms (runtime/eval.h).
+// (bench/charts_data.cc). The metric is eval's rel_rms (runtime/reference/eval.h).
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/bake_params.h"
-#include "runtime/env_map.h"
-#include "runtime/reference.h"
+#include "core/bake/bake_params.h"
+#include "runtime/env/env_map.h"
+#include "runtime/reference/reference.h"
 
 namespace wavebake {
 struct BakeContext;

@@ -3,7 +3,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "driver/material_command.h"
-#include "runtime/relight_sequence.h"
+#include "runtime/relight/relight_sequence.h"
 
 namespace wavebake::driver {
 namespace {

@@ -1,14 +1,14 @@
 #pragma once
 // What `relight --env` does, for the command line (and anything else that
 // wants the same words): one frame (Eq. 8 for a diffuse store, the triple
-// product for a visibility store, runtime/glossy_store.h), a rotating
-// environment over frames (runtime/relight_sequence.h), or material editing
+// product for a visibility store, runtime/glossy/glossy_store.h), a rotating
+// environment over frames (runtime/relight/relight_sequence.h), or material editing
 // (driver/material_command.h), behind one request returning the summary to
 // print. Near-field lights have their own (driver/area_light_commands.h).
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "runtime/glossy_store.h"
+#include "runtime/glossy/glossy_store.h"
 
 namespace wavebake::driver {
 

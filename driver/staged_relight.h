@@ -16,8 +16,8 @@
 namespace wavebake::driver {
 
 // ctx: the trace's context (its plan, samples and row filter). cube_rgb:
-// [3 · 6N²] texel mean radiance (runtime/env_resample.h ResampleToCubemap).
-// Returns [cells·3] × albedo, NaN where masked, like runtime/dense_trace.h.
+// [3 · 6N²] texel mean radiance (runtime/env/env_resample.h ResampleToCubemap).
+// Returns [cells·3] × albedo, NaN where masked, like runtime/reference/dense_trace.h.
 absl::StatusOr<std::vector<float>> RelightStaging(const BakeContext& ctx,
                                                   const std::filesystem::path& traced,
                                                   std::span<const float> cube_rgb);

@@ -8,9 +8,9 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/string_view.h"
 #include "absl/strings/strip.h"
-#include "core/bake_params_io.h"
-#include "core/layout.h"
-#include "core/power_of_two.h"
+#include "core/bake/bake_params_io.h"
+#include "core/layouts/layout.h"
+#include "core/util/power_of_two.h"
 
 namespace wavebake {
 namespace {
@@ -19,7 +19,7 @@ absl::Status Bad(absl::string_view field, absl::string_view why) {
   return absl::InvalidArgumentError(absl::StrCat(field, ": ", why));
 }
 
-// The spelling is the core's (core/layout.h); the request keeps it as given
+// The spelling is the core's (core/layouts/layout.h); the request keeps it as given
 // ("camera" stays "camera", not "camera:64x64"), since the store records it.
 absl::Status CheckLayout(std::string& layout) {
   if (layout.empty()) layout = "camera";

@@ -15,7 +15,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 #include "wavebake.pb.h"
 
 namespace wavebake {

@@ -15,10 +15,10 @@
 #include "driver/embedded_bake.h"
 #include "proto/bake_request.h"
 #include "python/py_convert.h"
-#include "runtime/env_map.h"
-#include "runtime/eval.h"
-#include "runtime/lighting.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/store_reader.h"
 
 namespace wavebake::python {
@@ -159,7 +159,7 @@ py::array_t<float> Relight(const py::object& store, const py::object& env, int t
   return ToImage(Unwrap(std::move(rgb)), s.info().width, s.info().height);
 }
 
-// reference=True: runtime/eval.h against the independent Monte-Carlo
+// reference=True: runtime/reference/eval.h against the independent Monte-Carlo
 // reference. reference=False: the n-term relighting against all wavelet
 // lights (what the lighting approximation alone costs), no tracing.
 py::object Eval(const py::object& store, const py::object& env, bool reference, int terms,

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params_io.h"
 
 namespace wavebake {
 namespace {
@@ -30,7 +30,7 @@ absl::Status GetString(const nlohmann::json& j, const char* field, std::string* 
   return absl::OkStatus();
 }
 
-// An enum spelled as core/bake_params_io.h spells it.
+// An enum spelled as core/bake/bake_params_io.h spells it.
 template <class E, class Parse>
 absl::Status GetEnum(const nlohmann::json& j, const char* field, Parse parse, E* out) {
   std::string s;

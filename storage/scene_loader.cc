@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/builtin_scenes.h"
+#include "core/scene/builtin_scenes.h"
 #include "storage/scene_loader_parts.h"
 
 namespace wavebake {

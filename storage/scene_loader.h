@@ -6,14 +6,14 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/scene.h"
-#include "core/scene_check.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_check.h"
 #include "storage/scene_files.h"
 
 namespace wavebake {
 
 // spec is one of
-//   builtin:NAME      a scene generated in code (core/builtin_scenes.h)
+//   builtin:NAME      a scene generated in code (core/scene/builtin_scenes.h)
 //   PATH.json         a scene file: meshes + transforms + albedo + camera
 //                     (format in storage/scene_loader_json.cc)
 //   PATH              any mesh file assimp reads (OBJ, PLY, glTF, ...): all of
@@ -24,7 +24,7 @@ namespace wavebake {
 // InvalidArgument and name the file and field. Every file read besides the
 // spec's own goes through `files` (storage/scene_files.h; null: the local
 // user's LocalSceneFiles). The content hash of the result is SceneHash
-// (core/scene_hash.h).
+// (core/scene/scene_hash.h).
 absl::StatusOr<Scene> LoadScene(std::string_view spec, SceneReport* report = nullptr,
                                 const SceneFiles* files = nullptr);
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "storage/scene_files.h"
 
 namespace wavebake {

@@ -7,7 +7,7 @@
 namespace wavebake::store {
 
 // "wavebake/2": `scale` is each column's quantization step and values decode
-// as (q − u)·scale·2^(−s·l) (core/quantizer.h); "/1" divided by 2^(bits−1)−1.
+// as (q − u)·scale·2^(−s·l) (core/columns/quantizer.h); "/1" divided by 2^(bits−1)−1.
 inline constexpr char kFormat[] = "wavebake/2";
 
 // Final arrays.
@@ -23,7 +23,7 @@ inline constexpr char kPosition[] = "samples/position";  // float32 [S, 3]
 inline constexpr char kNormal[] = "samples/normal";      // float32 [S, 3]
 inline constexpr char kAlbedo[] = "samples/albedo";      // float32 [S, 3]
 inline constexpr char kVertex[] = "samples/vertex";      // int32 [S] (mesh layouts)
-// uv layouts (core/uv_atlas.h): per mesh, its texel rectangle x, y, width,
+// uv layouts (core/layouts/uv_atlas.h): per mesh, its texel rectangle x, y, width,
 // height (row 0 at the top) and the UV domain u0, v0, u1, v1 that fills it.
 inline constexpr char kUvRects[] = "samples/uv_rects";      // int32 [meshes, 4]
 inline constexpr char kUvDomains[] = "samples/uv_domains";  // float32 [meshes, 4]
@@ -31,7 +31,7 @@ inline constexpr char kUvDomains[] = "samples/uv_domains";  // float32 [meshes, 
 // Staging (removed by FINALIZE unless --keep-staging).
 inline constexpr char kStaging[] = "staging";
 // float32 [M, W*H] chunked [group_size, tile_cells]: the chunk layout is the
-// transpose; the second axis is tile-major (core/job_plan.h StagingCell).
+// transpose; the second axis is tile-major (core/bake/job_plan.h StagingCell).
 inline constexpr char kStagingTransport[] = "staging/transport";
 // float32 [tiles] chunked [1]: Σ of squared staged values of each tile (the
 // matrix energy is needed by the "matrix" error scope before any group runs).

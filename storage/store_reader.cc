@@ -3,12 +3,12 @@
 #include <span>
 
 #include "absl/strings/str_cat.h"
-#include "core/layout.h"
-#include "core/power_of_two.h"
-#include "core/quantizer.h"
-#include "core/scene_hash.h"
-#include "core/subband.h"
-#include "core/wavelet2d.h"
+#include "core/columns/quantizer.h"
+#include "core/layouts/layout.h"
+#include "core/scene/scene_hash.h"
+#include "core/util/power_of_two.h"
+#include "core/wavelets/subband.h"
+#include "core/wavelets/wavelet2d.h"
 #include "storage/array_range.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
@@ -85,7 +85,7 @@ absl::StatusOr<TransportArrays> OpenTransport(const std::filesystem::path& store
 }
 
 // Dequantizes one column's codes in place of `values` (DESIGN.md §1: the
-// level of each position comes from the column's depth, core/subband.h).
+// level of each position comes from the column's depth, core/wavelets/subband.h).
 absl::Status DecodeColumn(const StoreInfo& info, int column, int depth, float scale,
                           std::span<const uint32_t> positions, std::span<const int16_t> q,
                           std::vector<float>* values) {

@@ -6,10 +6,10 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "core/bake_params.h"
-#include "core/compressed_columns.h"
-#include "core/samples.h"
-#include "core/scene.h"
+#include "core/bake/bake_params.h"
+#include "core/columns/compressed_columns.h"
+#include "core/layouts/samples.h"
+#include "core/scene/scene.h"
 
 namespace wavebake {
 
@@ -33,7 +33,7 @@ absl::StatusOr<SampleSet> ReadSamples(const std::filesystem::path& store);
 // SceneHash of `scene` as the store's bake computed it (the uv layouts also
 // hash their UV channel), to compare with info.scene_hash.
 std::string StoreSceneHash(const StoreInfo& info, const Scene& scene);
-// The whole matrix, dequantized and unscaled (core/quantizer.h, DESIGN.md §1).
+// The whole matrix, dequantized and unscaled (core/columns/quantizer.h, DESIGN.md §1).
 absl::StatusOr<CompressedColumns> ReadTransport(const std::filesystem::path& store);
 
 // One decoded column: its depth and its kept coefficients (transform domain).

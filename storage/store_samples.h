@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "absl/status/status.h"
-#include "core/samples.h"
+#include "core/layouts/samples.h"
 
 namespace wavebake {
 

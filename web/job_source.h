@@ -13,7 +13,7 @@
 
 #include "absl/status/statusor.h"
 #include "coordinator/scheduler_metrics.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "wavebake.pb.h"
 
 namespace wavebake::web {

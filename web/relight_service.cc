@@ -6,11 +6,11 @@
 #include <optional>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/env_map.h"
-#include "runtime/eval.h"
-#include "runtime/lighting.h"
-#include "runtime/row_basis.h"
-#include "runtime/tonemap.h"
+#include "runtime/env/env_map.h"
+#include "runtime/io/tonemap.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/row_basis.h"
 
 namespace wavebake::web {
 namespace {

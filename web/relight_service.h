@@ -4,7 +4,7 @@
 // n most important wavelet lights, drawn as the store's picture
 // (web/store_view.h) — and the same frame relit with every wavelet light,
 // the store's best answer, so the page shows what the n-term approximation
-// costs (the error of runtime/relight_sequence.h).
+// costs (the error of runtime/relight/relight_sequence.h).
 //
 // Opened stores stay in memory (a few, least recently used first out); one
 // frame at a time per store, frames of different stores in parallel.
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "web/probe_catalogue.h"
 #include "web/store_view.h"
 

@@ -5,7 +5,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "runtime/image_io.h"
+#include "runtime/io/image_io.h"
 #include "storage/store_reader.h"
 #include "web/routes.h"
 

@@ -4,8 +4,8 @@
 #include <limits>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/lightmap.h"
-#include "runtime/vertex_raster.h"
+#include "runtime/io/lightmap.h"
+#include "runtime/io/vertex_raster.h"
 
 namespace wavebake::web {
 namespace {
@@ -26,7 +26,7 @@ class GridImageView final : public StoreView {
 };
 
 // A uv store's grid is the lightmap; it is shown as `relight --out x.png`
-// writes it, its charts dilated into their gutters (runtime/lightmap.h).
+// writes it, its charts dilated into their gutters (runtime/io/lightmap.h).
 class LightmapView final : public StoreView {
  public:
   explicit LightmapView(const SampleSet* samples) : samples_(samples) {}

@@ -4,9 +4,9 @@
 //   camera   the grid is the camera's image;
 //   uv       the grid is the lightmap (a texture over the mesh's UV atlas),
 //            shown with its charts dilated into their gutters, as `relight`
-//            writes it (runtime/lightmap.h);
+//            writes it (runtime/io/lightmap.h);
 //   grid, hilbert  the grid holds vertex colours, drawn on the scene's mesh
-//            (runtime/vertex_raster.h) from the scene's camera or a framing one.
+//            (runtime/io/vertex_raster.h) from the scene's camera or a framing one.
 // A layout added later picks its picture in PictureKindOf, the one hook.
 #include <functional>
 #include <memory>
@@ -15,8 +15,8 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
-#include "core/scene.h"
-#include "runtime/store_relight.h"
+#include "core/scene/scene.h"
+#include "runtime/relight/store_relight.h"
 
 namespace wavebake::web {
 

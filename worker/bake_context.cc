@@ -1,8 +1,8 @@
 #include "worker/bake_context.h"
 
-#include "core/bake_params_io.h"
-#include "core/sample_layout.h"
-#include "core/scene_hash.h"
+#include "core/bake/bake_params_io.h"
+#include "core/layouts/sample_layout.h"
+#include "core/scene/scene_hash.h"
 #include "storage/scene_loader.h"
 
 namespace wavebake {

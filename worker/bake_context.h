@@ -10,16 +10,16 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
-#include "core/bake_params.h"
-#include "core/cubemap.h"
-#include "core/jitter_pattern.h"
-#include "core/job_plan.h"
-#include "core/layout.h"
-#include "core/ray_caster.h"
-#include "core/refine_plan.h"
-#include "core/samples.h"
-#include "core/scene.h"
-#include "core/scene_check.h"
+#include "core/bake/bake_params.h"
+#include "core/bake/job_plan.h"
+#include "core/directions/cubemap.h"
+#include "core/directions/jitter_pattern.h"
+#include "core/layouts/layout.h"
+#include "core/layouts/samples.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_check.h"
+#include "core/transport/ray_caster.h"
+#include "core/transport/refine_plan.h"
 #include "storage/scene_files.h"
 
 namespace wavebake {

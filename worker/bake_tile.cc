@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/refined_row.h"
-#include "core/transport_row.h"
-#include "core/zero_quads.h"
+#include "core/columns/zero_quads.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/row_transform.h"

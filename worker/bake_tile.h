@@ -1,6 +1,6 @@
 #pragma once
 // BAKE_TILE, the map half of the bake (DESIGN.md §2): for one spatial tile,
-// trace every sample's row of T (core/transport_row.h), row-transform it
+// trace every sample's row of T (core/transport/transport_row.h), row-transform it
 // (worker/row_transform.h), then transpose it group by group and write one
 // staging chunk per column group, plus the tile's energy.
 #include <cstdint>

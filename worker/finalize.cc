@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/column_coding.h"
-#include "core/quantization_steps.h"
-#include "core/quantizer.h"
-#include "core/subband.h"
-#include "core/wavelet2d.h"
+#include "core/columns/column_coding.h"
+#include "core/columns/quantization_steps.h"
+#include "core/columns/quantizer.h"
+#include "core/wavelets/subband.h"
+#include "core/wavelets/wavelet2d.h"
 #include "storage/array_appender.h"
 #include "storage/atomic_file.h"
 #include "storage/store_layout.h"

@@ -2,7 +2,7 @@
 // FINALIZE (DESIGN.md §2): the groups' coded columns (worker/group_result.h)
 // become the store's CSC arrays, samples/* and the manifest (DESIGN.md §3),
 // then staging is dropped. Quantization happens here because the steps are a
-// matrix-wide choice (core/quantization_steps.h): each group recorded, per
+// matrix-wide choice (core/columns/quantization_steps.h): each group recorded, per
 // column, max_i |v_i/k_i| and the expected dither energy per unit step;
 // FINALIZE picks every column's step Δ_c (stored as `scale`) and quantizes.
 //

@@ -32,7 +32,7 @@ struct GroupColumn {
   double energy = 0;
   double reference_energy = 0;
   double dropped_energy = 0;
-  double max_abs = 0;    // see CodedColumn (core/column_coding.h)
+  double max_abs = 0;    // see CodedColumn (core/columns/column_coding.h)
   double step_unit = 0;  // see CodedColumn
 };
 

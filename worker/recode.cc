@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
-#include "core/parallel_for.h"
+#include "core/bake/bake_params_io.h"
+#include "core/util/parallel_for.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_group.h"
 #include "worker/bake_tile.h"

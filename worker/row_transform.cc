@@ -3,14 +3,14 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/power_of_two.h"
-#include "core/wavelet2d.h"
+#include "core/util/power_of_two.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {
 
 // The row's shape is fixed by the job's BakeParams, so a mismatch is a
-// programming error, not bad input (as in core/transport_row.cc). Returns
+// programming error, not bad input (as in core/transport/transport_row.cc). Returns
 // the number of faces: 6 (cube) or 1 (plane light domain).
 int FacesOrDie(int n, std::span<const float> row) {
   if (IsPowerOfTwo(n)) {

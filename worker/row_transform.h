@@ -6,14 +6,14 @@
 // orthonormal, so a relit value T·L is the same dot product in this basis.
 #include <span>
 
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 
 namespace wavebake {
 
 // row: the M = 6 n² entries of one row (n² for a plane light domain: one
 // face), n a power of two. row_filter: haar
 // (the default) or daub4 (BakeParams::row_filter, checked by
-// ValidateBakeParams); any filter of core/wavelet2d.h works.
+// ValidateBakeParams); any filter of core/wavelets/wavelet2d.h works.
 void RowTransform(WaveletFilter row_filter, int n, std::span<float> row);
 
 // Undoes RowTransform exactly (up to float rounding).

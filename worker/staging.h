@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "absl/status/status.h"
-#include "core/job_plan.h"
+#include "core/bake/job_plan.h"
 #include "nlohmann/json.hpp"
 #include "storage/array_spec.h"
 

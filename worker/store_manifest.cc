@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params_io.h"
 #include "storage/params_json.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
@@ -10,7 +10,7 @@
 namespace wavebake {
 namespace {
 
-// core/quantizer.h, spelled out so that a reader without our code can decode.
+// core/columns/quantizer.h, spelled out so that a reader without our code can decode.
 constexpr char kDither[] =
     "u = DitherAt(seed, column, position): mix(z) = splitmix64 output step (z += "
     "0x9E3779B97F4A7C15; z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9; z = (z ^ (z >> 27)) * "
@@ -27,7 +27,7 @@ constexpr char kRefinedEntry[] =
     "of max(0, n.w) dw if visible (exact, Lambert's polygon formula); traced texels entirely "
     "above the horizon: I_m * sum_k V_k c_k / sum_k c_k; traced texels the horizon crosses: "
     "Omega_m / (K pi) * sum_{c_k > 0} V_k c_k (c_k = n.w_k, w_k the jittered directions)";
-// The uv layout's atlas (core/uv_atlas.h): where each mesh's texels are,
+// The uv layout's atlas (core/layouts/uv_atlas.h): where each mesh's texels are,
 // beside samples/uv_rects and samples/uv_domains.
 nlohmann::json UvManifest(const BakeContext& ctx) {
   const SampleSet& s = ctx.samples;

@@ -4,7 +4,7 @@
 #include <bit>
 #include <cmath>
 
-#include "core/subband.h"
+#include "core/wavelets/subband.h"
 
 namespace wavebake {
 

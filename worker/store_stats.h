@@ -17,8 +17,8 @@ struct ColumnOutcome {
   double reference_energy = 0;     // E_ref of its error scope
   double dropped_energy = 0;       // selection: Σ (c_i·w_i)² dropped
   double quantization_energy = 0;  // achieved: Σ ((ĉ_i − c_i)·w_i)² over kept coefficients
-  int min_bits = 2;                // its own need with max normalization (core/column_coding.h)
-  int bits = 0;                    // what its largest code needs (0: no codes)
+  int min_bits = 2;  // its own need with max normalization (core/columns/column_coding.h)
+  int bits = 0;      // what its largest code needs (0: no codes)
 };
 
 class StoreStats {

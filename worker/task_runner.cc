@@ -43,7 +43,7 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
   });
 }
 
-// Both sides cut the job with core/job_plan.h; a mismatch means they disagree
+// Both sides cut the job with core/bake/job_plan.h; a mismatch means they disagree
 // about the scene or the parameters, and nothing this worker writes would fit.
 absl::Status CheckPlan(const v1::Task& task, const JobPlan& plan) {
   if (task.tiles() == plan.tiles() && task.groups() == plan.groups) return absl::OkStatus();

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/column_coding.h"
+#include "core/columns/column_coding.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/group_result.h"
@@ -21,7 +21,7 @@ absl::Status WrongPlan(const ZarrArray& a, const std::string& what) {
 }
 
 // Opens staging/transport and checks it is the layout of this plan
-// (core/job_plan.h): [M, W*H] float32 chunked [group_size, tile_cells].
+// (core/bake/job_plan.h): [M, W*H] float32 chunked [group_size, tile_cells].
 absl::StatusOr<ZarrArray> OpenStaging(const JobPlan& plan, const std::filesystem::path& store) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTransport));
   if (absl::IsNotFound(a.status()))
@@ -127,7 +127,7 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
 
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
-  std::optional<CellFiller> filler;  // only the uv layout fills (core/layout.h)
+  std::optional<CellFiller> filler;  // only the uv layout fills (core/layouts/layout.h)
   if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
     filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
     params.filler = &*filler;

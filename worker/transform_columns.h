@@ -2,7 +2,7 @@
 // TRANSFORM_COLUMNS, the reduce half of the blocked transpose (DESIGN.md §2):
 // one group of light columns, read from the staging chunk of every tile,
 // assembled into W×H column images, transformed to their depth and selected
-// (core/column_coding.h), and written back to staging as the group's
+// (core/columns/column_coding.h), and written back to staging as the group's
 // GroupResult (worker/group_result.h) for FINALIZE. Free of scheduling: the
 // embedded bake's workers and remote ones call it alike, in any order, any number of
 // times (a retry rewrites the same bytes).
@@ -11,7 +11,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
-#include "core/job_plan.h"
+#include "core/bake/job_plan.h"
 #include "worker/bake_context.h"
 #include "worker/task_signals.h"
 

@@ -1,4 +1,4 @@
-#include "core/affine_propagation.h"
+#include "core/products/affine_propagation.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "core/wavelet2d.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {

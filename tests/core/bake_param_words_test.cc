@@ -1,6 +1,6 @@
-// The bake parameters spelled in words (core/bake_param_words.h): every word
+// The bake parameters spelled in words (core/bake/bake_param_words.h): every word
 // lands in its field, and a bad one is refused naming the field it was for.
-#include "core/bake_param_words.h"
+#include "core/bake/bake_param_words.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 // never above 1; GGX's D integrates to 1 over projected microfacet area and
 // passes Heitz's weak white furnace. The samplers' densities integrate to 1
 // and importance sampling reproduces the numerical albedo.
-#include "core/brdf.h"
+#include "core/products/brdf.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 #include <random>
 #include <string>
 
-#include "core/ggx.h"
+#include "core/products/ggx.h"
 
 namespace wavebake {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/builtin_scenes.h"
+#include "core/scene/builtin_scenes.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/scene_check.h"
+#include "core/scene/scene_check.h"
 #include "tests/core/scene_testing.h"
 
 namespace wavebake {

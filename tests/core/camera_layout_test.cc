@@ -1,4 +1,4 @@
-#include "core/camera_layout.h"
+#include "core/layouts/camera_layout.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

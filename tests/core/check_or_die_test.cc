@@ -1,4 +1,4 @@
-#include "core/check_or_die.h"
+#include "core/util/check_or_die.h"
 
 #include <gtest/gtest.h>
 

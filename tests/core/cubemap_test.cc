@@ -1,7 +1,7 @@
 // The cubemap of light directions (DESIGN.md §1 "Directions") against the
 // OpenGL cube-map table, numerical integration of the solid-angle Jacobian,
 // and the 4π of the sphere.
-#include "core/cubemap.h"
+#include "core/directions/cubemap.h"
 
 #include <gtest/gtest.h>
 

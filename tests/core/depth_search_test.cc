@@ -1,19 +1,19 @@
 // The adaptive depth search against its definition (DESIGN.md §1; 4D paper
-// §4.2): transform to every depth, count exactly with core/nla.h, keep the
+// §4.2): transform to every depth, count exactly with core/columns/nla.h, keep the
 // smallest count (ties: shallower). The search's shortcut — histogram bounds
 // on the count, exact counts only where they decide — must pick the same
 // depth, and the bounds must bracket the exact count.
-#include "core/depth_search.h"
+#include "core/columns/depth_search.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "core/count_bounds.h"
-#include "core/nla.h"
-#include "core/subband.h"
-#include "core/wavelet2d.h"
+#include "core/columns/count_bounds.h"
+#include "core/columns/nla.h"
+#include "core/wavelets/subband.h"
+#include "core/wavelets/wavelet2d.h"
 #include "tests/testing/synthetic_columns.h"
 
 namespace wavebake {

@@ -4,14 +4,14 @@
 // of side 2^(s+1) at (i·2^(s+1), j·2^(s+1)), with sign pattern + − along x
 // (HL), along y (LH) or checkerboard (HH); the depth-d scaling function is
 // 2^−d on a square of side 2^d.
-#include "core/haar2d.h"
+#include "core/wavelets/haar2d.h"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "core/separable2d.h"
-#include "core/wavelet2d.h"
+#include "core/wavelets/separable2d.h"
+#include "core/wavelets/wavelet2d.h"
 #include "tests/core/wavelet_test_util.h"
 
 namespace wavebake {

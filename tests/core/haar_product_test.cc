@@ -3,7 +3,7 @@
 // functions built by inverse-transforming unit vectors, and the tree
 // algorithm's W = P(f·g) against the forward transform of the pixel-wise
 // product f·g, and ⟨V, W⟩ against Σ_m f_m V_m g_m, on N = 8 cubemaps.
-#include "core/haar_product.h"
+#include "core/products/haar_product.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "core/haar_tree.h"
-#include "core/tripling.h"
-#include "core/wavelet2d.h"
+#include "core/products/haar_tree.h"
+#include "core/products/tripling.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {

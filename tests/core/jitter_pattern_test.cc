@@ -1,4 +1,4 @@
-#include "core/jitter_pattern.h"
+#include "core/directions/jitter_pattern.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "core/job_plan.h"
+#include "core/bake/job_plan.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/layout.h"
+#include "core/layouts/layout.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <set>
 
-#include "core/builtin_scenes.h"
-#include "core/layout_hilbert_curve.h"
-#include "core/scene_check.h"
+#include "core/layouts/layout_hilbert_curve.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_check.h"
 #include "tests/core/scene_testing.h"
 
 namespace wavebake {

@@ -1,4 +1,4 @@
-#include "core/light_domain.h"
+#include "core/directions/light_domain.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "absl/strings/match.h"
-#include "core/jitter_pattern.h"
+#include "core/directions/jitter_pattern.h"
 
 namespace wavebake {
 namespace {

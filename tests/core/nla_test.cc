@@ -1,6 +1,6 @@
 // Non-linear approximation against brute-force references: a full sort by
 // (magnitude desc, index asc) and the definition of the budget rule.
-#include "core/nla.h"
+#include "core/columns/nla.h"
 
 #include <gtest/gtest.h>
 
@@ -105,7 +105,7 @@ TEST(SelectForBudgetTest, MatchesBruteForceRule) {
 
 TEST(SelectForBudgetTest, WideDynamicRangeMatchesBruteForceRule) {
   // Magnitudes over 2^0..2^−120: far more binades than the implementation's
-  // coarse bins (core/nla.cc), so the cut can land in the catch-all lowest bin.
+  // coarse bins (core/columns/nla.cc), so the cut can land in the catch-all lowest bin.
   std::mt19937 rng(8);
   std::uniform_real_distribution<float> mant(1.0f, 2.0f);
   std::uniform_int_distribution<int> expo(-120, 0);

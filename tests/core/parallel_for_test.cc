@@ -1,6 +1,6 @@
 // The parallel loops visit every index once, whatever the thread count, and
 // ParallelTasks stops at the first failure and returns it.
-#include "core/parallel_for.h"
+#include "core/util/parallel_for.h"
 
 #include <gtest/gtest.h>
 

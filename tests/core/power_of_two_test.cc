@@ -1,4 +1,4 @@
-#include "core/power_of_two.h"
+#include "core/util/power_of_two.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
-// The step choice of FINALIZE (core/quantization_steps.h) on hand-made
+// The step choice of FINALIZE (core/columns/quantization_steps.h) on hand-made
 // columns: the uniform rule's budget arithmetic and its int16 fallback.
-#include "core/quantization_steps.h"
+#include "core/columns/quantization_steps.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "core/column_coding.h"
-#include "core/quantizer.h"
+#include "core/columns/column_coding.h"
+#include "core/columns/quantizer.h"
 
 namespace wavebake {
 namespace {

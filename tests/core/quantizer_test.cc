@@ -1,7 +1,7 @@
 // Quantizer (DESIGN.md §1 "Scaling and quantization"): error bound for every
 // bit depth, the statistics subtractive dither must have, and a dither stream
 // reproducible from its documented formula.
-#include "core/quantizer.h"
+#include "core/columns/quantizer.h"
 
 #include <gtest/gtest.h>
 
@@ -161,7 +161,7 @@ TEST(QuantizerTest, DeterministicForSeedAndColumn) {
   EXPECT_NE(a.q, other.q);
 }
 
-// The documented formula (core/quantizer.h), written out independently.
+// The documented formula (core/columns/quantizer.h), written out independently.
 uint64_t SplitMix(uint64_t z) {
   z += 0x9E3779B97F4A7C15ull;
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

@@ -1,4 +1,4 @@
-#include "core/ray_caster.h"
+#include "core/transport/ray_caster.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The quadtree geometry of visibility refinement (core/refine_plan.h).
-#include "core/refine_plan.h"
+// The quadtree geometry of visibility refinement (core/transport/refine_plan.h).
+#include "core/transport/refine_plan.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-// Visibility refinement (core/refined_row.h) against brute force
-// (core/transport_row.h) and against closed forms: the white furnace, a disk
+// Visibility refinement (core/transport/refined_row.h) against brute force
+// (core/transport/transport_row.h) and against closed forms: the white furnace, a disk
 // on the normal's axis, brute force's own rays valued the way refinement
 // values a traced texel, and a thin wire that coarse probes miss unless the
 // guards are on. Determinism as for brute force.
-#include "core/refined_row.h"
+#include "core/transport/refined_row.h"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/texel_irradiance.h"
-#include "core/transport_row.h"
+#include "core/directions/texel_irradiance.h"
+#include "core/transport/transport_row.h"
 #include "tests/core/test_shapes.h"
 
 namespace wavebake {

@@ -1,4 +1,4 @@
-#include "core/scene_check.h"
+#include "core/scene/scene_check.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
-#include "core/scene_hash.h"
+#include "core/scene/scene_hash.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "core/builtin_scenes.h"
+#include "core/scene/builtin_scenes.h"
 
 namespace wavebake {
 namespace {

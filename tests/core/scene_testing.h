@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "core/samples.h"
-#include "core/scene.h"
+#include "core/layouts/samples.h"
+#include "core/scene/scene.h"
 
 namespace wavebake::testing_util {
 

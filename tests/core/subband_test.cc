@@ -1,7 +1,7 @@
 // Subband bookkeeping: SubbandAt against counts and against where the
 // transform actually puts each kind of basis function; synthesis norms
 // against independent impulse inverses; RowLevel against the Haar layout.
-#include "core/subband.h"
+#include "core/wavelets/subband.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/wavelet2d.h"
+#include "core/wavelets/wavelet2d.h"
 #include "tests/core/wavelet_test_util.h"
 
 namespace wavebake {
@@ -133,7 +133,7 @@ TEST(SynthesisNormsTest, BiorthogonalNormsMatchImpulsesAtOtherInteriorCoefficien
 }
 
 TEST(SynthesisNormsTest, BiorthogonalNormsAreCloseToOneInTheInterior) {
-  // Documented tolerance (core/subband.h): subbands at least 8 wide, i.e. the
+  // Documented tolerance (core/wavelets/subband.h): subbands at least 8 wide, i.e. the
   // basis function is not folded by the symmetric extension.
   const int n = 128;
   for (int d = 1; d <= 4; ++d) {

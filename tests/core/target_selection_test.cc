@@ -1,4 +1,4 @@
-#include "core/target_selection.h"
+#include "core/products/target_selection.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <set>
 #include <vector>
 
-#include "core/haar_affine.h"
-#include "core/wavelet2d.h"
+#include "core/products/haar_affine.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {

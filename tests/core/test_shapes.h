@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/ray_caster.h"
-#include "core/scene.h"
-#include "core/vec3.h"
+#include "core/scene/scene.h"
+#include "core/transport/ray_caster.h"
+#include "core/util/vec3.h"
 
 namespace wavebake::test_shapes {
 

@@ -1,4 +1,4 @@
-#include "core/texel_irradiance.h"
+#include "core/directions/texel_irradiance.h"
 
 #include <gtest/gtest.h>
 

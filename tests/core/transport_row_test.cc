@@ -1,4 +1,4 @@
-#include "core/transport_row.h"
+#include "core/transport/transport_row.h"
 
 #include <gtest/gtest.h>
 

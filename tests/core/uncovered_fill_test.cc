@@ -1,15 +1,15 @@
-// Fills of uncovered grid cells (core/uncovered_fill.h), checked against
+// Fills of uncovered grid cells (core/columns/uncovered_fill.h), checked against
 // what each fill promises: covered cells untouched, Haar details of
 // uncovered blocks exactly zero (push-pull), copies of a nearest covered
 // cell (dilation), and free coefficients that change no covered cell.
-#include "core/uncovered_fill.h"
+#include "core/columns/uncovered_fill.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "core/wavelet2d.h"
+#include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
 namespace {

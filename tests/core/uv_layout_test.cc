@@ -1,4 +1,4 @@
-// The uv layout (core/layout.h UvLayout, core/uv_atlas.h): which texels a UV
+// The uv layout (core/layouts/layout.h UvLayout, core/layouts/uv_atlas.h): which texels a UV
 // atlas covers, where their samples lie, and the errors of atlases that are
 // no lightmap. Expected texels and positions come from the geometry of the
 // test meshes, not from the rasterizer.
@@ -7,9 +7,9 @@
 
 #include <set>
 
-#include "core/layout.h"
-#include "core/scene_check.h"
-#include "core/uv_atlas.h"
+#include "core/layouts/layout.h"
+#include "core/layouts/uv_atlas.h"
+#include "core/scene/scene_check.h"
 #include "tests/core/test_shapes.h"
 
 namespace wavebake {

@@ -1,7 +1,7 @@
 // 1D steps: orthogonality of the Haar and periodic Daubechies-4 analysis
 // matrices, vanishing moments of the lifting filters, and the √2 gain
-// normalization shared by all filters (core/wavelet1d.h).
-#include "core/wavelet1d.h"
+// normalization shared by all filters (core/wavelets/wavelet1d.h).
+#include "core/wavelets/wavelet1d.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Perfect reconstruction, orthonormality and the step contract of every 2D
 // filter (DESIGN.md §1 "Row transform", "Column transform"; 4D paper Eq. 5).
-#include "core/wavelet2d.h"
+#include "core/wavelets/wavelet2d.h"
 
 #include <gtest/gtest.h>
 
@@ -100,7 +100,7 @@ TEST_P(FilterTest, StepTouchesOnlyItsBlock) {
 }
 
 TEST_P(FilterTest, ConstantImageHasOnlyScalingCoefficients) {
-  // DC gain √2 per 1D step (core/wavelet1d.h) and a highpass that kills
+  // DC gain √2 per 1D step (core/wavelets/wavelet1d.h) and a highpass that kills
   // constants: after d 2D steps every LL coefficient is c·2^d, all else 0.
   const WaveletFilter f = GetParam();
   for (const Shape s : {Shape{16, 16}, Shape{32, 8}, Shape{2, 2}}) {

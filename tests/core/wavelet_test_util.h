@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 
 namespace wavebake::testing {
 

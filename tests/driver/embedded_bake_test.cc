@@ -16,8 +16,8 @@
 #include <numeric>
 #include <random>
 
-#include "core/bake_params_io.h"
-#include "core/wavelet2d.h"
+#include "core/bake/bake_params_io.h"
+#include "core/wavelets/wavelet2d.h"
 #include "storage/store_reader.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"

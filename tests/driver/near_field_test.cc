@@ -3,7 +3,7 @@
 // form factor of a rectangle, against its own brute force, against the
 // Monte-Carlo reference; lights behind the plane, several lights, textures.
 // In tests/driver because the driver links both the bake and the runtime.
-#include "runtime/near_field.h"
+#include "runtime/near_field/near_field.h"
 
 #include <gtest/gtest.h>
 
@@ -16,11 +16,11 @@
 #include <string>
 
 #include "driver/embedded_bake.h"
-#include "runtime/area_reference.h"
-#include "runtime/area_relight.h"
-#include "runtime/eval.h"
-#include "runtime/near_field_brute.h"
-#include "runtime/store_relight.h"
+#include "runtime/near_field/area_relight.h"
+#include "runtime/near_field/near_field_brute.h"
+#include "runtime/reference/area_reference.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/json_file.h"
 #include "tests/testing/scratch_dir.h"
 

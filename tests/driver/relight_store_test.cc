@@ -12,13 +12,13 @@
 #include <fstream>
 #include <string>
 
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 #include "driver/embedded_bake.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/relight_sequence.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/reference/dense_trace.h"
+#include "runtime/reference/eval.h"
+#include "runtime/relight/relight_sequence.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/scene_loader.h"
 #include "tests/testing/scratch_dir.h"
 
@@ -73,7 +73,7 @@ TEST(RelightStore, WhiteFurnace) {
 }
 
 // The store's relighting against T·L with T retraced exactly as the bake did
-// (runtime/dense_trace.h, brute force with the same jitter seed): with every
+// (runtime/reference/dense_trace.h, brute force with the same jitter seed): with every
 // light and 16-bit quantization only the column compression (target 1 %) is
 // left; with fewer lights the error grows.
 TEST(RelightStore, CompressedMatchesDenseRetrace) {

@@ -1,5 +1,5 @@
 // The dense staged T relit (driver/staged_relight.h) is the dense retrace of
-// runtime/dense_trace.h — another implementation, in the pixel basis — when
+// runtime/reference/dense_trace.h — another implementation, in the pixel basis — when
 // the bake traced by brute force; with refinement it differs only by what
 // refinement changes (the exact integral), a fraction of a percent.
 #include "driver/staged_relight.h"
@@ -8,11 +8,11 @@
 
 #include <cmath>
 
-#include "core/cubemap.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_map.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
+#include "core/directions/cubemap.h"
+#include "runtime/env/env_map.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/reference/dense_trace.h"
+#include "runtime/reference/eval.h"
 #include "tests/testing/scratch_dir.h"
 #include "worker/recode.h"
 

@@ -10,10 +10,10 @@
 #include <memory>
 
 #include "driver/embedded_bake.h"
-#include "runtime/env_map.h"
-#include "runtime/lightmap.h"
-#include "runtime/stb_codecs.h"
-#include "runtime/store_relight.h"
+#include "runtime/env/env_map.h"
+#include "runtime/io/lightmap.h"
+#include "runtime/io/stb_codecs.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/atomic_file.h"
 #include "tests/testing/scratch_dir.h"
 

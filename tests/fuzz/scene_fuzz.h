@@ -6,7 +6,7 @@
 // out of its upload. A loaded scene must be what CheckAndRepairScene promises.
 #include <cmath>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "storage/scene_files.h"
 #include "storage/scene_loader.h"
 #include "tests/fuzz/fuzz_util.h"

@@ -1,4 +1,4 @@
-#include "runtime/area_light.h"
+#include "runtime/near_field/area_light.h"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/wavelet2d.h"
-#include "runtime/light_canvas.h"
+#include "core/wavelets/wavelet2d.h"
+#include "runtime/near_field/light_canvas.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake {

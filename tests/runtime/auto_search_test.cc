@@ -1,8 +1,8 @@
-// The policy of `bake --auto` (runtime/auto_search.h) against a synthetic
+// The policy of `bake --auto` (runtime/auto/auto_search.h) against a synthetic
 // error model with the shape the real pipeline has: e_disc(N) = a/N (the
 // cubemap's discretization error falls with N), e_comp = k·target (the
 // compression error follows the column target), bytes ∝ N²/target.
-#include "runtime/auto_search.h"
+#include "runtime/auto/auto_search.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <string>
 
-#include "runtime/env_map.h"
-#include "runtime/incremental.h"
+#include "runtime/env/env_map.h"
+#include "runtime/relight/incremental.h"
 #include "tests/runtime/relight_fixtures.h"
 
 namespace wavebake {

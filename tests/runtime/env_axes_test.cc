@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "env_test_util.h"
-#include "runtime/env_resample.h"
+#include "runtime/env/env_resample.h"
 
 namespace wavebake {
 namespace {

@@ -1,6 +1,6 @@
 // builtin:sky against the closed-form integral documented in env_builtin.h,
 // and its sun where the convention puts it.
-#include "runtime/env_builtin.h"
+#include "runtime/env/env_builtin.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "env_test_util.h"
-#include "runtime/env_resample.h"
+#include "runtime/env/env_resample.h"
 
 namespace wavebake {
 namespace {

@@ -1,11 +1,11 @@
 // Vertical-cross files: faces where env_cross.h draws them, energy kept.
-#include "runtime/env_cross.h"
+#include "runtime/env/env_cross.h"
 
 #include <gtest/gtest.h>
 
 #include "env_test_util.h"
-#include "runtime/env_resample.h"
-#include "runtime/image_io.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/io/image_io.h"
 
 namespace wavebake {
 namespace {

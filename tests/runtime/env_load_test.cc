@@ -7,9 +7,9 @@
 
 #include "env_test_util.h"
 #include "gmock/gmock.h"
-#include "runtime/image_io.h"
-#include "runtime/lighting.h"
-#include "runtime/stb_codecs.h"
+#include "runtime/io/image_io.h"
+#include "runtime/io/stb_codecs.h"
+#include "runtime/relight/lighting.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {

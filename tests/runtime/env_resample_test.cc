@@ -1,6 +1,6 @@
 // ResampleToCubemap against integrals over the sphere and the axis
-// conventions of latlong.h and core/cubemap.h.
-#include "runtime/env_resample.h"
+// conventions of latlong.h and core/directions/cubemap.h.
+#include "runtime/env/env_resample.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "env_test_util.h"
-#include "runtime/env_resample.h"
+#include "runtime/env/env_resample.h"
 
 namespace wavebake {
 namespace {

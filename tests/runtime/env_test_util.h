@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/cubemap.h"
-#include "runtime/env_map.h"
+#include "core/directions/cubemap.h"
+#include "runtime/env/env_map.h"
 
 namespace wavebake::testing {
 

@@ -1,8 +1,8 @@
-// CheckExrHeaders (runtime/exr_preflight.h): what OpenEXR would allocate for
+// CheckExrHeaders (runtime/io/exr_preflight.h): what OpenEXR would allocate for
 // a header is refused unless the file holds it — the fuzzer's 1.7 GB
 // attribute, a preview bomb, a data window no file this size can fill —
 // while every file OpenEXR writes passes.
-#include "runtime/exr_preflight.h"
+#include "runtime/io/exr_preflight.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "env_test_util.h"
-#include "runtime/image_io.h"
+#include "runtime/io/image_io.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {

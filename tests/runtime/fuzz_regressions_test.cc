@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "absl/strings/match.h"
-#include "runtime/image_io.h"
-#include "runtime/stb_codecs.h"
+#include "runtime/io/image_io.h"
+#include "runtime/io/stb_codecs.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {

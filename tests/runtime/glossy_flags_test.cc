@@ -1,10 +1,10 @@
 // The glossy command-line values: --view and --brdf-sequence
-// (runtime/glossy_store.h, runtime/material_sequence.h).
+// (runtime/glossy/glossy_store.h, runtime/glossy/material_sequence.h).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "runtime/glossy_store.h"
-#include "runtime/material_sequence.h"
+#include "runtime/glossy/glossy_store.h"
+#include "runtime/glossy/material_sequence.h"
 
 namespace wavebake {
 namespace {

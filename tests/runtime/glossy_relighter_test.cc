@@ -1,4 +1,4 @@
-// The glossy relighter (runtime/glossy_relighter.h) end to end, on rows
+// The glossy relighter (runtime/glossy/glossy_relighter.h) end to end, on rows
 // traced in-test by the bake's own kernels (tests/runtime/relight_fixtures.h)
 // and kept lossless, so what is checked is the triple product itself:
 //  * the decoded per-sample rows are the rows the columns came from;
@@ -6,18 +6,18 @@
 //  * at every term it is the dense pixel-domain product Σ L V ρ;
 //  * white furnace: unoccluded, L ≡ 1, it is albedo × the BRDF's directional
 //    albedo, integrated numerically from Brdf::Eval alone.
-#include "runtime/glossy_relighter.h"
+#include "runtime/glossy/glossy_relighter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "core/brdf.h"
-#include "runtime/brdf_slices.h"
-#include "runtime/lighting.h"
-#include "runtime/relighter.h"
-#include "runtime/sample_rows.h"
+#include "core/products/brdf.h"
+#include "runtime/glossy/brdf_slices.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/relighter.h"
+#include "runtime/relight/sample_rows.h"
 #include "tests/runtime/relight_fixtures.h"
 
 namespace wavebake {

@@ -1,6 +1,6 @@
 // EXR, PNG and PLY writers: exact round trips, sizes, the sRGB encoding and
 // atomic replacement.
-#include "runtime/image_io.h"
+#include "runtime/io/image_io.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 
 #include "env_test_util.h"
 #include "gmock/gmock.h"
-#include "runtime/stb_codecs.h"
+#include "runtime/io/stb_codecs.h"
 #include "storage/atomic_file.h"
 
 namespace wavebake {

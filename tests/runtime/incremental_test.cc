@@ -1,8 +1,8 @@
-// Per-band incremental relighting (runtime/incremental.h, Overbeck ch. 6):
+// Per-band incremental relighting (runtime/relight/incremental.h, Overbeck ch. 6):
 // static lighting converges to the full-lighting image in a bounded number of
 // frames; under rotation it stays close to (or beats) the non-incremental
 // approximation with the same wavelet budget.
-#include "runtime/incremental.h"
+#include "runtime/relight/incremental.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// The lighting side (runtime/row_basis.h, runtime/lighting.h): the row
+// The lighting side (runtime/relight/row_basis.h, runtime/relight/lighting.h): the row
 // transform is the bake's (orthonormal, so T·L is basis independent), the
 // support solid angles tile the sphere, and the selection is the
 // area-weighted top n.
-#include "runtime/lighting.h"
+#include "runtime/relight/lighting.h"
 
 #include <gtest/gtest.h>
 
@@ -10,11 +10,11 @@
 #include <numbers>
 #include <random>
 
-#include "core/cubemap.h"
-#include "core/wavelet2d.h"
-#include "runtime/env_map.h"
-#include "runtime/env_resample.h"
-#include "runtime/row_basis.h"
+#include "core/directions/cubemap.h"
+#include "core/wavelets/wavelet2d.h"
+#include "runtime/env/env_map.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/relight/row_basis.h"
 #include "tests/runtime/env_test_util.h"
 
 namespace wavebake {

@@ -1,7 +1,7 @@
-// The Monte-Carlo reference (runtime/reference.h) against closed forms and
+// The Monte-Carlo reference (runtime/reference/reference.h) against closed forms and
 // against a brute-force uniform-sphere estimate that shares none of its
 // sampling code.
-#include "runtime/reference.h"
+#include "runtime/reference/reference.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <numbers>
 #include <random>
 
-#include "core/brdf.h"
-#include "core/ray_caster.h"
-#include "runtime/env_map.h"
-#include "runtime/latlong.h"
+#include "core/products/brdf.h"
+#include "core/transport/ray_caster.h"
+#include "runtime/env/env_map.h"
+#include "runtime/env/latlong.h"
 #include "storage/scene_loader.h"
 
 namespace wavebake {

@@ -2,7 +2,7 @@
 // Fixtures of the relighting tests, built without the code under test:
 // random compressed columns, random sample grids, and a "mini bake" that
 // traces a real transport matrix of a built-in scene with the bake's own
-// row kernel (core/transport_row.h) and compresses its columns in-test
+// row kernel (core/transport/transport_row.h) and compresses its columns in-test
 // (adaptive depth + energy budget, DESIGN.md §1), so the runtime can be
 // checked against the dense matrix it came from.
 #include <algorithm>
@@ -15,18 +15,18 @@
 #include <tuple>
 #include <vector>
 
-#include "core/bake_params.h"
-#include "core/compressed_columns.h"
-#include "core/cubemap.h"
-#include "core/jitter_pattern.h"
-#include "core/layout.h"
-#include "core/nla.h"
-#include "core/ray_caster.h"
-#include "core/sample_layout.h"
-#include "core/samples.h"
-#include "core/subband.h"
-#include "core/transport_row.h"
-#include "core/wavelet2d.h"
+#include "core/bake/bake_params.h"
+#include "core/columns/compressed_columns.h"
+#include "core/columns/nla.h"
+#include "core/directions/cubemap.h"
+#include "core/directions/jitter_pattern.h"
+#include "core/layouts/layout.h"
+#include "core/layouts/sample_layout.h"
+#include "core/layouts/samples.h"
+#include "core/transport/ray_caster.h"
+#include "core/transport/transport_row.h"
+#include "core/wavelets/subband.h"
+#include "core/wavelets/wavelet2d.h"
 #include "storage/scene_loader.h"
 
 namespace wavebake::testing {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "runtime/lighting.h"
-#include "runtime/relight_oracles.h"
-#include "runtime/relighter.h"
+#include "runtime/reference/relight_oracles.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/relighter.h"
 #include "tests/runtime/relight_fixtures.h"
 
 namespace wavebake {

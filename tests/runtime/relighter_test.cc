@@ -1,7 +1,7 @@
-// Eq. 8 relighting (runtime/relighter.h) against its oracles: Eq. 3 (every
+// Eq. 8 relighting (runtime/relight/relighter.h) against its oracles: Eq. 3 (every
 // column inverse-transformed on its own), the dense product, and exact
 // reconstruction of known pixel-domain columns.
-#include "runtime/relighter.h"
+#include "runtime/relight/relighter.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <new>
 #include <random>
 
-#include "core/wavelet2d.h"
-#include "runtime/relight_oracles.h"
+#include "core/wavelets/wavelet2d.h"
+#include "runtime/reference/relight_oracles.h"
 #include "tests/runtime/relight_fixtures.h"
 
 namespace wavebake {

@@ -1,15 +1,15 @@
 // The pixel/texel overlap matrix against closed forms: its sums are the
-// exact solid angles of core/cubemap.h and latlong.h, and it averages a
+// exact solid angles of core/directions/cubemap.h and latlong.h, and it averages a
 // linear field as Lambert's vector-irradiance formula says it must.
-#include "runtime/sphere_overlap.h"
+#include "runtime/env/sphere_overlap.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "runtime/env_resample.h"
-#include "runtime/latlong.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/env/latlong.h"
 
 namespace wavebake {
 namespace {

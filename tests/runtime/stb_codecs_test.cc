@@ -1,8 +1,8 @@
-// The private stb_image (runtime/stb_codecs.h): round trips, and every
+// The private stb_image (runtime/io/stb_codecs.h): round trips, and every
 // truncation of a Radiance or PNG file is an error naming the file — the
 // copy the program used to reach (libdraco's) looped forever on them. The
 // time limit of these hangs is in tests/scripts/corrupt_inputs.sh.
-#include "runtime/stb_codecs.h"
+#include "runtime/io/stb_codecs.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -2,24 +2,24 @@
 // bright sun. T's columns are cube texels; the bake traces each texel's light along K jittered
 // directions inside it (DESIGN.md §1), so at N = 8 (texels of ~11°) the 1.5° sun of builtin:sky is
 // replaced by K point lights spread over a texel: its hard shadow becomes several displaced copies.
-// The dense T (no compression, no lighting approximation: runtime/dense_trace.h) is compared with
-// the independent Monte-Carlo reference (runtime/reference.h), so what is measured is the
-// discretization of T alone.
+// The dense T (no compression, no lighting approximation: runtime/reference/dense_trace.h) is
+// compared with the independent Monte-Carlo reference (runtime/reference/reference.h), so what is
+// measured is the discretization of T alone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "core/cubemap.h"
-#include "core/layout.h"
-#include "core/ray_caster.h"
-#include "core/sample_layout.h"
-#include "runtime/dense_trace.h"
-#include "runtime/env_builtin.h"
-#include "runtime/env_resample.h"
-#include "runtime/eval.h"
-#include "runtime/reference.h"
+#include "core/directions/cubemap.h"
+#include "core/layouts/layout.h"
+#include "core/layouts/sample_layout.h"
+#include "core/transport/ray_caster.h"
+#include "runtime/env/env_builtin.h"
+#include "runtime/env/env_resample.h"
+#include "runtime/reference/dense_trace.h"
+#include "runtime/reference/eval.h"
+#include "runtime/reference/reference.h"
 #include "storage/scene_loader.h"
 
 namespace wavebake {

@@ -1,9 +1,9 @@
-// The picture of per-vertex values (runtime/vertex_raster.h): perspective-
+// The picture of per-vertex values (runtime/io/vertex_raster.h): perspective-
 // correct interpolation reproduces any colour that is an affine function of
 // the world position exactly at every covered pixel — checked against the
 // point each pixel's ray hits, traced here independently — the nearest
 // surface wins, and pixels without a triangle are NaN.
-#include "runtime/vertex_raster.h"
+#include "runtime/io/vertex_raster.h"
 
 #include <gtest/gtest.h>
 
@@ -27,7 +27,7 @@ Mesh Square(float half, float z0) {
 Camera TestCamera() { return {.eye = {0.7f, 0.4f, 5}, .target = {0, 0, 0}, .fov_y_degrees = 40}; }
 
 // Where pixel (px, py)'s centre ray meets the plane z = z0, from the same
-// pinhole definition as the camera layout (core/camera_layout.cc).
+// pinhole definition as the camera layout (core/layouts/camera_layout.cc).
 Vec3 HitOfPixel(const Camera& cam, int px, int py, int w, int h, float z0) {
   const Vec3 f = Normalize(cam.target - cam.eye);
   const Vec3 r = Normalize(Cross(cam.target - cam.eye, cam.up));

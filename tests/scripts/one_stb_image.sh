@@ -2,7 +2,7 @@
 # One stb_image in the process, the project's own: libdraco (pulled in by
 # assimp) exports a copy of every stbi_* function, and a call by those public
 # names was bound to it at run time: the truncated-.hdr hang of
-# corrupt_inputs.sh was libdraco's stbi_loadf. runtime/stb_codecs.cc compiles
+# corrupt_inputs.sh was libdraco's stbi_loadf. runtime/io/stb_codecs.cc compiles
 # Debian's header with internal linkage, so the binary must leave no stbi_*
 # symbol for the dynamic linker to bind, to libdraco or anything else.
 set -euo pipefail

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/layout.h"
-#include "core/scene_camera.h"
-#include "core/scene_hash.h"
+#include "core/layouts/layout.h"
+#include "core/scene/scene_camera.h"
+#include "core/scene/scene_hash.h"
 #include "tests/core/scene_testing.h"
 
 namespace wavebake {

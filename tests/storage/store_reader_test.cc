@@ -9,7 +9,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/quantizer.h"
+#include "core/columns/quantizer.h"
 #include "storage/params_json.h"
 #include "storage/store_check.h"
 #include "storage/store_layout.h"

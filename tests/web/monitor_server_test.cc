@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "driver/embedded_bake.h"
-#include "runtime/tonemap.h"
+#include "runtime/io/tonemap.h"
 #include "storage/store_reader.h"
 #include "tests/testing/scratch_dir.h"
 #include "web/coordinator_source.h"

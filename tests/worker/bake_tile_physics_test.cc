@@ -8,9 +8,9 @@
 #include <numeric>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/refined_row.h"
-#include "core/transport_row.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/bake_tile.h"
 #include "worker/row_transform.h"
@@ -90,7 +90,7 @@ TEST(BakeTilePhysicsTest, WhiteFurnaceFromStagedRows) {
 }
 
 // An opaque disk of radius r at height h over a ground point blocks the
-// cosine-weighted fraction r²/(r²+h²) of its hemisphere (core/builtin_scenes.h),
+// cosine-weighted fraction r²/(r²+h²) of its hemisphere (core/scene/builtin_scenes.h),
 // so Σ_m T = 1 − r²/(r²+h²) for the sample of ground vertex (32, 32). Only the
 // tile holding that vertex is baked. Measured (seed 1): +0.16 % off at N=32,
 // +0.37 % at N=16; N=32 keeps a wide margin to the 1 % bound for 0.5 s.

@@ -13,8 +13,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/refined_row.h"
-#include "core/transport_row.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
 #include "storage/store_layout.h"
 #include "tests/worker/staging_testing.h"
 #include "worker/staging.h"

@@ -8,7 +8,7 @@
 //     transform smears isolated values over every scale (4D paper §4.4). The
 //     adaptive mode, trying every depth, never keeps more than either.
 //   * Too few bits: the quantization error follows the subtractive-dither law
-//     Σ n_c (scale_c/Q_b)²/12 (core/quantizer.h) and so grows ~2× per bit
+//     Σ n_c (scale_c/Q_b)²/12 (core/columns/quantizer.h) and so grows ~2× per bit
 //     dropped, past the target well before 4 bits; --bits auto stays within
 //     the half target it promises (DESIGN.md §1).
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "core/bake_params.h"
-#include "core/subband.h"
+#include "core/bake/bake_params.h"
+#include "core/wavelets/subband.h"
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "tests/worker/column_test_support.h"
@@ -124,7 +124,7 @@ const StagedJob& HilbertBunny() {
 
 int64_t Kept(const CompressedColumns& c, int m) { return c.indptr[m + 1] - c.indptr[m]; }
 
-// Row-transform level (core/subband.h RowLevel) of light column m.
+// Row-transform level (core/wavelets/subband.h RowLevel) of light column m.
 int RowLevelOf(int m, int n) {
   const int texel = m % (n * n);
   return RowLevel(texel % n, texel / n);

@@ -16,8 +16,8 @@
 #include <numeric>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/transport_row.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/transport/transport_row.h"
 #include "tests/worker/column_test_support.h"
 #include "worker/bake_context.h"
 
@@ -44,7 +44,7 @@ double RowSum(const BakeContext& ctx, Vec3 position, Vec3 normal, float epsilon,
 }
 
 // Σ_m T at height y under the disk's centre: it blocks the cosine-weighted
-// fraction r²/(r² + (h − y)²) of the upper hemisphere (core/builtin_scenes.h).
+// fraction r²/(r² + (h − y)²) of the upper hemisphere (core/scene/builtin_scenes.h).
 double UnderDisk(double y) {
   const double r2 = builtin::kDiskRadius * builtin::kDiskRadius;
   const double gap = builtin::kDiskHeight - y;

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/column_coding.h"
-#include "core/quantizer.h"
-#include "core/subband.h"
-#include "core/wavelet2d.h"
+#include "core/columns/column_coding.h"
+#include "core/columns/quantizer.h"
+#include "core/wavelets/subband.h"
+#include "core/wavelets/wavelet2d.h"
 #include "storage/store_layout.h"
 #include "storage/store_reader.h"
 #include "storage/zarr_array.h"
@@ -93,7 +93,7 @@ std::vector<float> ReadScales(const std::filesystem::path& store) {
 }
 
 // Haar is orthonormal: the image error² is the dropped energy plus the
-// coefficient errors², each at most QuantizationBound (core/quantizer.h).
+// coefficient errors², each at most QuantizationBound (core/columns/quantizer.h).
 void ExpectWithinTargetPlusQuantization(const BakeParams& p) {
   auto b = Bake(p);
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(b->store);

@@ -6,7 +6,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/job_plan.h"
+#include "core/bake/job_plan.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "tests/worker/staging_testing.h"

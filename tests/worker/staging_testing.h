@@ -2,7 +2,7 @@
 // Helpers for the BAKE_TILE tests: a scratch store directory, a context, and
 // reading the staging arrays back through the Zarr layer (an independent
 // reader of what BakeTile wrote: chunk (g, t) as the layout of
-// storage/store_layout.h and core/job_plan.h defines it).
+// storage/store_layout.h and core/bake/job_plan.h defines it).
 #include <gtest/gtest.h>
 
 #include <cstdint>

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params_io.h"
 #include "storage/store_reader.h"
 #include "tests/worker/column_test_support.h"
 #include "worker/finalize.h"

@@ -1,4 +1,4 @@
-// OpenEXR bytes through DecodeExr (runtime/image_io.h) and the checks
+// OpenEXR bytes through DecodeExr (runtime/io/image_io.h) and the checks
 // LoadEnvMap applies after it: no crash, no endless loop; errors name the file.
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -9,7 +9,7 @@
 
 #include <cstring>
 
-#include "runtime/image_io.h"
+#include "runtime/io/image_io.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

@@ -1,9 +1,9 @@
-// Radiance .hdr bytes through the private stb_image (runtime/stb_codecs.h):
+// Radiance .hdr bytes through the private stb_image (runtime/io/stb_codecs.h):
 // no crash, no endless loop (libFuzzer's -timeout), and a decoded image has
 // the size it says.
 #include <cmath>
 
-#include "runtime/stb_codecs.h"
+#include "runtime/io/stb_codecs.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

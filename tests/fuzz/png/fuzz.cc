@@ -1,6 +1,6 @@
-// PNG bytes through the private stb_image (runtime/stb_codecs.h): no crash,
+// PNG bytes through the private stb_image (runtime/io/stb_codecs.h): no crash,
 // no endless loop, and a decoded image has the size it says.
-#include "runtime/stb_codecs.h"
+#include "runtime/io/stb_codecs.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

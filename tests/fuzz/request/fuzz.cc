@@ -6,7 +6,7 @@
 // the same text, and every error is INVALID_ARGUMENT naming its field.
 #include "coordinator/job_service.h"
 #include "coordinator/lease_id.h"
-#include "core/bake_params_io.h"
+#include "core/bake/bake_params_io.h"
 #include "proto/bake_request.h"
 #include "storage/params_json.h"
 #include "tests/fuzz/fuzz_util.h"

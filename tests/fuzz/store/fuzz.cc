@@ -8,7 +8,7 @@
 #include <iterator>
 #include <map>
 
-#include "core/bake_params.h"
+#include "core/bake/bake_params.h"
 #include "storage/params_json.h"
 #include "storage/store_check.h"
 #include "storage/store_layout.h"
