@@ -3,8 +3,8 @@
 #include <span>
 
 #include "absl/strings/str_cat.h"
-#include "runtime/sample_rows.h"
-#include "runtime/store_relight.h"
+#include "runtime/relight/sample_rows.h"
+#include "runtime/relight/store_relight.h"
 #include "storage/atomic_file.h"
 #include "storage/store_reader.h"
 

@@ -1,13 +1,13 @@
 #pragma once
 // `wavebake export STORE --format wavelet-tree --out DIR` (and the viewer's
 // in-memory copy): a finished diffuse store's rows as Boulton's wavelet-tree
-// textures (runtime/wavelet_tree.h), written as DIR/header.json plus the raw
+// textures (runtime/gpu/wavelet_tree.h), written as DIR/header.json plus the raw
 // little-endian arrays it names.
 #include <filesystem>
 
 #include "absl/status/statusor.h"
 #include "nlohmann/json.hpp"
-#include "runtime/wavelet_tree.h"
+#include "runtime/gpu/wavelet_tree.h"
 
 namespace wavebake::driver {
 

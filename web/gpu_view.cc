@@ -12,11 +12,11 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "driver/tree_export.h"
-#include "runtime/env_map.h"
-#include "runtime/env_trees.h"
-#include "runtime/lighting.h"
-#include "runtime/row_basis.h"
-#include "runtime/wavelet_tree_reader.h"
+#include "runtime/env/env_map.h"
+#include "runtime/gpu/env_trees.h"
+#include "runtime/gpu/wavelet_tree_reader.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/row_basis.h"
 #include "web/pages.h"
 
 namespace wavebake::web {

@@ -13,7 +13,7 @@
 //   /api/view/env?store=I&probe=&rotate=&terms=             environment trees
 //   /api/view/oracle?store=I&probe=&rotate=&terms=          the CPU decoder's frame
 //
-// The oracle (runtime/wavelet_tree_reader.h, sharing no code with the
+// The oracle (runtime/gpu/wavelet_tree_reader.h, sharing no code with the
 // shader or the exporter's walk) relights the same exported bytes under the
 // same lights: float32 [H·W·3] frame then [H·W·3] Σ|terms| (the size of the
 // sum, for float error bounds), row 0 at the top, NaN where masked.
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "runtime/wavelet_tree.h"
+#include "runtime/gpu/wavelet_tree.h"
 #include "web/probe_catalogue.h"
 
 namespace httplib {

@@ -1,9 +1,9 @@
-// The wavelet-tree export (runtime/wavelet_tree.h) against its independent
-// reader (runtime/wavelet_tree_reader.h), and both against the store's rows
+// The wavelet-tree export (runtime/gpu/wavelet_tree.h) against its independent
+// reader (runtime/gpu/wavelet_tree_reader.h), and both against the store's rows
 // truncated by a third, brute-force reading of Boulton §4.4's rule written
 // here: perfect reconstruction at cut-off 0, relighting within the
 // quantization bound at a real cut-off, hostile headers refused by name.
-#include "runtime/wavelet_tree.h"
+#include "runtime/gpu/wavelet_tree.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <random>
 
 #include "relight_fixtures.h"
-#include "runtime/sample_rows.h"
-#include "runtime/wavelet_tree_reader.h"
+#include "runtime/gpu/wavelet_tree_reader.h"
+#include "runtime/relight/sample_rows.h"
 
 namespace wavebake {
 namespace {

@@ -2,7 +2,7 @@
 // B per texel of the sample grid from wavelet-tree textures (Boulton §4.5,
 // Eq. 3): for each cube face, the transfer tree of the texel (exported by
 // `wavebake export --format wavelet-tree`, its layout in header.json) and
-// the environment tree of the face (runtime/env_trees.h, sent by the server
+// the environment tree of the face (runtime/gpu/env_trees.h, sent by the server
 // per probe, rotation and term count) are walked in parallel, depth first;
 // only nodes present in both trees are visited. When one tree has children
 // where the other has none, its jump record skips the whole branch: the

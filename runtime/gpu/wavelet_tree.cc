@@ -1,4 +1,4 @@
-#include "runtime/wavelet_tree.h"
+#include "runtime/gpu/wavelet_tree.h"
 
 #include <algorithm>
 #include <array>
@@ -8,9 +8,9 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
-#include "core/haar_tree.h"
-#include "core/parallel_for.h"
-#include "runtime/tree_stream.h"
+#include "core/products/haar_tree.h"
+#include "core/util/parallel_for.h"
+#include "runtime/gpu/tree_stream.h"
 
 namespace wavebake {
 namespace {
@@ -65,6 +65,38 @@ double BinEdge(int b) { return std::exp2(double(b - kBinZero) / kBinsPerOctave);
 // on the number of threads.
 constexpr int kChunks = 64;
 
+// Energy of the nodes §4.4's rule prunes at `cut_off`, the sibling rule
+// included (a node below the cut-off whose sibling group survives is kept).
+double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut_off) {
+  const int n = rows.light_res(), cells = rows.cells();
+  std::vector<double> lost(kChunks, 0.0);
+  ParallelFor(kChunks, [&](int chunk) {
+    std::vector<float> row;
+    FaceSquares sq;
+    std::vector<uint8_t> significant;
+    for (int cell = chunk * cells / kChunks; cell < (chunk + 1) * cells / kChunks; ++cell) {
+      if (samples.grid[cell] < 0) continue;
+      for (int face = 0; face < 6; ++face) {
+        FaceRow(rows, cell, face, row);
+        SquaresOfFace(n, row, sq);
+        significant.resize(sq.c.size());
+        for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.max_abs[s] >= cut_off;
+        const std::vector<uint8_t> kept = KeepSiblingGroups(n, significant);
+        for (size_t s = 0; s < sq.c.size(); ++s)
+          if (!kept[s])
+            for (float v : sq.c[s]) lost[chunk] += double{v} * v;
+      }
+    }
+  });
+  double sum = 0;
+  for (double l : lost) sum += l;
+  return sum;
+}
+
+// The largest bin edge whose pruning, sibling rule included, loses at most
+// target² of the rows' energy: the histogram gives a cut-off that is safe
+// without the sibling rule (which only keeps more), then bisection over the
+// bins above it, since the pruned energy grows with the cut-off.
 double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target,
                  double& energy_total) {
   const int n = rows.light_res();
@@ -102,7 +134,15 @@ double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target
     if (below + merged[b] > budget) break;
     below += merged[b];
   }
-  return b >= kBins ? BinEdge(kBins - 1) * 2 : BinEdge(b);
+  int lo = std::min(b, kBins - 1), hi = kBins;  // lo is safe; hi is past every bin
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (PrunedEnergy(rows, samples, BinEdge(mid)) <= budget)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return BinEdge(lo);
 }
 
 // One tree's texels (RGBA codes) and its block entry.

@@ -2,23 +2,23 @@
 // A diffuse store's transport rows as wavelet-tree textures for a GPU
 // (Boulton §4.4–4.5), the value behind `wavebake export --format
 // wavelet-tree`. Per sample and cube face one pruned Haar tree of the row
-// (runtime/tree_stream.h: §4.4's sibling-group pruning, §4.5's depth-first
+// (runtime/gpu/tree_stream.h: §4.4's sibling-group pruning, §4.5's depth-first
 // line with jump nodes), coefficients quantized per tree to 8 or 16 bits,
 // all trees packed into one line texture; a block texture (one texel per
 // sample and face, Boulton's sub-block texture) holds each tree's offset,
 // length, scaling coefficient and quantization step; a cell texture the
 // albedo. WaveletTreeHeader documents every array for a third-party loader.
 //
-// The rows come from the 4D store through SampleRows (runtime/sample_rows.h):
+// The rows come from the 4D store through SampleRows (runtime/relight/sample_rows.h):
 // every column image through its inverse column transform, transposed.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/samples.h"
+#include "core/layouts/samples.h"
 #include "nlohmann/json.hpp"
-#include "runtime/sample_rows.h"
+#include "runtime/relight/sample_rows.h"
 
 namespace wavebake {
 
@@ -32,9 +32,9 @@ struct WaveletTreeOptions {
   // three coefficients has |c| ≥ cut_off, in the units of T's row
   // coefficients); < 0: chosen from target_error.
   double cut_off = -1;
-  // Relative L2 error of the pruned rows: the largest cut-off whose pruned
-  // nodes hold at most target_error² of the rows' energy (before the sibling
-  // rule, which only keeps more).
+  // Relative L2 error of the pruned rows: the largest cut-off (to 1/16 of an
+  // octave) whose pruned nodes, sibling rule included, hold at most
+  // target_error² of the rows' energy.
   double target_error = 0.02;
   int bits = 8;  // 8 or 16
 };

@@ -1,10 +1,10 @@
 #pragma once
 // The depth-first line of one face's pruned Haar tree (Boulton §4.4–4.5), the
-// structure shared by the exported transfer trees (runtime/wavelet_tree.h)
-// and the environment trees (runtime/env_trees.h).
+// structure shared by the exported transfer trees (runtime/gpu/wavelet_tree.h)
+// and the environment trees (runtime/gpu/env_trees.h).
 //
 // A face's row coefficients (Mallat layout, 2D non-standard Haar, DESIGN.md
-// §1) form a quad tree of squares (core/haar_tree.h): level 0 is the whole
+// §1) form a quad tree of squares (core/products/haar_tree.h): level 0 is the whole
 // face, a square of level l has four children of level l + 1, and each
 // square carries three wavelets (types 0, 1, 2). Pruning follows §4.4: a
 // square is kept when it or a descendant is significant, and the four
@@ -25,7 +25,7 @@ namespace wavebake {
 
 struct TreeRecord {
   bool jump = false;
-  int32_t square = -1;  // node: square id (core/haar_tree.h SquareId); jump: −1
+  int32_t square = -1;  // node: square id (core/products/haar_tree.h SquareId); jump: −1
   int32_t level = 0;    // node: its level
   // node: level + 1 of the node after it (0: the tree ends there).
   // jump: level + 1 of the node it lands on (0: the tree ends there).

@@ -1,8 +1,8 @@
 #pragma once
 // A reader of `wavebake export --format wavelet-tree` directories written
-// only from the header's documented conventions (runtime/wavelet_tree.h's
+// only from the header's documented conventions (runtime/gpu/wavelet_tree.h's
 // WaveletTreeHeader), sharing no code with the exporter's tree walk
-// (runtime/tree_stream.h) nor with the shader: the oracle the round-trip and
+// (runtime/gpu/tree_stream.h) nor with the shader: the oracle the round-trip and
 // GPU tests compare against. It rebuilds each tree's row coefficients from
 // its depth-first line, checking the line's structure as it goes (sibling
 // groups complete, jump offsets landing past their subtrees, levels in

@@ -1,4 +1,4 @@
-#include "runtime/wavelet_tree_reader.h"
+#include "runtime/gpu/wavelet_tree_reader.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,9 +1,9 @@
 #pragma once
 // The lighting side of Boulton §4.5's double product on a GPU: the n-term
-// lighting approximation (runtime/lighting.h SelectWaveletLights — the same
+// lighting approximation (runtime/relight/lighting.h SelectWaveletLights — the same
 // terms the CPU relighter uses) as one pruned Haar tree per cube face, RGB
 // per coefficient, in the depth-first line with jump records of
-// runtime/tree_stream.h. A node is significant when one of its three
+// runtime/gpu/tree_stream.h. A node is significant when one of its three
 // wavelets is a selected light; the four children of a node go together, so
 // the shader's parallel walk of a transfer tree and an environment tree
 // visits only their intersection (Eq. 3). A few KB per frame of lighting.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "nlohmann/json.hpp"
-#include "runtime/lighting.h"
+#include "runtime/relight/lighting.h"
 
 namespace wavebake {
 

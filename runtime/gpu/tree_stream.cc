@@ -1,6 +1,6 @@
-#include "runtime/tree_stream.h"
+#include "runtime/gpu/tree_stream.h"
 
-#include "core/haar_tree.h"
+#include "core/products/haar_tree.h"
 
 namespace wavebake {
 namespace {

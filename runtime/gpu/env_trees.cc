@@ -1,7 +1,7 @@
-#include "runtime/env_trees.h"
+#include "runtime/gpu/env_trees.h"
 
-#include "core/haar_tree.h"
-#include "runtime/tree_stream.h"
+#include "core/products/haar_tree.h"
+#include "runtime/gpu/tree_stream.h"
 
 namespace wavebake {
 
