@@ -29,6 +29,8 @@ int Run(int argc, char** argv) {
   AddHealthCommand(app);
   AddRelightCommand(app);
   AddEvalCommand(app);
+  AddExportCommand(app);
+  AddViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -21,5 +21,7 @@ void AddFetchCommand(CLI::App& app);
 void AddHealthCommand(CLI::App& app);
 void AddRelightCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
+void AddExportCommand(CLI::App& app);
+void AddViewCommand(CLI::App& app);
 
 }  // namespace wavebake::cli

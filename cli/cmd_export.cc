@@ -1,0 +1,62 @@
+// `wavebake export STORE --format wavelet-tree --out DIR [--cut-off C |
+// --target-error E] [--bits 8|16]`: a diffuse store's rows as GPU textures,
+// Boulton §4.4–4.5 (driver/tree_export.h; the format in DIR/header.json).
+#include <cmath>
+#include <cstdio>
+
+#include "cli/command_error.h"
+#include "cli/commands.h"
+#include "driver/tree_export.h"
+
+namespace wavebake::cli {
+namespace {
+
+struct ExportFlags {
+  std::string store, format, out;
+  double cut_off = -1, target_error = -1;
+  int bits = 8;
+};
+
+void Run(const ExportFlags& f) {
+  if (f.format != "wavelet-tree")
+    Fail("export", "--format: '" + f.format + "' is not wavelet-tree", kExitBadInput);
+  WaveletTreeOptions options;
+  options.bits = f.bits;
+  if (f.cut_off >= 0) options.cut_off = f.cut_off;
+  if (f.target_error >= 0) options.target_error = f.target_error;
+  absl::StatusOr<nlohmann::json> h = driver::ExportWaveletTrees(f.store, f.out, options);
+  if (!h.ok()) Fail("export", h.status());
+  const nlohmann::json& s = (*h)["stats"];
+  const double kept = s["nodes_kept"].get<double>() / std::max(1.0, s["nodes_total"].get<double>());
+  std::printf(
+      "%s: %lld trees, %.2f%% of nodes kept (%lld jump nodes), cut-off %.3g, pruned rows' "
+      "relative L2 error %.4f, %.2f MB, %.1f s\n",
+      f.out.c_str(), static_cast<long long>(s["trees"].get<int64_t>()), 100 * kept,
+      static_cast<long long>(s["jumps"].get<int64_t>()), (*h)["cut_off"].get<double>(),
+      s["rel_error_pruned"].get<double>(), s["bytes"].get<double>() / 1e6,
+      s["seconds"].get<double>());
+}
+
+}  // namespace
+
+void AddExportCommand(CLI::App& app) {
+  auto flags = std::make_shared<ExportFlags>();
+  CLI::App* cmd = app.add_subcommand(
+      "export", "a diffuse store's transport rows as GPU wavelet-tree textures (Boulton 4.4-4.5)");
+  cmd->add_option("store", flags->store, "the store (OUT.wbk)")->required();
+  cmd->add_option("--format", flags->format, "wavelet-tree")->required();
+  cmd->add_option("--out", flags->out, "directory for header.json and the arrays")->required();
+  auto* cut = cmd->add_option("--cut-off", flags->cut_off,
+                              "absolute cut-off of a node's largest |coefficient| (Boulton 4.4)")
+                  ->check(CLI::NonNegativeNumber);
+  auto* target = cmd->add_option("--target-error", flags->target_error,
+                                 "relative L2 error of the pruned rows (default 0.02)")
+                     ->check(CLI::NonNegativeNumber);
+  cut->excludes(target);
+  cmd->add_option("--bits", flags->bits, "bits per quantized coefficient")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
+  cmd->callback([flags] { Run(*flags); });
+}
+
+}  // namespace wavebake::cli
