@@ -77,15 +77,17 @@ absl::Status CheckOutputName(v1::BakeRequest& r) {
 }
 
 absl::Status CheckNumbers(v1::BakeRequest& r) {
-  if (r.light_res() == 0) r.set_light_res(32);
+  // An unset field (proto3: 0) takes the core's default (core/bake/bake_params.h).
+  const BakeParams defaults;
+  if (r.light_res() == 0) r.set_light_res(defaults.light_res);
   if (!IsPowerOfTwoIn(r.light_res(), 8, 256)) {
     return Bad("light_res", absl::StrCat(r.light_res(), " is not a power of two in 8..256"));
   }
-  if (r.supersample() == 0) r.set_supersample(4);
+  if (r.supersample() == 0) r.set_supersample(defaults.supersample);
   if (r.supersample() < 1 || r.supersample() > 256) {
     return Bad("supersample", absl::StrCat(r.supersample(), " is not in 1..256"));
   }
-  if (r.target_error() == 0) r.set_target_error(0.01);
+  if (r.target_error() == 0) r.set_target_error(defaults.target_error);
   if (!std::isfinite(r.target_error()) || r.target_error() < 0 || r.target_error() > 1) {
     return Bad("target_error", absl::StrCat(r.target_error(), " is not in (0, 1]"));
   }
@@ -95,8 +97,8 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
   if (r.bits() != 0 && (r.bits() < 2 || r.bits() > 16)) {
     return Bad("bits", absl::StrCat(r.bits(), " is not 0 (auto) or 2..16"));
   }
-  if (!r.has_seed()) r.set_seed(1);
-  if (r.tile_size() == 0) r.set_tile_size(32);
+  if (!r.has_seed()) r.set_seed(defaults.seed);
+  if (r.tile_size() == 0) r.set_tile_size(defaults.tile_size);
   if (!IsPowerOfTwoIn(r.tile_size(), 4, 256)) {
     return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..256"));
   }
