@@ -14,7 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/products/brdf.h"
 #include "driver/area_light_commands.h"
-#include "driver/area_relight.h"
+#include "runtime/near_field/area_relight.h"
 #include "python/py_convert.h"
 #include "python/py_store.h"
 #include "runtime/env/env_map.h"
