@@ -8,8 +8,8 @@
 
 #include "cli/command_error.h"
 #include "cli/commands.h"
+#include "driver/coordinator_run.h"
 #include "driver/signal_watcher.h"
-#include "storage/atomic_file.h"
 #include "web/gpu_view.h"
 
 namespace wavebake::cli {
@@ -40,7 +40,7 @@ void Run(const ViewFlags& f) {
       web::GpuViewServer::Start(std::move(options));
   if (!server.ok()) Fail("view", server.status());
   if (!f.address_file.empty())
-    if (absl::Status s = AtomicWriteText(f.address_file, (*server)->address() + "\n"); !s.ok())
+    if (absl::Status s = driver::WriteAddressFile(f.address_file, (*server)->address()); !s.ok())
       Fail("view", s);
   std::fprintf(stderr, "view: serving %sview?store=0; Ctrl-C to stop\n", (*server)->url().c_str());
   while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -14,7 +14,8 @@
 #include "absl/strings/str_cat.h"
 #include "core/products/brdf.h"
 #include "driver/area_light_commands.h"
-#include "runtime/near_field/area_relight.h"
+#include "driver/area_relight.h"
+#include "driver/evaluate.h"
 #include "python/py_convert.h"
 #include "python/py_store.h"
 #include "runtime/env/env_map.h"
@@ -114,7 +115,7 @@ std::vector<float> RelightArea(PyStore& s, const Shading& shading,
   {
     py::gil_scoped_release release;
     rgb = [&]() -> absl::StatusOr<std::vector<float>> {
-      absl::StatusOr<std::vector<AreaLight>> lights = LoadAllAreaLights(shading.area_lights);
+      absl::StatusOr<std::vector<AreaLight>> lights = driver::LoadAllAreaLights(shading.area_lights);
       if (!lights.ok()) return lights.status();
       if (moving) lights->push_back(*moving);
       if (lights->empty()) return absl::InvalidArgumentError("area_lights: no light given");
@@ -299,7 +300,7 @@ py::object Eval(const py::object& store, const py::object& env, bool reference, 
   absl::StatusOr<EvalReport> report;
   {
     py::gil_scoped_release release;
-    report = Evaluate(s.path(), spec, terms, options);
+    report = driver::Evaluate(s.path(), spec, terms, options);
   }
   return JsonToPython(EvalReportJson(Unwrap(std::move(report))));
 }

@@ -23,7 +23,7 @@ expect_error UNAUTHENTICATED "$WB" status --coordinator "$ADDR" --token-file "$T
 expect_error UNAUTHENTICATED "$WB" submit builtin:furnace --coordinator "$ADDR"
 expect_error UNAUTHENTICATED "$WB" worker --store-root "$TMP/data/store" --coordinator "$ADDR" \
   --token-file "$TMP/wrong"
-expect_error "--token-file" "$WB" status --coordinator "$ADDR" --token-file "$TMP/missing"
+expect_error "token_file" "$WB" status --coordinator "$ADDR" --token-file "$TMP/missing"
 
 expect_error "NOT_FOUND" "$WB" status 4242 "${AUTH[@]}"
 expect_error "NOT_FOUND" "$WB" cancel 4242 "${AUTH[@]}"
@@ -68,8 +68,8 @@ expect_error "SCENE:" "$WB" submit "$TMP" "${AUTH[@]}" # a directory
 "$WB" status "${AUTH[@]}" >/dev/null || fail "the right token was refused"
 
 # Nothing of a job was left by any of the refusals (the store root's own
-# marker is the coordinator's, there from its start).
-left=$(ls -A "$TMP/data/store" | grep -vxF .wavebake-store-root || true)
+# marker and lock are the coordinator's, there from its start).
+left=$(ls -A "$TMP/data/store" | grep -vxF -e .wavebake-store-root -e .wavebake-coordinator.lock || true)
 [[ -z $left ]] || fail "refused jobs left files: $left"
 
 # The embedded bake: bad input fails before or during the bake, leaving nothing.
