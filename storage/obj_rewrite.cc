@@ -13,7 +13,9 @@ namespace {
 constexpr double kMaxMagnitude = 1e38;  // below FLT_MAX, with room for assimp's rounding
 constexpr size_t kMaxCorners = 255;
 
-absl::Status Bad(const auto&... what) { return absl::InvalidArgumentError(absl::StrCat(what...)); }
+absl::Status ObjBad(const auto&... what) {
+  return absl::InvalidArgumentError(absl::StrCat(what...));
+}
 
 // Debian's abseil has a string_view of its own.
 absl::string_view A(std::string_view s) { return {s.data(), s.size()}; }
@@ -44,8 +46,8 @@ absl::StatusOr<double> Number(std::string_view w) {
   double v = 0;
   const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
   if (digits.empty() || ec != std::errc() || p != digits.data() + digits.size())
-    return Bad(Quote(w), " is not a number");
-  if (!(std::abs(v) <= kMaxMagnitude)) return Bad(Quote(w), " is not finite (or above 1e38)");
+    return ObjBad(Quote(w), " is not a number");
+  if (!(std::abs(v) <= kMaxMagnitude)) return ObjBad(Quote(w), " is not finite (or above 1e38)");
   return v;
 }
 
@@ -59,11 +61,11 @@ absl::StatusOr<int64_t> Index(std::string_view w, int k, const Counts& counts) {
   int64_t i = 0;
   const auto [p, ec] = std::from_chars(w.data(), w.data() + w.size(), i);
   if (w.empty() || ec != std::errc() || p != w.data() + w.size())
-    return Bad(kKinds[k], " index ", Quote(w), " is not an integer");
+    return ObjBad(kKinds[k], " index ", Quote(w), " is not an integer");
   const int64_t n = counts[k];
   const int64_t absolute = i < 0 ? n + 1 + i : i;
   if (i == 0 || absolute < 1 || absolute > n)
-    return Bad(kKinds[k], " index ", i, " of ", n, " defined above it");
+    return ObjBad(kKinds[k], " index ", i, " of ", n, " defined above it");
   return absolute;
 }
 
@@ -72,9 +74,9 @@ absl::Status Corners(std::string_view keyword, const std::vector<std::string_vie
                      size_t least, const Counts& counts, std::string* out) {
   const size_t corners = words.size() - 1;
   if (corners < least || corners > kMaxCorners)
-    return Bad("'", A(keyword), "' with ", corners > kMaxCorners ? "more than " : "",
-               std::min(corners, kMaxCorners), " corners (", least, " to ", kMaxCorners,
-               " are read)");
+    return ObjBad("'", A(keyword), "' with ", corners > kMaxCorners ? "more than " : "",
+                  std::min(corners, kMaxCorners), " corners (", least, " to ", kMaxCorners,
+                  " are read)");
   absl::StrAppend(out, A(keyword));
   int form = -1;  // bit k: index kind k present
   for (size_t c = 1; c < words.size(); ++c) {
@@ -88,12 +90,12 @@ absl::Status Corners(std::string_view keyword, const std::vector<std::string_vie
       if (slash == std::string_view::npos) break;
       ++slashes;
       w.remove_prefix(slash + 1);
-      if (k == 2) return Bad("corner ", Quote(words[c]), " has more than three indices");
+      if (k == 2) return ObjBad("corner ", Quote(words[c]), " has more than three indices");
     }
     if (!(present & 1) || (slashes == 2 && !(present & 4)) || (slashes == 1 && !(present & 2)))
-      return Bad("corner ", Quote(words[c]), " is not v, v/vt, v//vn or v/vt/vn");
+      return ObjBad("corner ", Quote(words[c]), " is not v, v/vt, v//vn or v/vt/vn");
     if (form >= 0 && present != form)
-      return Bad("corner ", Quote(words[c]), " is not in the form of the face's first corner");
+      return ObjBad("corner ", Quote(words[c]), " is not in the form of the face's first corner");
     form = present;
     out->push_back(' ');
     for (int k = 0; k < 3; ++k) {
@@ -117,11 +119,11 @@ absl::Status Numbers(std::string_view keyword, const std::vector<std::string_vie
                   : keyword == "vt" ? (n == 2 || n == 3)
                                     : n == 3;
   if (!ok) {
-    return Bad("'", A(keyword), "' with ", n, " numbers (",
-               keyword == "v"    ? "3, 4 or 6"
-               : keyword == "vt" ? "2 or 3"
-                                 : "3",
-               " are read)");
+    return ObjBad("'", A(keyword), "' with ", n, " numbers (",
+                  keyword == "v"    ? "3, 4 or 6"
+                  : keyword == "vt" ? "2 or 3"
+                                    : "3",
+                  " are read)");
   }
   std::array<double, 6> v{};
   for (size_t k = 0; k < n; ++k) {
@@ -132,7 +134,7 @@ absl::Status Numbers(std::string_view keyword, const std::vector<std::string_vie
   if (keyword == "v" && n == 4) {  // homogeneous: assimp divides x, y, z by w
     for (int k = 0; k < 3; ++k)
       if (!(std::abs(v[k]) <= kMaxMagnitude * std::abs(v[3])))
-        return Bad("'v' with w ", A(words[4]), ": x/w, y/w, z/w must be finite below 1e38");
+        return ObjBad("'v' with w ", A(words[4]), ": x/w, y/w, z/w must be finite below 1e38");
   }
   absl::StrAppend(out, A(keyword));
   for (size_t k = 1; k < words.size(); ++k) absl::StrAppend(out, " ", A(words[k]));
@@ -143,7 +145,7 @@ absl::Status Numbers(std::string_view keyword, const std::vector<std::string_vie
 absl::Status Statement(std::string_view line, Counts& counts, std::string* out) {
   for (const char c : line) {
     if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
-      return Bad("a control byte (", static_cast<int>(static_cast<unsigned char>(c)), ")");
+      return ObjBad("a control byte (", static_cast<int>(static_cast<unsigned char>(c)), ")");
   }
   // A comment: a word starting with '#' and the rest of the line ("mat#2"
   // stays a name).
@@ -158,7 +160,7 @@ absl::Status Statement(std::string_view line, Counts& counts, std::string* out) 
   if (words.empty()) return absl::OkStatus();
   const std::string_view rest = line.substr(line.find_first_not_of(" \t"));
   const std::string_view trimmed = rest.substr(0, rest.find_last_not_of(" \t") + 1);
-  if (trimmed.ends_with('\\')) return Bad("a '\\' line continuation (not read)");
+  if (trimmed.ends_with('\\')) return ObjBad("a '\\' line continuation (not read)");
   const std::string_view k = words[0];
   if (k == "v" || k == "vt" || k == "vn") {
     if (absl::Status s = Numbers(k, words, out); !s.ok()) return s;
@@ -169,15 +171,15 @@ absl::Status Statement(std::string_view line, Counts& counts, std::string* out) 
   if (k == "l") return Corners(k, words, 2, counts, out);
   if (k == "p") return Corners(k, words, 1, counts, out);
   if (k == "o" || k == "g" || k == "s" || k == "usemtl" || k == "mtllib") {
-    if (k == "s" && words.size() != 2) return Bad("'s' takes one group (a number or off)");
+    if (k == "s" && words.size() != 2) return ObjBad("'s' takes one group (a number or off)");
     if ((k == "o" || k == "usemtl" || k == "mtllib") && words.size() < 2)
-      return Bad("'", A(k), "' without a name");
+      return ObjBad("'", A(k), "' without a name");
     // The names as written, spaces inside them included.
     absl::StrAppend(out, A(trimmed), "\n");
     return absl::OkStatus();
   }
-  return Bad(Quote(k),
-             " statements are not read (v, vt, vn, f, l, p, o, g, s, usemtl and mtllib are)");
+  return ObjBad(Quote(k),
+                " statements are not read (v, vt, vn, f, l, p, o, g, s, usemtl and mtllib are)");
 }
 
 }  // namespace
@@ -194,7 +196,7 @@ absl::StatusOr<std::string> RewriteObj(std::string_view file) {
     ++number;
     if (line.ends_with('\r')) line.remove_suffix(1);
     if (absl::Status s = Statement(line, counts, &out); !s.ok())
-      return Bad("OBJ line ", number, ": ", s.message());
+      return ObjBad("OBJ line ", number, ": ", s.message());
   }
   return out;
 }
