@@ -272,7 +272,7 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
       if (bytes_per == 1) {
         for (size_t k = 0; k < tree.codes.size(); ++k)
           t.line[4 * at + k] = static_cast<uint8_t>(tree.codes[k]);
-      } else {
+      } else if (!tree.codes.empty()) {  // memcpy from an empty vector's null data() is UB
         std::memcpy(&t.line[8 * at], tree.codes.data(), tree.codes.size() * 2);
       }
       at += len;
