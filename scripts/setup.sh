@@ -12,7 +12,7 @@ PKGS=(
   python3-zarr python3-numpy python3-matplotlib python3-grpcio python3-grpc-tools
   slurmctld slurmd slurm-client munge python3-kubernetes iproute2
   libcpp-httplib-dev pybind11-dev python3-dev python3-pytest
-  chromium chromium-driver python3-selenium python3-prometheus-client
+  chromium chromium-driver python3-selenium python3-prometheus-client prometheus
 )
 missing=()
 for p in "${PKGS[@]}"; do
