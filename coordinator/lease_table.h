@@ -198,6 +198,8 @@ class LeaseTable {
 
   absl::Status Load();
   absl::Status ResumeJob(JobState& js, Transition& tx);
+  void QueueStage(JobState& js);
+  static bool ShardsDone(const JobState& js);
   // The counts (done, leased, rays, bytes); InfoLocked adds rays/s and the ETA.
   JobInfo CountsLocked(const JobState& js) const;
   JobInfo InfoLocked(const JobState& js) const;
