@@ -36,6 +36,7 @@ struct JobPlan {
   int columns = 0;     // M = 6 N² (cube) or N² (plane light domain)
   int group_size = 0;  // columns per TRANSFORM_COLUMNS task
   int groups = 0;
+  int bounces = 0;  // BakeParams::bounces: TRANSFORM_COLUMNS adds them (core/bounce_gather.h)
 
   int tiles() const { return tiles_x * tiles_y; }
   int tile_cells() const { return tile_w * tile_h; }

@@ -13,6 +13,7 @@
 #include "runtime/dense_trace.h"
 #include "runtime/env_resample.h"
 #include "runtime/glossy_eval.h"
+#include "runtime/path_reference.h"
 #include "runtime/store_relight.h"
 #include "storage/scene_loader.h"
 
@@ -54,7 +55,7 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
   return s;
 }
 
-absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+absl::StatusOr<Scene> LoadBakedScene(const StoreInfo& info) {
   // Checked by content hash: a scene file edited since the bake would make
   // every comparison meaningless.
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
@@ -65,6 +66,12 @@ absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
                                                       " no longer matches the baked scene (hash ",
                                                       hash, " vs ", info.scene_hash, ")"));
   }
+  return scene;
+}
+
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+  absl::StatusOr<Scene> scene = LoadBakedScene(info);
+  if (!scene.ok()) return scene.status();
   return RayCaster::Build(*scene);
 }
 
@@ -79,8 +86,13 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   }
   absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
   if (!store_info.ok()) return store_info.status();
-  if (store_info->params.transport == Transport::kVisibility)
+  if (store_info->params.transport == Transport::kVisibility) {
+    if (options.bounces > 0)
+      return absl::InvalidArgumentError(
+          "bounces: a visibility store's glossy reference is direct light only (the triple "
+          "product keeps visibility and the BRDF apart)");
     return EvaluateGlossy(store, env_spec, terms, options);
+  }
   // A diffuse store is Lambertian by construction.
   absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
   if (!brdf.ok()) return brdf.status();
@@ -93,16 +105,33 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   if (options.rotate_degrees != 0) *env = Rotated(*env, options.rotate_degrees);
 
   const StoreInfo& info = opened->info;
-  absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
+  if (options.bounces > kMaxBounces)
+    return absl::InvalidArgumentError(
+        absl::StrCat("bounces: ", options.bounces, " is outside 0..", kMaxBounces));
+  absl::StatusOr<Scene> scene = LoadBakedScene(info);
+  if (!scene.ok()) return scene.status();
+  absl::StatusOr<RayCaster> caster = RayCaster::Build(*scene);
   if (!caster.ok()) return caster.status();
   const float eps = BakedEpsilon(info, *caster);
 
   EvalReport report;
   report.terms = terms;
+  // `auto` was resolved by the bake; the count it chose is in the record.
+  report.store_bounces = info.params.bounces == kAutoBounces
+                             ? info.attrs.value(nlohmann::json::json_pointer("/bounces/count"), 0)
+                             : info.params.bounces;
+  report.bounces = options.bounces >= 0 ? options.bounces : report.store_bounces;
   ReferenceOptions ref_options = options.reference;
   ref_options.epsilon = eps;
+  // Direct light only: the direct reference, as before bounces existed.
   absl::StatusOr<ReferenceResult> reference =
-      ComputeReference(*caster, opened->samples, *env, ref_options);
+      report.bounces == 0 ? ComputeReference(*caster, opened->samples, *env, ref_options)
+                          : ComputePathReference(*scene, *caster, opened->samples, *env,
+                                                 {.bounces = report.bounces,
+                                                  .target_rel_se = ref_options.target_rel_se,
+                                                  .seed = ref_options.seed,
+                                                  .threads = ref_options.threads,
+                                                  .epsilon = eps});
   if (!reference.ok()) return reference.status();
   report.reference_rel_se = reference->rel_se;
   report.reference_rays = reference->rays;
@@ -116,7 +145,9 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
   report.compressed = CompareToReference(*compressed, reference->rgb);
   report.compressed.seconds = compressed_seconds;
 
-  if (options.dense) {
+  // The dense retrace is the direct T: the uncompressed answer of a
+  // 0-bounce store only.
+  if (options.dense && report.store_bounces == 0) {
     t0 = std::chrono::steady_clock::now();
     const std::vector<float> cube = ResampleToCubemap(*env, Cubemap(info.light_res));
     DenseTraceOptions dense_options{info.light_res, info.params.supersample, info.params.seed, eps};
@@ -140,7 +171,9 @@ nlohmann::json EvalReportJson(const EvalReport& r) {
   j["reference"] = {{"rel_se", r.reference_rel_se},
                     {"rays", r.reference_rays},
                     {"seconds", r.reference_seconds},
-                    {"converged", r.reference_converged}};
+                    {"converged", r.reference_converged},
+                    {"bounces", r.bounces}};
+  j["store_bounces"] = r.store_bounces;
   return j;
 }
 
@@ -149,9 +182,12 @@ std::string EvalReportText(const EvalReport& r) {
     return absl::StrFormat("%-11s rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %.3f s\n", name,
                            e.rel_rms, e.max_abs, e.psnr, e.seconds);
   };
-  std::string text = absl::StrFormat("reference  rel_se %.5f  %d rays  %.1f s%s\n",
-                                     r.reference_rel_se, r.reference_rays, r.reference_seconds,
-                                     r.reference_converged ? "" : "  (NOT converged)");
+  std::string text = absl::StrFormat(
+      "reference  rel_se %.5f  %d rays  %.1f s%s%s\n", r.reference_rel_se, r.reference_rays,
+      r.reference_seconds, r.reference_converged ? "" : "  (NOT converged)",
+      r.bounces > 0 || r.store_bounces > 0
+          ? absl::StrFormat("  %d bounces (store: %d)", r.bounces, r.store_bounces)
+          : std::string());
   if (r.has_dense) text += row("dense T", r.dense);
   return text + row("compressed", r.compressed);
 }

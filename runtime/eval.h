@@ -27,6 +27,10 @@ struct EvalOptions {
   // (runtime/glossy_eval.h) with this BRDF, its reference traced with it; a
   // diffuse store takes lambert only (anything else is an error saying why).
   GlossyOptions glossy;
+  // Diffuse bounces of the reference: < 0 the store's own count; a count
+  // above 0 traces the path-traced reference (runtime/path_reference.h), so
+  // a 0-bounce store can be held against the light it leaves out.
+  int bounces = -1;
 };
 
 // Over all unmasked cells and the three channels of image vs reference:
@@ -38,8 +42,10 @@ struct ErrorStats {
 };
 ErrorStats CompareToReference(std::span<const float> image, std::span<const float> reference);
 
-// The scene a store was baked from, rebuilt for ray casting; FailedPrecondition
-// if its file no longer hashes to the baked scene.
+// The scene a store was baked from; FailedPrecondition if its file no longer
+// hashes to the baked scene.
+absl::StatusOr<Scene> LoadBakedScene(const StoreInfo& info);
+// The same, rebuilt for ray casting.
 absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info);
 // The ray offset the bake used (its own, or the scene's default).
 float BakedEpsilon(const StoreInfo& info, const RayCaster& caster);
@@ -57,6 +63,8 @@ struct EvalReport {
   double reference_seconds = 0;
   bool reference_converged = true;
   int64_t dense_rays = 0;
+  int bounces = 0;        // of the reference
+  int store_bounces = 0;  // of the store (dense T is retraced only for 0: it is direct light)
 };
 
 // Errors: terms ≤ 0; the store (missing, another format version, damaged);
@@ -67,7 +75,8 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, std::str
 
 // {"terms": n, "dense": {"rel_rms", "max_abs", "psnr", "seconds"},
 //  "compressed": {same keys}, "reference": {"rel_se", "rays", "seconds",
-//  "converged"}}; "dense" is null when not evaluated.
+//  "converged", "bounces"}, "store_bounces": B}; "dense" is null when not
+//  evaluated.
 nlohmann::json EvalReportJson(const EvalReport& report);
 // The same for a person: the reference's line, then dense T's and the
 // store's (rel_rms, max_abs, psnr, seconds), one line each.

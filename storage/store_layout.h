@@ -36,6 +36,9 @@ inline constexpr char kStagingTransport[] = "staging/transport";
 // float32 [tiles] chunked [1]: Σ of squared staged values of each tile (the
 // matrix energy is needed by the "matrix" error scope before any group runs).
 inline constexpr char kStagingTileEnergy[] = "staging/tile_energy";
+// float32 [groups, bounces+1] chunked [1, bounces+1] (bounces > 0 only): Σ T_b²
+// over each group's columns for b = 0..bounces (worker/transform_columns.h).
+inline constexpr char kStagingBounceEnergy[] = "staging/bounce_energy";
 // Not Zarr: one <g>.wbg file per TRANSFORM_COLUMNS group (worker/group_result.h).
 inline constexpr char kStagingGroups[] = "staging/groups";
 

@@ -43,6 +43,24 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
   if (params.refines()) ctx->refine.emplace(ctx->cubemap, ctx->jitter, RefineOptions{});
   ctx->plan = MakeJobPlan(params, ctx->samples.width, ctx->samples.height);
   ctx->epsilon = params.ray_epsilon > 0 ? params.ray_epsilon : ctx->caster.DefaultEpsilon();
+  if (params.bounces != 0) {
+    // A few rays per sample (S·R against the direct bake's S·M·K), traced
+    // once per context: every task that needs it shares it.
+    absl::StatusOr<BounceGather> gather =
+        MakeBounceGather(ctx->scene, ctx->caster, ctx->samples,
+                         {.rays = params.gather_rays,
+                          .seed = params.seed,
+                          .epsilon = ctx->epsilon,
+                          .uv_channel = layout->kind == LayoutKind::kUv ? layout->uv_channel : -1});
+    if (!gather.ok()) return gather.status();
+    ctx->bounce = *std::move(gather);
+    if (params.bounces == kAutoBounces) {
+      ctx->auto_bounces =
+          AutoBounces(*ctx->bounce, ctx->samples.grid,
+                      params.column_terms > 0 ? 0.0 : params.target_error, kMaxBounces);
+      ctx->plan.bounces = ctx->auto_bounces->bounces;
+    }
+  }
   return ctx;
 }
 

@@ -11,6 +11,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/bake_params.h"
+#include "core/bounce_gather.h"
 #include "core/cubemap.h"
 #include "core/jitter_pattern.h"
 #include "core/job_plan.h"
@@ -39,6 +40,11 @@ struct BakeContext {
   JitterPattern jitter;
   std::optional<RefinePlan> refine;  // params.refine: the rows are traced by refinement
   float epsilon = 0;                 // ray offset along the normal (DESIGN.md §1)
+  // params.bounces > 0: one bounce's gather operator over the grid's cells
+  // (core/bounce_gather.h), the same for every bounce and on every worker.
+  std::optional<BounceGather> bounce;
+  // params.bounces auto: the choice (plan.bounces holds the count).
+  std::optional<AutoBounceChoice> auto_bounces;
   RayCaster caster;
 };
 

@@ -1,6 +1,7 @@
 #include "worker/finalize.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "storage/zarr_array.h"
 #include "worker/group_result.h"
 #include "worker/ordered_parallel.h"
+#include "worker/staging.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
 
@@ -246,6 +248,39 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
                      {"shape", {int64_t{plan.width} * plan.height, plan.columns}}});
 }
 
+// The .zattrs record of the bounces (only a store with bounces has one, so
+// 0-bounce stores keep their bytes): how many, how they were gathered, and
+// Σ T_b² over the whole matrix for each b, summed over groups in order.
+absl::StatusOr<nlohmann::json> BounceRecord(const BakeContext& ctx,
+                                            const std::filesystem::path& store) {
+  const JobPlan& plan = ctx.plan;
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingBounceEnergy));
+  if (!a.ok()) return a.status();
+  if (!SameSpec(a->spec(), BounceEnergySpec(plan)))
+    return absl::FailedPreconditionError(
+        absl::StrCat(a->dir().string(), ": does not match the job plan"));
+  std::vector<double> energy(plan.bounces + 1, 0.0);
+  for (int64_t g = 0; g < plan.groups; ++g) {
+    const int64_t index[2] = {g, 0};
+    absl::StatusOr<std::vector<float>> row = a->ReadChunk<float>(index);
+    if (!row.ok()) return row.status();
+    for (int b = 0; b <= plan.bounces; ++b) energy[b] += (*row)[b];
+  }
+  nlohmann::json ratio = nlohmann::json::array();
+  for (double e : energy) ratio.push_back(energy[0] > 0 ? std::sqrt(e / energy[0]) : 0.0);
+  return nlohmann::json{
+      {"count", plan.bounces},
+      {"gather_rays", ctx.bounce ? ctx.bounce->rays : 0},
+      {"gather_entries", ctx.bounce ? ctx.bounce->entries() : 0},
+      {"energy", energy},
+      {"rms_ratio", ratio},
+      {"convention",
+       "T = T_0 + ... + T_B, T_b(x) = 1/pi * integral of rho(y) T_{b-1}(y) max(0, n.w) dw over "
+       "the first hits y (rho(y) = mean of y's RGB albedo; rho(x) factored out as for T_0); "
+       "T_{b-1}(y) interpolated barycentrically from the hit triangle's vertex samples; energy[b] "
+       "= sum of T_b^2 over the matrix, rms_ratio[b] = sqrt(energy[b] / energy[0])"}};
+}
+
 // A finished store whose staging is gone: a retried FINALIZE has nothing to do.
 bool AlreadyFinalized(const std::filesystem::path& store) {
   absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
@@ -302,10 +337,22 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   if (absl::Status s = RemoveAbandonedTempFiles(store); !s.ok()) return s;
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
-  if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));
-      !s.ok()) {
-    return s;
+  nlohmann::json manifest = StoreManifest(ctx, bits, std::move(stats_json));
+  if (plan.bounces > 0) {
+    absl::StatusOr<nlohmann::json> bounces = BounceRecord(ctx, store);
+    if (!bounces.ok()) return bounces.status();
+    manifest["bounces"] = *std::move(bounces);
+  } else if (ctx.auto_bounces) {
+    manifest["bounces"] = {{"count", 0}};
   }
+  if (ctx.auto_bounces) {
+    manifest["bounces"]["auto"] = {
+        {"estimate", ctx.auto_bounces->estimate},
+        {"rule",
+         "smallest B with estimate[B+1] <= target_error/2, estimate[b] = |G^b 1| / |1| over the "
+         "samples (G one bounce's gather operator)"}};
+  }
+  if (absl::Status s = WriteAttrs(store, manifest); !s.ok()) return s;
   return options.keep_staging ? absl::OkStatus() : DropStaging(store);
 }
 

@@ -25,6 +25,15 @@ ArraySpec TileEnergySpec(const JobPlan& plan) {
   return spec;
 }
 
+ArraySpec BounceEnergySpec(const JobPlan& plan) {
+  ArraySpec spec;
+  spec.shape = {plan.groups, plan.bounces + 1};
+  spec.chunks = {1, plan.bounces + 1};
+  spec.dtype = DType::kFloat32;
+  spec.fill_value = 0;
+  return spec;
+}
+
 absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store,
                            const nlohmann::json& trace) {
   // Groups first, so a Zarr reader sees the hierarchy (DESIGN.md §3).
@@ -38,6 +47,11 @@ absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& sto
   absl::StatusOr<ZarrArray> transport =
       ZarrArray::Create(store::Path(store, store::kStagingTransport), StagingTransportSpec(plan));
   if (!transport.ok()) return transport.status();
+  if (plan.bounces > 0) {
+    absl::StatusOr<ZarrArray> bounce =
+        ZarrArray::Create(store::Path(store, store::kStagingBounceEnergy), BounceEnergySpec(plan));
+    if (!bounce.ok()) return bounce.status();
+  }
   return ZarrArray::Create(store::Path(store, store::kStagingTileEnergy), TileEnergySpec(plan))
       .status();
 }

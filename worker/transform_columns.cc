@@ -10,6 +10,7 @@
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
 #include "worker/group_result.h"
+#include "worker/staging.h"
 #include "worker/task_buffer.h"
 
 namespace wavebake {
@@ -88,6 +89,47 @@ void AppendColumn(const CodedColumn& coded, GroupResult* result) {
   result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
 }
 
+double SumOfSquaresDouble(std::span<const float> v) {
+  double sum = 0;
+  for (float x : v) sum += double(x) * x;
+  return sum;
+}
+
+// T = T_0 + T_1 + … + T_B for every column image of the group, in place:
+// T_b = G T_{b−1} (core/bounce_gather.h) acts on the spatial index, so a
+// column image of row-transformed T_0 gives the same column of the
+// row-transformed T_b. energy[b] += Σ T_b² over the group. Two extra images
+// of memory; the images stay the only group-sized buffer.
+absl::Status AddBounces(const BounceGather& gather, int bounces, int count, size_t cells,
+                        std::span<float> images, std::vector<double>& energy, int group,
+                        const TaskSignals& signals) {
+  std::vector<float> previous(cells), next(cells);
+  for (int c = 0; c < count; ++c) {
+    if (Stopped(signals)) return Cancelled(group);
+    const std::span<float> image = images.subspan(c * cells, cells);
+    energy[0] += SumOfSquaresDouble(image);
+    std::copy(image.begin(), image.end(), previous.begin());
+    for (int b = 1; b <= bounces; ++b) {
+      gather.Apply(previous, next);
+      energy[b] += SumOfSquaresDouble(next);
+      for (size_t i = 0; i < cells; ++i) image[i] += next[i];
+      previous.swap(next);
+    }
+  }
+  return absl::OkStatus();
+}
+
+absl::Status WriteBounceEnergy(const JobPlan& plan, const std::filesystem::path& store, int group,
+                               const std::vector<double>& energy) {
+  // Idempotent (a recode's staging has no such array until its first group).
+  absl::StatusOr<ZarrArray> a =
+      ZarrArray::Create(store::Path(store, store::kStagingBounceEnergy), BounceEnergySpec(plan));
+  if (!a.ok()) return a.status();
+  const std::vector<float> row(energy.begin(), energy.end());
+  const int64_t index[2] = {group, 0};
+  return a->WriteChunk<float>(index, row);
+}
+
 }  // namespace
 
 absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
@@ -124,6 +166,17 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
       TaskBuffer(size_t(plan.GroupCount(group)) * plan.width * plan.height);
   if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local, signals); !s.ok())
     return s;
+  const size_t cells = size_t(plan.width) * plan.height;
+  std::vector<double> bounce_energy;
+  if (plan.bounces > 0) {
+    if (!ctx.bounce)
+      return absl::FailedPreconditionError("bounces: the context has no gather operator");
+    bounce_energy.assign(plan.bounces + 1, 0.0);
+    if (absl::Status s = AddBounces(*ctx.bounce, plan.bounces, plan.GroupCount(group), cells,
+                                    images, bounce_energy, group, signals);
+        !s.ok())
+      return s;
+  }
 
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
@@ -132,7 +185,6 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
     filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
     params.filler = &*filler;
   }
-  const size_t cells = size_t(plan.width) * plan.height;
   GroupResult result;
   result.group = group;
   result.first_column = plan.GroupFirst(group);
@@ -143,6 +195,9 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
     CodeColumn(params, images.subspan(c * cells, cells), &coded);
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);
+  }
+  if (plan.bounces > 0) {
+    if (absl::Status s = WriteBounceEnergy(plan, store, group, bounce_energy); !s.ok()) return s;
   }
   if (absl::Status s = WriteGroupResult(store, result); !s.ok()) return s;
 
