@@ -73,9 +73,12 @@ struct SchedulerSnapshot {
   // Rays of completed tasks (monotone, unlike the live count of a job,
   // which drops when an unfinished lease expires).
   int64_t rays_traced = 0;
+  // alive: not excluded, and a Lease or Heartbeat within one lease period
+  // (Register alone does not count: the worker's checks come after it).
   int workers_registered = 0, workers_alive = 0, workers_excluded = 0;
   LatencyHistogram::Snapshot lease_latency;
-  std::vector<JobTaskCounts> jobs;  // newest first, at most the limit asked for
+  // Live (not terminal) jobs, newest first, at most the limit asked for.
+  std::vector<JobTaskCounts> jobs;
 };
 
 }  // namespace wavebake

@@ -13,7 +13,7 @@ PKGS=(
   slurmctld slurmd slurm-client munge python3-kubernetes iproute2
   libcpp-httplib-dev pybind11-dev python3-dev python3-pytest
   python3-venv python3-pip python3-setuptools python3-wheel mypy
-  chromium chromium-driver python3-selenium python3-prometheus-client glslang-tools
+  chromium chromium-driver python3-selenium python3-prometheus-client glslang-tools prometheus
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -4,6 +4,7 @@
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
+#include "wavebake_build_info.h"
 
 namespace wavebake::web {
 namespace {
@@ -50,15 +51,44 @@ void PerJob(std::string& out, const SchedulerSnapshot& s, const char* name, cons
             Value value) {
   Family(out, name, "gauge", help);
   for (const JobTaskCounts& j : s.jobs) {
-    absl::StrAppend(&out, name, "{job=\"", j.id, "\"} ", value(j), "\n");
+    if (IsTerminal(j.phase)) continue;  // finished jobs are counted in wavebake_jobs only
+    absl::StrAppend(&out, name, "{job_id=\"", j.id, "\"} ", value(j), "\n");
   }
+}
+
+void Sample(std::string& out, const char* name, const char* type, const char* help,
+            const std::string& value) {
+  Family(out, name, type, help);
+  absl::StrAppend(&out, name, " ", value, "\n");
+}
+
+void ProcessFamilies(std::string& out, const ProcessStats& p) {
+  Sample(out, "process_cpu_seconds_total", "counter",
+         "Total user and system CPU time spent in seconds.", Number(p.cpu_seconds));
+  Sample(out, "process_resident_memory_bytes", "gauge", "Resident memory size in bytes.",
+         absl::StrCat(p.resident_bytes));
+  Sample(out, "process_virtual_memory_bytes", "gauge", "Virtual memory size in bytes.",
+         absl::StrCat(p.virtual_bytes));
+  Sample(out, "process_open_fds", "gauge", "Number of open file descriptors.",
+         absl::StrCat(p.open_fds));
+  if (p.max_fds > 0) {
+    Sample(out, "process_max_fds", "gauge", "Maximum number of open file descriptors.",
+           absl::StrCat(p.max_fds));
+  }
+  Sample(out, "process_start_time_seconds", "gauge",
+         "Start time of the process since unix epoch in seconds.", Number(p.start_time_seconds));
 }
 
 }  // namespace
 
-std::string MetricsText(const SchedulerSnapshot& s) {
+std::string MetricsText(const SchedulerSnapshot& s, const ProcessStats* process) {
   std::string out;
-  Family(out, "wavebake_jobs", "gauge", "Jobs the coordinator holds, by phase.");
+  Family(out, "wavebake_build_info", "gauge",
+         "Always 1; the labels name the build (revision: the git commit it was configured from).");
+  absl::StrAppend(&out, "wavebake_build_info{version=\"", WB_BUILD_VERSION, "\",revision=\"",
+                  WB_BUILD_REVISION, "\"} 1\n");
+  Family(out, "wavebake_jobs", "gauge",
+         "Jobs the coordinator holds, by phase (finished ones are summed only here).");
   for (int p = 0; p < 7; ++p) {
     absl::StrAppend(&out, "wavebake_jobs{phase=\"", Lower(PhaseName(static_cast<Phase>(p + 1))),
                     "\"} ", s.jobs_by_phase[p], "\n");
@@ -76,20 +106,23 @@ std::string MetricsText(const SchedulerSnapshot& s) {
   absl::StrAppend(&out, "wavebake_rays_traced_total ", s.rays_traced, "\n");
   LatencyFamily(out, s.lease_latency);
   Family(out, "wavebake_workers_alive", "gauge",
-         "Workers seen within one lease period and not excluded.");
+         "Workers not excluded that leased or heartbeated within one lease period (a worker "
+         "counts only after its store-root check, which precedes its first lease).");
   absl::StrAppend(&out, "wavebake_workers_alive ", s.workers_alive, "\n");
-  Family(out, "wavebake_workers_registered", "gauge", "Workers ever registered.");
-  absl::StrAppend(&out, "wavebake_workers_registered ", s.workers_registered, "\n");
+  Family(out, "wavebake_workers_registered_total", "counter",
+         "Worker registrations the coordinator's database holds (records are never removed).");
+  absl::StrAppend(&out, "wavebake_workers_registered_total ", s.workers_registered, "\n");
   Family(out, "wavebake_workers_excluded", "gauge", "Workers excluded after repeated failures.");
   absl::StrAppend(&out, "wavebake_workers_excluded ", s.workers_excluded, "\n");
-  PerJob(out, s, "wavebake_job_tasks_done", "Done tasks of a job (as `wavebake status`).",
+  PerJob(out, s, "wavebake_job_tasks_done", "Done tasks of a live job (as `wavebake status`).",
          [](const JobTaskCounts& j) { return j.tasks_done; });
-  PerJob(out, s, "wavebake_job_tasks_total", "Tasks of a job: tiles + groups + 1.",
+  PerJob(out, s, "wavebake_job_tasks", "Tasks of a live job: tiles + groups + FINALIZE.",
          [](const JobTaskCounts& j) { return j.tasks_total; });
-  PerJob(out, s, "wavebake_job_tasks_leased", "Tasks of a job leased now.",
+  PerJob(out, s, "wavebake_job_tasks_leased", "Tasks of a live job leased now.",
          [](const JobTaskCounts& j) { return j.leased_tasks; });
-  PerJob(out, s, "wavebake_job_rays_traced", "Rays of a job, live leases included.",
+  PerJob(out, s, "wavebake_job_rays_traced", "Rays of a live job, running leases included.",
          [](const JobTaskCounts& j) { return j.rays_traced; });
+  if (process) ProcessFamilies(out, *process);
   return out;
 }
 

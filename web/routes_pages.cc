@@ -6,8 +6,8 @@
 namespace wavebake::web {
 namespace {
 
-// Per-job series in /metrics: as many jobs as `wavebake status` lists by
-// default and then some, so scrapes stay small on a long-lived coordinator.
+// Per-job series in /metrics are for live jobs only (finished ones are summed
+// by phase); this caps them too, so a deep queue cannot grow a scrape unbounded.
 constexpr int kMetricsJobs = 100;
 
 void SendPage(const RouteContext& ctx, const std::string& name, httplib::Response& res) {
@@ -56,7 +56,9 @@ void AddPageRoutes(httplib::Server& server, RouteContext& ctx) {
   });
   server.Get("/metrics", [&ctx](const httplib::Request&, httplib::Response& res) {
     SourceSlot::Use source = ctx.source->Get();
-    res.set_content(MetricsText(source ? source->Metrics(kMetricsJobs) : SchedulerSnapshot{}),
+    absl::StatusOr<ProcessStats> process = ReadProcessStats();
+    res.set_content(MetricsText(source ? source->Metrics(kMetricsJobs) : SchedulerSnapshot{},
+                                process.ok() ? &*process : nullptr),
                     kMetricsContentType);
   });
 }
