@@ -81,6 +81,9 @@ void AddCoordinatorCommand(CLI::App& app) {
                   "require this bearer token (first line of the file) on every RPC");
   cmd->add_option("--tls-cert", o.tls_cert_path, "PEM certificate: serve TLS (with --tls-key)");
   cmd->add_option("--tls-key", o.tls_key_path, "PEM private key of --tls-cert");
+  cmd->add_option("--health-listen", o.health_address,
+                  "also serve the gRPC health service alone, in plain text, on host:port "
+                  "(for Kubernetes' grpc probes, which speak no TLS)");
   cmd->add_option("--lease-seconds", o.lease_seconds,
                   "how long a task's lease lasts without a heartbeat")
       ->capture_default_str();

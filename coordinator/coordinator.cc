@@ -157,6 +157,22 @@ absl::Status Coordinator::BuildServer() {
         absl::StrCat("listen_address: cannot listen on \"", options_.listen_address, "\""));
   }
   spdlog::info("coordinator: listening on {} (data {})", address(), options_.data_dir.string());
+  return BuildHealthServer();
+}
+
+// A server with no service of ours: the default health service alone, which
+// answers SERVING while the process serves (as it does on the main port).
+absl::Status Coordinator::BuildHealthServer() {
+  if (options_.health_address.empty()) return absl::OkStatus();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(options_.health_address, grpc::InsecureServerCredentials(),
+                           &health_port_);
+  health_server_ = builder.BuildAndStart();
+  if (!health_server_ || health_port_ == 0) {
+    return absl::UnavailableError(
+        absl::StrCat("health_address: cannot listen on \"", options_.health_address, "\""));
+  }
+  spdlog::info("coordinator: health service alone, in plain text, on port {}", health_port_);
   return absl::OkStatus();
 }
 
@@ -198,6 +214,8 @@ std::shared_ptr<grpc::Channel> Coordinator::InProcessChannel() {
 void Coordinator::Shutdown() {
   if (stopping_.exchange(true)) return;
   reaper_.request_stop();
+  // Probes fail first: a stopping coordinator is neither ready nor alive.
+  if (health_server_) health_server_->Shutdown(std::chrono::system_clock::now());
   if (server_) server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
   if (reaper_.joinable()) reaper_.join();
 }

@@ -37,6 +37,10 @@ struct CoordinatorOptions {
   std::filesystem::path store_root{};          // empty = data_dir / "store"
   std::string token{};                         // empty = no auth
   std::filesystem::path tls_cert_path{}, tls_key_path{};  // both or neither (PEM)
+  // Also serve only the standard gRPC health service, in plain text, here
+  // ("" = not): Kubernetes' built-in grpc probes speak no TLS, and this port
+  // carries no job or worker call, so no token crosses it unencrypted.
+  std::string health_address{};
   double lease_seconds = 30;
   int64_t max_upload_bytes = int64_t{1} << 30;
   int max_message_bytes = 16 << 20;  // gRPC send/receive limit; chunks are 1 MiB
@@ -62,8 +66,9 @@ class Coordinator {
   // Stops accepting calls, ends Watch streams, waits for running calls.
   void Shutdown();
 
-  int port() const { return port_; }  // 0 when in-process only
-  std::string address() const;        // "host:port" clients dial
+  int port() const { return port_; }                // 0 when in-process only
+  int health_port() const { return health_port_; }  // 0 without health_address
+  std::string address() const;                      // "host:port" clients dial
   std::shared_ptr<grpc::Channel> InProcessChannel();
   grpc::Server* server() { return server_.get(); }
   LeaseTable& table() { return *table_; }
@@ -73,6 +78,7 @@ class Coordinator {
  private:
   absl::Status Init(PlanFn plan_fn, CleanupFn cleanup_fn);
   absl::Status BuildServer();
+  absl::Status BuildHealthServer();
   void ReapLoop(std::stop_token stop);
 
   CoordinatorOptions options_;
@@ -85,6 +91,8 @@ class Coordinator {
   std::unique_ptr<JobServiceImpl> job_service_;
   std::unique_ptr<WorkerServiceImpl> worker_service_;
   std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<grpc::Server> health_server_;  // health_address: the health service alone
+  int health_port_ = 0;
   std::atomic<bool> stopping_{false};
   int port_ = 0;
   std::mutex reap_mu_;
