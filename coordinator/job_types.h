@@ -8,6 +8,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "core/bake/finalize_shards.h"
 
 namespace wavebake {
 
@@ -73,7 +74,9 @@ struct JobRecord {
   int64_t created_ms = 0, started_ms = 0, finished_ms = 0;
   bool cleaned = false;  // cleanup callback ran (FAILED / CANCELLED jobs)
 
-  int tasks_total() const { return tiles + groups + 1; }
+  // Tiles, groups, FINALIZE's shards and its last task (core/bake/finalize_shards.h).
+  int tasks_total() const { return tiles + groups + FinalizeTasks(groups); }
+  int finalize_last() const { return tasks_total() - 1; }  // its task index
 };
 
 // Called once a job has FAILED or been CANCELLED and none of its leases is
@@ -81,12 +84,13 @@ struct JobRecord {
 // half-written is left behind"). Runs outside the coordinator's locks.
 using CleanupFn = std::function<void(const JobRecord&)>;
 
-// Task `index` of a job: tiles 0..T-1, then groups T..T+G-1, then FINALIZE.
+// Task `index` of a job: tiles 0..T-1, then groups T..T+G-1, then FINALIZE's
+// shards (kind_index 0..K-1) and its last task (kind_index K).
 struct TaskRecord {
   int64_t job_id = 0;
   int index = 0;
   TaskKind kind = TaskKind::kBakeTile;
-  int kind_index = 0;  // tile or group number
+  int kind_index = 0;  // tile, group or FINALIZE task number
   TaskState state = TaskState::kPending;
   int attempts = 0;  // leases granted so far; the lease id carries it
   int failures = 0;  // Fail calls + lease expiries (both count toward max_attempts)

@@ -148,11 +148,7 @@ absl::Status LeaseTable::ResumeJob(JobState& js, absl::string_view why, Transiti
     if (t.kind == TaskKind::kBakeTile) ++js.tiles_done;
     if (t.kind == TaskKind::kTransformColumns) ++js.groups_done;
   }
-  const auto [begin, end] = StageRange(js.rec, js.rec.phase);
-  for (int i = begin; i < end; ++i) {
-    if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
-  }
-  if (!js.ready.empty()) runnable_.insert(js.rec.id);
+  QueueStage(js);
   // The stage's clock restarts here; earlier task times died with the old process.
   if (js.rec.started_ms > 0) js.stages[StageOf(js.rec.phase)].opened_ms = clock_->NowMs();
   AddEvent(js, tx, EventKind::kResumed, nullptr,
@@ -169,7 +165,7 @@ absl::StatusOr<JobInfo> LeaseTable::AddJob(int64_t id, std::string request, int 
                                            const PlannedJob& plan) {
   // The plan comes from the caller's planner: its mistakes are internal errors.
   if (plan.tiles < 1 || plan.groups < 1 ||
-      int64_t{plan.tiles} + plan.groups + 1 > options_.max_tasks_per_job) {
+      int64_t{plan.tiles} + plan.groups + FinalizeTasks(plan.groups) > options_.max_tasks_per_job) {
     return absl::InternalError(absl::StrCat("plan: ", plan.tiles, " tiles and ", plan.groups,
                                             " groups is not a valid plan"));
   }
@@ -224,7 +220,7 @@ absl::StatusOr<JobInfo> LeaseTable::AddJobLocked(int64_t id, std::string request
                                             : TaskKind::kFinalize;
     t.kind_index = t.kind == TaskKind::kBakeTile           ? i
                    : t.kind == TaskKind::kTransformColumns ? i - plan.tiles
-                                                           : 0;
+                                                           : i - plan.tiles - plan.groups;
     if (t.kind == TaskKind::kBakeTile) js.ready.insert(i);
   }
   Transition tx;
@@ -284,16 +280,31 @@ absl::StatusOr<JobInfo> LeaseTable::Cancel(int64_t id) {
 void LeaseTable::OpenStage(JobState& js, Phase phase, Transition& tx) {
   js.rec.phase = phase;
   js.stages[StageOf(phase)].opened_ms = clock_->NowMs();
-  const auto [begin, end] = StageRange(js.rec, phase);
-  for (int i = begin; i < end; ++i) {
-    if (js.tasks[i].state == TaskState::kPending) js.ready.insert(i);
-  }
-  if (!js.ready.empty()) runnable_.insert(js.rec.id);
+  QueueStage(js);
   AddEvent(js, tx, EventKind::kPhase);
 }
 
-// After a task is done: groups only once every tile is done, FINALIZE once
-// every group is (§2: the blocked transpose needs every tile's chunks).
+// The pending tasks of the job's stage become leasable; FINALIZE's last
+// task only once every shard is done (it reads what they wrote).
+void LeaseTable::QueueStage(JobState& js) {
+  const auto [begin, end] = StageRange(js.rec, js.rec.phase);
+  const int last = js.rec.finalize_last();
+  for (int i = begin; i < end; ++i) {
+    if (js.tasks[i].state != TaskState::kPending) continue;
+    if (i == last && !ShardsDone(js)) continue;
+    js.ready.insert(i);
+  }
+  if (!js.ready.empty()) runnable_.insert(js.rec.id);
+}
+
+bool LeaseTable::ShardsDone(const JobState& js) {
+  const int done = js.tasks_done - js.tiles_done - js.groups_done;
+  return done >= FinalizeShards(js.rec.groups);
+}
+
+// After a task is done: groups only once every tile is done, FINALIZE's
+// shards once every group is (§2: the blocked transpose needs every tile's
+// chunks), its last task once every shard is.
 void LeaseTable::AdvanceStage(JobState& js, Transition& tx) {
   const JobRecord& r = js.rec;
   if ((r.phase == Phase::kBaking || r.phase == Phase::kQueued) && js.tiles_done == r.tiles) {
@@ -301,6 +312,11 @@ void LeaseTable::AdvanceStage(JobState& js, Transition& tx) {
   }
   if (r.phase == Phase::kTransforming && js.groups_done == r.groups) {
     OpenStage(js, Phase::kFinalizing, tx);
+  } else if (r.phase == Phase::kFinalizing && ShardsDone(js) &&
+             js.tasks[r.finalize_last()].state == TaskState::kPending &&
+             !js.ready.contains(r.finalize_last())) {
+    js.ready.insert(r.finalize_last());  // the shards are done: the last task's turn
+    runnable_.insert(r.id);
   }
   if (r.phase == Phase::kFinalizing && js.tasks_done == r.tasks_total()) {
     EndJob(js, Phase::kDone, {}, tx);
@@ -379,9 +395,10 @@ double LeaseTable::EtaLocked(const JobState& js, const JobInfo& info, int64_t no
   EtaInputs in;
   in.current = StageOf(r.phase);
   in.parallelism = std::max(js.peak_leases, 1);
+  // FINALIZE's tasks (shards and the last) count as one for the ETA model,
+  // whose prior is for the stage as a whole (coordinator/eta_model.h).
   const int counts[3] = {r.tiles, r.groups, 1};
-  const int done[3] = {js.tiles_done, js.groups_done,
-                       js.tasks_done - js.tiles_done - js.groups_done};
+  const int done[3] = {js.tiles_done, js.groups_done, js.tasks_done == r.tasks_total() ? 1 : 0};
   for (int s = 0; s < 3; ++s) {
     in.stages[s].tasks = counts[s];
     in.stages[s].done = done[s];
@@ -412,7 +429,8 @@ SchedulerSnapshot LeaseTable::Metrics(int job_limit) const {
     const JobState& js = it->second;
     ++snap.jobs_by_phase[static_cast<int>(js.rec.phase) - 1];
     snap.rays_traced += js.rec.rays_traced;
-    if (static_cast<int>(snap.jobs.size()) >= job_limit) continue;
+    // Per-job series for live jobs only: finished ones are summed by phase.
+    if (IsTerminal(js.rec.phase) || static_cast<int>(snap.jobs.size()) >= job_limit) continue;
     const JobInfo info = CountsLocked(js);
     snap.jobs.push_back({.id = js.rec.id,
                          .phase = js.rec.phase,
@@ -426,7 +444,7 @@ SchedulerSnapshot LeaseTable::Metrics(int job_limit) const {
     ++snap.workers_registered;
     if (w.rec.excluded) {
       ++snap.workers_excluded;
-    } else if (now - w.last_seen_ms <= options_.lease_ms) {
+    } else if (w.last_seen_ms > 0 && now - w.last_seen_ms <= options_.lease_ms) {
       ++snap.workers_alive;
     }
   }

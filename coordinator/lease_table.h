@@ -219,6 +219,10 @@ class LeaseTable {
   // store_is_ours: set once the checks show plan.store_path is this job's alone.
   absl::StatusOr<JobInfo> AddJobLocked(int64_t id, std::string request, int max_attempts,
                                        const PlannedJob& plan, bool& store_is_ours);
+  // The pending tasks of the job's stage become leasable (FINALIZE's last
+  // task only once every shard is done).
+  void QueueStage(JobState& js);
+  static bool ShardsDone(const JobState& js);
   // The counts (done, leased, rays, bytes); InfoLocked adds rays/s and the ETA.
   JobInfo CountsLocked(const JobState& js) const;
   JobInfo InfoLocked(const JobState& js) const;

@@ -19,7 +19,9 @@ absl::StatusOr<int64_t> LeaseTable::RegisterWorker(std::string name, int threads
     WorkerState w;
     w.rec = {
         .id = id, .name = std::move(name), .threads = threads, .registered_ms = clock_->NowMs()};
-    w.last_seen_ms = w.rec.registered_ms;
+    // last_seen_ms stays 0 until its first Lease or Heartbeat: a worker checks
+    // its store root between Register and its first Lease, and one that fails
+    // the check exits without ever counting as alive in /metrics.
     Transition tx;
     tx.workers.push_back(w.rec);
     if (absl::Status s = CommitLocked(tx); !s.ok()) return s;
@@ -226,7 +228,8 @@ absl::StatusOr<bool> LeaseTable::CompleteLocked(int64_t worker_id, const LeaseKe
   ++js.tasks_done;
   if (t.kind == TaskKind::kBakeTile) ++js.tiles_done;
   if (t.kind == TaskKind::kTransformColumns) ++js.groups_done;
-  if (t.kind == TaskKind::kFinalize) js.rec.stats_json = report.stats_json;  // final error stats
+  // The last FINALIZE task's stats are the store's (its shards report none).
+  if (t.index == js.rec.finalize_last()) js.rec.stats_json = report.stats_json;
   js.rec.rays_traced += report.rays_traced;
   js.rec.bytes_written += report.bytes_written;
   tx.tasks.push_back(t);

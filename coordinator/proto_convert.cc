@@ -75,7 +75,7 @@ void SetPhaseTasks(const JobRecord& job, v1::JobEvent* out) {
       break;
     case v1::PHASE_FINALIZING:
       before = job.tiles + job.groups;
-      total = 1;
+      total = FinalizeTasks(job.groups);
       break;
     default:  // queued or ended: the whole job
       break;

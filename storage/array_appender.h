@@ -28,10 +28,17 @@ namespace wavebake {
 template <class T>
 class ArrayAppender {
  public:
-  // `array` must be 1-D with element type T and outlive the appender.
-  explicit ArrayAppender(const ZarrArray& array, int in_flight = 1)
+  // `array` must be 1-D with element type T and outlive the appender. It
+  // writes chunks from `first_chunk` on, `length` elements (-1: up to the
+  // array's end), so writers of disjoint chunk ranges can share an array
+  // (FINALIZE's shards); only the array's last chunk may end short.
+  explicit ArrayAppender(const ZarrArray& array, int in_flight = 1, int64_t first_chunk = 0,
+                         int64_t length = -1)
       : array_(array),
         chunk_(static_cast<size_t>(array.spec().chunks.at(0))),
+        next_chunk_(first_chunk),
+        length_(length >= 0 ? length
+                            : array.spec().shape.at(0) - first_chunk * array.spec().chunks.at(0)),
         in_flight_(std::max(in_flight, 1)) {}
 
   // Waits for the chunks handed over (an appender dropped on an error path
@@ -69,10 +76,9 @@ class ArrayAppender {
       if (absl::Status s = Flush(); !s.ok()) return s;
     }
     if (absl::Status s = Wait(); !s.ok()) return s;
-    const int64_t length = array_.spec().shape.at(0);
-    if (written_ != length) {
+    if (written_ != length_) {
       return absl::InternalError(absl::StrCat(array_.dir().string(), ": appended ", written_,
-                                              " elements to an array of ", length));
+                                              " elements where ", length_, " were due"));
     }
     return absl::OkStatus();
   }
@@ -138,6 +144,7 @@ class ArrayAppender {
   std::vector<T> chunk_;  // being filled by Append
   size_t filled_ = 0;
   int64_t next_chunk_ = 0;
+  const int64_t length_;  // elements due from next_chunk_'s start
   int64_t written_ = 0;
   const int in_flight_;
 

@@ -2,21 +2,17 @@
 
 #include <algorithm>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/columns/column_coding.h"
-#include "core/columns/quantization_steps.h"
-#include "core/columns/quantizer.h"
-#include "core/wavelets/subband.h"
+#include "core/bake/finalize_shards.h"
 #include "core/wavelets/wavelet2d.h"
 #include "storage/array_appender.h"
 #include "storage/atomic_file.h"
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
-#include "storage/zarr_array.h"
-#include "worker/group_result.h"
+#include "storage/zarr_group.h"
+#include "worker/finalize_parts.h"
 #include "worker/ordered_parallel.h"
 #include "worker/store_manifest.h"
 #include "worker/store_stats.h"
@@ -24,220 +20,118 @@
 namespace wavebake {
 namespace {
 
-// Chunk lengths of the final arrays: ~1 MB of indices, 512 KB of data.
-constexpr int64_t kNnzChunk = 1 << 18;
-constexpr int64_t kColumnChunk = 1 << 16;
+// A finished store whose staging is gone: a retried FINALIZE task has nothing to do.
+bool AlreadyFinalized(const std::filesystem::path& store) {
+  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
+  return attrs.ok() && attrs->value("format", "") == store::kFormat;
+}
 
-absl::Status CheckGroup(const JobPlan& plan, const std::filesystem::path& store, int g,
-                        const GroupResult& r) {
-  if (r.first_column == plan.GroupFirst(g) &&
-      r.columns.size() == static_cast<size_t>(plan.GroupCount(g))) {
+// OK to go on (staging is there); `done` when the store is finished already.
+absl::Status CheckStaging(const std::filesystem::path& store, bool* done) {
+  *done = false;
+  if (std::filesystem::exists(store::Path(store, store::kStaging))) return absl::OkStatus();
+  if (AlreadyFinalized(store)) {
+    *done = true;
     return absl::OkStatus();
   }
-  return absl::DataLossError(
-      absl::StrCat(GroupResultPath(store, g).string(), ": columns do not match the job plan"));
+  return absl::FailedPreconditionError(absl::StrCat(store.string(), ": no staging to finalize"));
 }
 
-// Pass 1: nnz (the length of indices/data) and what the step choice needs to
-// know of every column (O(M)), from the groups' column tables alone. A
-// missing group is FailedPrecondition: FINALIZE ran too early.
-struct GroupScan {
-  int64_t nnz = 0;
-  std::vector<ColumnQuantInput> columns;
-};
-
-absl::Status Stopped(const FinalizeOptions& options, int group) {
-  if (options.cancel == nullptr || !options.cancel->load()) return absl::OkStatus();
-  return absl::CancelledError(absl::StrCat("FINALIZE: cancelled at group ", group));
-}
-
-// Threads of FINALIZE's own: it runs alone at the end of a job.
-int Threads(const FinalizeOptions& options) {
-  return options.threads > 0 ? options.threads
-                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
-// Group g's result (only its column table if `columns_only`), checked
-// against the plan; FailedPrecondition if it is missing (FINALIZE ran too
-// early).
-absl::StatusOr<GroupResult> ReadCheckedGroup(const JobPlan& plan,
-                                             const std::filesystem::path& store,
-                                             const FinalizeOptions& options, int g,
-                                             bool columns_only = false) {
-  if (absl::Status s = Stopped(options, g); !s.ok()) return s;
-  absl::StatusOr<GroupResult> r =
-      columns_only ? ReadGroupColumns(store, g) : ReadGroupResult(store, g);
-  if (absl::IsNotFound(r.status()))
-    return absl::FailedPreconditionError(
-        absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
-  if (!r.ok()) return r.status();
-  if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
-  return r;
-}
-
-absl::Status ScanGroups(const JobPlan& plan, const std::filesystem::path& store,
-                        const FinalizeOptions& options, GroupScan* scan) {
-  *scan = {};
-  struct Columns {
-    int64_t kept = 0;
-    std::vector<ColumnQuantInput> columns;
-  };
-  const int threads = Threads(options);
-  return OrderedParallel<Columns>(
-      plan.groups, threads, 2 * threads,
-      [&](int g) -> absl::StatusOr<Columns> {
-        absl::StatusOr<GroupResult> r = ReadCheckedGroup(plan, store, options, g, true);
-        if (!r.ok()) return r.status();
-        Columns out;
-        for (const GroupColumn& c : r->columns) {
-          out.kept += c.kept;
-          out.columns.push_back({.max_abs = c.max_abs,
-                                 .step_unit = c.step_unit,
-                                 .reference_energy = c.reference_energy,
-                                 .min_bits = c.min_bits});
-        }
-        return out;
-      },
-      [&](int, Columns& c) {
-        scan->nnz += c.kept;
-        scan->columns.insert(scan->columns.end(), c.columns.begin(), c.columns.end());
-        return absl::OkStatus();
-      });
-}
-
-struct CscArrays {
-  ZarrArray indptr, indices, data, depth, scale;
-};
-
-// zstd levels of the nnz-long arrays (zstd 1.5.4, measured on the N=64
-// stores of cubes-wall camera 256² and the bunny hilbert 64²): indices at 9
-// are 5 % smaller than at 5 and 7 % than at 3, at 125 MB/s; 19 gained 5 %
-// more for 10× the time. The int16 values are smallest at 5 (1.4 % smaller
-// than at 9, 2.6× as fast: 65 against 25 MB/s) — the slower strategies of
-// the higher levels find nothing more in them.
-constexpr int kIndicesZstdLevel = 9;
-constexpr int kDataZstdLevel = 5;
-
-absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,
-                                 int64_t length, int64_t chunk, bool delta = false,
-                                 bool shuffle = false, int level = kDefaultZstdLevel) {
-  return ZarrArray::Create(store::Path(store, name),
-                           {.shape = {length},
-                            .chunks = {std::max<int64_t>(1, std::min(length, chunk))},
-                            .dtype = t,
-                            .zstd_level = level,
-                            .delta_filter = delta,
-                            .shuffle_filter = shuffle});
-}
-
-absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, int columns,
-                                          int64_t nnz) {
-  if (absl::Status s = WriteGroup(store::Path(store, store::kTransport)); !s.ok()) return s;
-  auto indptr = Create(store, store::kIndptr, DType::kInt64, columns + 1, kColumnChunk);
-  // Indices rise inside a column: the delta filter turns them into small
-  // numbers zstd packs tighter (DESIGN.md §3), and the byte shuffle puts
-  // their mostly-zero high bytes together: 5.1 → 3.3 bits per position on an
-  // adaptive cubes-wall store. The int16 values do not gain from a shuffle
-  // (adaptive: 6.4 → 6.5 bits), so data has none.
-  auto indices =
-      Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true, true, kIndicesZstdLevel);
-  auto data =
-      Create(store, store::kData, DType::kInt16, nnz, kNnzChunk, false, false, kDataZstdLevel);
-  auto depth = Create(store, store::kDepth, DType::kUint8, columns, kColumnChunk);
-  auto scale = Create(store, store::kScale, DType::kFloat32, columns, kColumnChunk);
-  for (const auto* a : {&indptr, &indices, &data, &depth, &scale})
-    if (!a->ok()) return a->status();
-  return CscArrays{*std::move(indptr), *std::move(indices), *std::move(data), *std::move(depth),
-                   *std::move(scale)};
-}
-
-// A group's columns quantized (DESIGN.md §1 "Scaling and quantization"):
-// the codes, and per column its achieved quantization error energy
-// (weighted like the selection) and the bits its largest code needs (0 for
-// a column without codes).
-struct QuantizedGroup {
-  GroupResult result;
-  DefaultInitVector<int16_t> q;  // parallel to result.positions, written in full
+// Shard `shard`'s chunks: those whose first element lies in its groups'
+// elements [e0, e1), i.e. chunks [ceil(e0/C), ceil(e1/C)); their elements
+// run to min(end·C, nnz) and may need the groups after the shard's. Groups
+// are read and quantized on the task's threads, a few at a time, and
+// appended in order; the shard's own groups also give their columns'
+// outcome.
+absl::Status WriteShard(const BakeContext& ctx, const std::filesystem::path& store,
+                        const FinalizeScan& scan, const StepPlan& steps, int shard,
+                        const FinalizeOptions& options) {
+  const JobPlan& plan = ctx.plan;
+  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, scan.nnz);
+  if (!arrays.ok()) return arrays.status();
+  const int g0 = ShardFirstGroup(plan.groups, shard), g1 = ShardFirstGroup(plan.groups, shard + 1);
+  const int64_t chunk = arrays->indices.spec().chunks.at(0);
+  const auto& at = scan.group_offsets;
+  const int64_t first_chunk = (at[g0] + chunk - 1) / chunk;
+  const int64_t end_chunk = (at[g1] + chunk - 1) / chunk;
+  const int64_t begin = std::min(first_chunk * chunk, scan.nnz);
+  const int64_t end = std::max(begin, std::min(end_chunk * chunk, scan.nnz));
+  // Groups to read: the shard's own, and on to the one holding element end − 1.
+  int g_end = g1;
+  if (end > begin) {
+    const int holding_last =
+        static_cast<int>(std::upper_bound(at.begin(), at.end(), end - 1) - at.begin()) - 1;
+    g_end = std::max(g_end, holding_last + 1);
+  }
+  const int threads = FinalizeThreads(options);
+  ArrayAppender<uint32_t> indices(arrays->indices, threads, first_chunk, end - begin);
+  ArrayAppender<int16_t> data(arrays->data, threads, first_chunk, end - begin);
   std::vector<double> error_energy;
   std::vector<int> bits;
-};
-
-absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const StepPlan& steps,
-                                             const std::filesystem::path& store,
-                                             const FinalizeOptions& options, int g) {
-  absl::StatusOr<GroupResult> r = ReadCheckedGroup(ctx.plan, store, options, g);
-  if (!r.ok()) return r.status();
-  const JobPlan& plan = ctx.plan;
-  QuantizedGroup out;
-  out.q.resize(r->positions.size());
-  std::vector<uint8_t> levels;
-  size_t at = 0;
-  for (size_t c = 0; c < r->columns.size(); ++c) {
-    const GroupColumn& gc = r->columns[c];
-    const int m = r->first_column + static_cast<int>(c);
-    const auto positions = std::span<const uint32_t>(r->positions).subspan(at, gc.kept);
-    const auto values = std::span<const float>(r->values).subspan(at, gc.kept);
-    const auto q = std::span(out.q).subspan(at, gc.kept);
-    at += gc.kept;
-    const std::vector<uint8_t>& level_map = SubbandLevels(plan.width, plan.height, gc.depth);
-    levels.resize(positions.size());
-    for (size_t i = 0; i < positions.size(); ++i) levels[i] = level_map[positions[i]];
-    const std::vector<float>& w =
-        SynthesisNormsRef(ctx.params.column_filter, plan.width, plan.height, gc.depth);
-    out.error_energy.push_back(QuantizeWithError(values, positions, levels,
-                                                 ctx.params.level_scaling, steps.steps[m],
-                                                 steps.max_code, ctx.params.seed, m, w, q));
-    int largest = 0;
-    for (int16_t v : q) largest = std::max(largest, std::abs(int{v}));
-    out.bits.push_back(positions.empty() ? 0 : BitsForCode(largest));
-  }
-  out.result = *std::move(r);
-  return out;
+  absl::Status appended = OrderedParallel<QuantizedGroup>(
+      g_end - g0, threads, threads + 1,
+      [&](int i) { return QuantizeGroup(ctx, steps, store, options, g0 + i); },
+      [&](int i, QuantizedGroup& qg) -> absl::Status {
+        const int g = g0 + i;
+        if (g < g1) {
+          error_energy.insert(error_energy.end(), qg.error_energy.begin(), qg.error_energy.end());
+          bits.insert(bits.end(), qg.bits.begin(), qg.bits.end());
+        }
+        // The part of the group's elements [at[g], at[g+1]) this shard writes.
+        const int64_t from = std::max(at[g], begin), to = std::min(at[g + 1], end);
+        if (from >= to) return absl::OkStatus();
+        const size_t offset = static_cast<size_t>(from - at[g]), n = static_cast<size_t>(to - from);
+        if (absl::Status s =
+                indices.Append(std::span<const uint32_t>(qg.result.positions).subspan(offset, n));
+            !s.ok())
+          return s;
+        return data.Append(std::span<const int16_t>(qg.q).subspan(offset, n));
+      });
+  if (!appended.ok()) return appended;
+  for (absl::Status s : {indices.Close(), data.Close()})
+    if (!s.ok()) return s;
+  return WriteShardOutcome(store, shard, plan.GroupFirst(g0), error_energy, bits);
 }
 
-// Pass 2: groups in order → the CSC arrays. Groups are read and quantized on
-// FINALIZE's threads, a few at a time, and appended here in order.
-absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path& store,
-                            const StepPlan& steps, int64_t nnz, const FinalizeOptions& options,
-                            StoreStats* stats) {
+// The column arrays and the transport attributes, from the scan, the steps
+// and the shards' outcomes; the stats in column order (as one task added
+// them: StoreStats sums in that order).
+absl::Status WriteColumns(const BakeContext& ctx, const std::filesystem::path& store,
+                          const FinalizeScan& scan, const StepPlan& steps, StoreStats* stats) {
   const JobPlan& plan = ctx.plan;
-  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
+  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, scan.nnz);
   if (!arrays.ok()) return arrays.status();
-  const int threads = Threads(options);
-  ArrayAppender<uint32_t> indices(arrays->indices, threads);
-  ArrayAppender<int16_t> data(arrays->data, threads);
+  std::vector<double> error_energy(plan.columns, 0.0);
+  std::vector<int> bits(plan.columns, 0);
+  for (int k = 0; k < FinalizeShards(plan.groups); ++k) {
+    const int first = plan.GroupFirst(ShardFirstGroup(plan.groups, k));
+    const int end_group = ShardFirstGroup(plan.groups, k + 1);
+    const int end = end_group < plan.groups ? plan.GroupFirst(end_group) : plan.columns;
+    if (absl::Status s = ReadShardOutcome(store, k, first, end - first, error_energy, bits);
+        !s.ok())
+      return s;
+  }
   std::vector<int64_t> indptr(plan.columns + 1, 0);
   std::vector<uint8_t> depth(plan.columns, 0);
   std::vector<float> scale(plan.columns, 0.0f);
-  absl::Status appended = OrderedParallel<QuantizedGroup>(
-      plan.groups, threads, threads + 1,
-      [&](int g) { return QuantizeGroup(ctx, steps, store, options, g); },
-      [&](int, QuantizedGroup& qg) -> absl::Status {
-        const GroupResult& r = qg.result;
-        if (absl::Status s = indices.Append(r.positions); !s.ok()) return s;
-        if (absl::Status s = data.Append(qg.q); !s.ok()) return s;
-        for (size_t c = 0; c < r.columns.size(); ++c) {
-          const GroupColumn& gc = r.columns[c];
-          const int m = r.first_column + static_cast<int>(c);
-          indptr[m + 1] = indptr[m] + gc.kept;
-          depth[m] = gc.depth;
-          scale[m] = steps.steps[m];
-          stats->Add({.column = m,
-                      .depth = gc.depth,
-                      .kept = gc.kept,
-                      .energy = gc.energy,
-                      .reference_energy = gc.reference_energy,
-                      .dropped_energy = gc.dropped_energy,
-                      .quantization_energy = qg.error_energy[c],
-                      .min_bits = gc.min_bits,
-                      .bits = qg.bits[c]});
-        }
-        return absl::OkStatus();
-      });
-  if (!appended.ok()) return appended;
+  for (int m = 0; m < plan.columns; ++m) {
+    const GroupColumn& gc = scan.columns[m];
+    indptr[m + 1] = indptr[m] + gc.kept;
+    depth[m] = gc.depth;
+    scale[m] = steps.steps[m];
+    stats->Add({.column = m,
+                .depth = gc.depth,
+                .kept = gc.kept,
+                .energy = gc.energy,
+                .reference_energy = gc.reference_energy,
+                .dropped_energy = gc.dropped_energy,
+                .quantization_energy = error_energy[m],
+                .min_bits = gc.min_bits,
+                .bits = bits[m]});
+  }
   for (absl::Status s :
-       {indices.Close(), data.Close(), arrays->indptr.WriteAll<int64_t>(indptr),
-        arrays->depth.WriteAll<uint8_t>(depth), arrays->scale.WriteAll<float>(scale)}) {
+       {arrays->indptr.WriteAll<int64_t>(indptr), arrays->depth.WriteAll<uint8_t>(depth),
+        arrays->scale.WriteAll<float>(scale)}) {
     if (!s.ok()) return s;
   }
   return WriteAttrs(store::Path(store, store::kTransport),
@@ -246,45 +140,12 @@ absl::Status WriteTransport(const BakeContext& ctx, const std::filesystem::path&
                      {"shape", {int64_t{plan.width} * plan.height, plan.columns}}});
 }
 
-// A finished store whose staging is gone: a retried FINALIZE has nothing to do.
-bool AlreadyFinalized(const std::filesystem::path& store) {
-  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
-  return attrs.ok() && attrs->value("format", "") == store::kFormat;
-}
-
-}  // namespace
-
-// Renamed away first (atomic), so a crash midway never leaves a half-deleted
-// staging/ that looks like an unfinished job.
-absl::Status DropStaging(const std::filesystem::path& store) {
-  const std::filesystem::path trash = store / ".staging.removing";
-  std::error_code ec;
-  if (std::filesystem::exists(store::Path(store, store::kStaging))) {
-    std::filesystem::remove_all(trash, ec);
-    std::filesystem::rename(store::Path(store, store::kStaging), trash, ec);
-    if (ec)
-      return absl::InternalError(
-          absl::StrCat(store.string(), ": cannot drop staging: ", ec.message()));
-  }
-  std::filesystem::remove_all(trash, ec);
-  if (ec) return absl::InternalError(absl::StrCat(trash.string(), ": ", ec.message()));
-  return absl::OkStatus();
-}
-
-absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
-                      const FinalizeOptions& options) {
-  if (!std::filesystem::exists(store::Path(store, store::kStaging))) {
-    if (AlreadyFinalized(store)) return DropStaging(store);
-    return absl::FailedPreconditionError(absl::StrCat(store.string(), ": no staging to finalize"));
-  }
+absl::Status WriteStore(const BakeContext& ctx, const std::filesystem::path& store,
+                        const FinalizeScan& scan, const StepPlan& steps,
+                        const FinalizeOptions& options) {
   const JobPlan& plan = ctx.plan;
-  GroupScan scan;
-  if (absl::Status s = ScanGroups(plan, store, options, &scan); !s.ok()) return s;
-  const int64_t nnz = scan.nnz;
-  const StepPlan steps = PlanSteps(scan.columns, ctx.params);
-
   StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));
-  if (absl::Status s = WriteTransport(ctx, store, steps, nnz, options, &stats); !s.ok()) return s;
+  if (absl::Status s = WriteColumns(ctx, store, scan, steps, &stats); !s.ok()) return s;
   if (absl::Status s = WriteSamples(store, ctx.samples); !s.ok()) return s;
   // Uniform auto has no single b: "bits" is the widest column's.
   const ManifestBits bits{.bits = steps.bits != 0 ? steps.bits : std::max(2, stats.max_bits()),
@@ -309,6 +170,62 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
     return s;
   }
   return options.keep_staging ? absl::OkStatus() : DropStaging(store);
+}
+
+}  // namespace
+
+// Renamed away first (atomic), so a crash midway never leaves a half-deleted
+// staging/ that looks like an unfinished job.
+absl::Status DropStaging(const std::filesystem::path& store) {
+  const std::filesystem::path trash = store / ".staging.removing";
+  std::error_code ec;
+  if (std::filesystem::exists(store::Path(store, store::kStaging))) {
+    std::filesystem::remove_all(trash, ec);
+    std::filesystem::rename(store::Path(store, store::kStaging), trash, ec);
+    if (ec)
+      return absl::InternalError(
+          absl::StrCat(store.string(), ": cannot drop staging: ", ec.message()));
+  }
+  std::filesystem::remove_all(trash, ec);
+  if (ec) return absl::InternalError(absl::StrCat(trash.string(), ": ", ec.message()));
+  return absl::OkStatus();
+}
+
+absl::Status FinalizeShard(const BakeContext& ctx, const std::filesystem::path& store, int shard,
+                           const FinalizeOptions& options) {
+  if (shard < 0 || shard >= FinalizeShards(ctx.plan.groups)) {
+    return absl::InvalidArgumentError(absl::StrCat("FINALIZE shard ", shard, " is not in 0..",
+                                                   FinalizeShards(ctx.plan.groups) - 1));
+  }
+  bool done = false;
+  if (absl::Status s = CheckStaging(store, &done); !s.ok() || done) return s;
+  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
+  if (!scan.ok()) return scan.status();
+  return WriteShard(ctx, store, *scan, PlanFinalizeSteps(*scan, ctx.params), shard, options);
+}
+
+absl::Status FinalizeStore(const BakeContext& ctx, const std::filesystem::path& store,
+                           const FinalizeOptions& options) {
+  bool done = false;
+  if (absl::Status s = CheckStaging(store, &done); !s.ok()) return s;
+  if (done) return DropStaging(store);
+  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
+  if (!scan.ok()) return scan.status();
+  return WriteStore(ctx, store, *scan, PlanFinalizeSteps(*scan, ctx.params), options);
+}
+
+absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
+                      const FinalizeOptions& options) {
+  bool done = false;
+  if (absl::Status s = CheckStaging(store, &done); !s.ok()) return s;
+  if (done) return DropStaging(store);
+  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
+  if (!scan.ok()) return scan.status();
+  const StepPlan steps = PlanFinalizeSteps(*scan, ctx.params);
+  for (int k = 0; k < FinalizeShards(ctx.plan.groups); ++k) {
+    if (absl::Status s = WriteShard(ctx, store, *scan, steps, k, options); !s.ok()) return s;
+  }
+  return WriteStore(ctx, store, *scan, steps, options);
 }
 
 }  // namespace wavebake

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "absl/strings/str_cat.h"
+#include "core/bake/finalize_shards.h"
 #include "proto/bake_request.h"
 #include "storage/store_reader.h"
 #include "worker/bake_tile.h"
@@ -90,15 +91,38 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
                                        .dump()};
 }
 
+// A FINALIZE shard (core/bake/finalize_shards.h): its chunks of the CSC arrays.
+// A retry after the job's store was published finds nothing to do.
+absl::StatusOr<TaskOutcome> FinalizeShardTask(const v1::Task& task, const BakeContext& ctx,
+                                              const std::filesystem::path& partial,
+                                              const std::filesystem::path& out, int threads,
+                                              TaskProgress& progress) {
+  std::error_code ec;
+  if (!std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok()) return TaskOutcome{};
+  if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+  if (absl::Status s = FinalizeShard(ctx, partial, task.index(),
+                                     {.keep_staging = ctx.params.keep_staging,
+                                      .cancel = &progress.cancel,
+                                      .threads = threads});
+      !s.ok())
+    return s;
+  return TaskOutcome{};
+}
+
+// FINALIZE's last task: the column arrays and the manifest, then the store
+// appears at its path by one rename.
 absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext& ctx,
                                          const std::filesystem::path& partial,
-                                         const std::filesystem::path& out, TaskProgress& progress) {
+                                         const std::filesystem::path& out, int threads,
+                                         TaskProgress& progress) {
   std::error_code ec;
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-    if (absl::Status s = Finalize(
-            ctx, partial, {.keep_staging = ctx.params.keep_staging, .cancel = &progress.cancel});
+    if (absl::Status s = FinalizeStore(ctx, partial,
+                                       {.keep_staging = ctx.params.keep_staging,
+                                        .cancel = &progress.cancel,
+                                        .threads = threads});
         !s.ok())
       return s;
     if (progress.cancel.load()) return Cancelled(task);
@@ -135,7 +159,9 @@ absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
       outcome = TransformTask(task, **ctx, partial, progress);
       break;
     case v1::FINALIZE:
-      outcome = FinalizeTask(task, **ctx, partial, out, progress);
+      outcome = task.index() < FinalizeShards(task.groups())
+                    ? FinalizeShardTask(task, **ctx, partial, out, env.threads, progress)
+                    : FinalizeTask(task, **ctx, partial, out, env.threads, progress);
       break;
     default:
       return absl::InvalidArgumentError(

@@ -2,8 +2,9 @@
 // One leased task as a worker runs it (DESIGN.md §2): the task's scene and
 // job context, the job's partial store directory, then the task function —
 // BAKE_TILE → CreateStaging (idempotent) + BakeTile, TRANSFORM_COLUMNS →
-// TransformColumns, FINALIZE → Finalize and the rename that makes the store
-// appear at its path whole. No RPC here (worker/worker_loop.h leases,
+// TransformColumns, FINALIZE shard k → FinalizeShard, FINALIZE's last task
+// → FinalizeStore and the rename that makes the store appear at its path
+// whole. No RPC here (worker/worker_loop.h leases,
 // heartbeats and reports); no scheduling in the task functions.
 #include <atomic>
 #include <cstdint>
@@ -22,6 +23,9 @@ struct TaskEnv {
   SceneCache* scenes = nullptr;
   ContextCache* contexts = nullptr;
   SceneCache::FetchFn fetch;  // FetchScene from the coordinator
+  // Threads a task may run on: the worker's --threads (the CPUs its Slurm
+  // step or pod was given), never the host's hardware_concurrency().
+  int threads = 1;
 };
 
 // Shared between the running task and the heartbeat thread.

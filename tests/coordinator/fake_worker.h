@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "core/bake/finalize_shards.h"
 #include "wavebake.grpc.pb.h"
 
 namespace wavebake::testing {
@@ -78,7 +79,7 @@ class FakeWorker {
     result.set_lease_id(task.lease_id());
     result.set_rays_traced(task.kind() == v1::BAKE_TILE ? 1000 : 0);
     result.set_bytes_written(10);
-    if (task.kind() == v1::FINALIZE) {
+    if (task.kind() == v1::FINALIZE && task.index() == FinalizeShards(task.groups())) {
       const std::filesystem::path dir = store_root_ / task.store_path();
       std::filesystem::create_directories(dir / "transport");
       std::ofstream(dir / ".zgroup") << R"({"zarr_format": 2})";

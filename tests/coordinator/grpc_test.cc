@@ -11,6 +11,7 @@
 #include <map>
 #include <thread>
 
+#include "absl/strings/str_cat.h"
 #include "coordinator/coordinator.h"
 #include "coordinator/scene_store.h"
 #include "tests/coordinator/fake_worker.h"
@@ -111,7 +112,7 @@ TEST_F(GrpcTest, FakeWorkersCompleteAJobAndWatchSeesEveryPhase) {
   v1::Job job;
   ASSERT_TRUE(Submit(testing::BuiltinRequest(), &job).ok());
   EXPECT_EQ(job.phase(), v1::PHASE_QUEUED);
-  EXPECT_EQ(job.tasks_total(), kTiles + kGroups + 1);
+  EXPECT_EQ(job.tasks_total(), kTiles + kGroups + FinalizeShards(kGroups) + 1);
   EXPECT_EQ(job.request().light_res(), 32);  // defaults filled in
   EXPECT_EQ(job.request().column_mode(), "adaptive");
   EXPECT_EQ(job.store_path(), "job-" + job.id() + ".wbk");
@@ -485,7 +486,7 @@ TEST_F(GrpcTest, WatchStreamsLiveProgressAndEndsAtShutdown) {
   ASSERT_TRUE(progress);
   EXPECT_EQ(event.bytes_written(), 55);
   EXPECT_EQ(event.phase(), v1::PHASE_BAKING);
-  EXPECT_EQ(event.tasks_total(), kTiles + kGroups + 1);
+  EXPECT_EQ(event.tasks_total(), kTiles + kGroups + FinalizeShards(kGroups) + 1);
 
   // Shutdown ends open Watch streams instead of waiting for the job.
   const auto start = std::chrono::steady_clock::now();
@@ -547,6 +548,48 @@ TEST_F(GrpcTest, ServesTlsWhenGivenCertAndKey) {
   auto half = Coordinator::Start({.data_dir = dir_.path() / "d2", .tls_cert_path = cert}, FakePlan,
                                  nullptr);
   EXPECT_EQ(half.status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+// health_address: Kubernetes' grpc probe speaks plain text only, so a TLS
+// coordinator offers the health service alone on a plain port; the job and
+// worker services are not there (UNIMPLEMENTED), so no token crosses it.
+TEST_F(GrpcTest, PlainHealthPortBesideTlsServesHealthOnly) {
+  const auto cert = dir_.path() / "cert.pem", key = dir_.path() / "key.pem";
+  const std::string cmd =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=localhost "
+      "-addext subjectAltName=DNS:localhost,IP:127.0.0.1 -keyout " +
+      key.string() + " -out " + cert.string() + " >/dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0) GTEST_SKIP() << "no openssl to make a test certificate";
+  auto c = Coordinator::Start({.listen_address = "127.0.0.1:0",
+                               .data_dir = dir_.path() / "data",
+                               .tls_cert_path = cert,
+                               .tls_key_path = key,
+                               .health_address = "127.0.0.1:0"},
+                              FakePlan, nullptr);
+  ASSERT_TRUE(c.ok()) << c.status();
+  ASSERT_NE((*c)->health_port(), 0);
+  ASSERT_NE((*c)->health_port(), (*c)->port());
+  auto plain = grpc::CreateChannel(absl::StrCat("127.0.0.1:", (*c)->health_port()),
+                                   grpc::InsecureChannelCredentials());
+  grpc::GenericStub stub(plain);
+  grpc::Slice empty(std::string{});
+  grpc::ByteBuffer request(&empty, 1), response;
+  std::promise<grpc::Status> done;
+  auto ctx = CallContext("");
+  stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                 &response, [&](grpc::Status s) { done.set_value(s); });
+  ASSERT_TRUE(done.get_future().get().ok());
+  std::vector<grpc::Slice> slices;
+  ASSERT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // HealthCheckResponse{status: SERVING}
+  v1::JobList list;
+  EXPECT_EQ(v1::JobService::NewStub(plain)
+                ->List(CallContext("").get(), v1::ListRequest(), &list)
+                .error_code(),
+            grpc::StatusCode::UNIMPLEMENTED);
+  (*c)->Shutdown();
 }
 
 }  // namespace

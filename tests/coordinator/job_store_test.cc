@@ -63,7 +63,7 @@ TEST_F(JobStoreTest, RestartResumesJobWithLeasedTasksPending) {
   Process p(DbPath(), &clock_);
   auto tasks = p.store->ReadTasks(job);
   ASSERT_TRUE(tasks.ok());
-  ASSERT_EQ(tasks->size(), 6u);
+  ASSERT_EQ(tasks->size(), 7u);  // 4 tiles, 1 group, FINALIZE's shard and last task
   EXPECT_EQ((*tasks)[0].state, TaskState::kDone);
   EXPECT_EQ((*tasks)[0].rays_traced, 500);
   EXPECT_EQ((*tasks)[1].state, TaskState::kPending);
@@ -111,6 +111,36 @@ TEST_F(JobStoreTest, RestartInTransformStageKeepsStage) {
   EXPECT_EQ(g.kind, TaskKind::kTransformColumns);
   EXPECT_EQ(g.kind_index, 0);
   EXPECT_EQ(g.key.attempt, 2);
+}
+
+// FINALIZE's last task waits for every shard across a restart too: with one
+// shard done and one leased when the coordinator dies, the resumed job
+// leases the shard again first and the last task only after it.
+TEST_F(JobStoreTest, RestartInFinalizeStageHoldsTheLastTaskForItsShards) {
+  int64_t job = 0, worker = 0;
+  {
+    Process p(DbPath(), &clock_);
+    job = p.table->ReserveJobId();
+    ASSERT_TRUE(p.table->AddJob(job, "", 3, testing::Plan(1, 2)).ok());
+    worker = *p.table->RegisterWorker("w", 1);
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(*p.table->Complete(worker, p.Lease(worker).key, {}));
+    const LeaseGrant s0 = p.Lease(worker), s1 = p.Lease(worker);
+    ASSERT_EQ(s0.kind, TaskKind::kFinalize);
+    ASSERT_EQ(s1.kind_index, 1);
+    ASSERT_TRUE(*p.table->Complete(worker, s0.key, {}));
+  }  // dies with shard 1 leased
+  Process p(DbPath(), &clock_);
+  EXPECT_EQ(p.table->Get(job)->record.phase, Phase::kFinalizing);
+  const LeaseGrant again = p.Lease(worker);
+  EXPECT_EQ(again.kind_index, 1);
+  EXPECT_FALSE(p.table->Lease(worker)->has_value());  // the last task waits for shard 1
+  ASSERT_TRUE(*p.table->Complete(worker, again.key, {}));
+  const LeaseGrant last = p.Lease(worker);
+  EXPECT_EQ(last.kind, TaskKind::kFinalize);
+  EXPECT_EQ(last.kind_index, 2);
+  ASSERT_TRUE(*p.table->Complete(worker, last.key, {.stats_json = R"({"nnz":1})"}));
+  EXPECT_EQ(p.table->Get(job)->record.phase, Phase::kDone);
+  EXPECT_EQ(p.table->Get(job)->record.stats_json, R"({"nnz":1})");
 }
 
 TEST_F(JobStoreTest, CleanupInterruptedByRestartRunsAtStart) {

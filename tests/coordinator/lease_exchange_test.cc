@@ -59,9 +59,12 @@ TEST(LeaseExchangeTest, ResultsFirstThenLeasesInOneTransition) {
   EXPECT_THAT(Names(second->grants), ElementsAre("TRANSFORM_COLUMNS 0", "TRANSFORM_COLUMNS 1"));
   EXPECT_EQ(table->generation(), gen + 1);
   EXPECT_EQ(table->Get(job)->record.rays_traced, 300);
+  // FINALIZE: a shard per group, then (once both are done) its last task.
   auto third = table->Exchange(w, Results(second->grants), 4);
-  EXPECT_THAT(Names(third->grants), ElementsAre("FINALIZE 0"));
-  auto last = table->Exchange(w, Results(third->grants), 4);
+  EXPECT_THAT(Names(third->grants), ElementsAre("FINALIZE 0", "FINALIZE 1"));
+  auto fourth = table->Exchange(w, Results(third->grants), 4);
+  EXPECT_THAT(Names(fourth->grants), ElementsAre("FINALIZE 2"));
+  auto last = table->Exchange(w, Results(fourth->grants), 4);
   EXPECT_TRUE(last->grants.empty());
   EXPECT_EQ(table->Get(job)->record.phase, Phase::kDone);
 }

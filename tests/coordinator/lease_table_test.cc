@@ -83,15 +83,23 @@ TEST_F(LeaseTableTest, TilesThenGroupsThenFinalize) {
   EXPECT_TRUE(Done(w, g0));
   EXPECT_TRUE(Done(w, g1));
   EXPECT_EQ(PhaseOf(job), Phase::kFinalizing);
-  EXPECT_EQ(Next(w, &fin), "FINALIZE 0");
+  // FINALIZE: one shard per group, then its last task once both are done.
+  LeaseGrant s0, s1;
+  EXPECT_EQ(Next(w, &s0), "FINALIZE 0");
+  EXPECT_EQ(Next(w, &s1), "FINALIZE 1");
+  EXPECT_EQ(Next(w), "-");
+  EXPECT_TRUE(Done(w, s1));
+  EXPECT_EQ(Next(w), "-");  // shard 0 still out
+  EXPECT_TRUE(Done(w, s0));
+  EXPECT_EQ(Next(w, &fin), "FINALIZE 2");
   EXPECT_EQ(fin.tiles, 2);
   EXPECT_EQ(fin.groups, 2);
   EXPECT_TRUE(Done(w, fin, R"({"rel_rms":0.01})"));
   auto info = table_->Get(job);
   ASSERT_TRUE(info.ok());
   EXPECT_EQ(info->record.phase, Phase::kDone);
-  EXPECT_EQ(info->tasks_done, 5);
-  EXPECT_EQ(info->rays_traced, 5000);
+  EXPECT_EQ(info->tasks_done, 7);
+  EXPECT_EQ(info->rays_traced, 7000);
   EXPECT_EQ(info->record.stats_json, R"({"rel_rms":0.01})");
   EXPECT_EQ(info->eta_seconds, 0);
   EXPECT_EQ(Next(w), "-");
@@ -323,6 +331,41 @@ TEST_F(LeaseTableTest, ListNewestFirst) {
   auto active = table_->List(10, true);
   ASSERT_EQ(active.size(), 1u);
   EXPECT_EQ(active[0].record.id, b);
+}
+
+// /metrics' snapshot: a registered worker is alive only once it leases (its
+// store-root check lies between Register and the first Lease), and only
+// until a lease period passes without a call; per-job numbers cover live
+// jobs, finished ones only their phase count.
+TEST_F(LeaseTableTest, MetricsCountCheckedWorkersAndLiveJobs) {
+  const int64_t finished = AddJob(1, 1);
+  const int64_t live = AddJob(2, 1);
+  const int64_t w = Worker();
+  Worker();  // registers, then (say) fails its store-root check and exits
+  SchedulerSnapshot s = table_->Metrics(100);
+  EXPECT_EQ(s.workers_registered, 2);
+  EXPECT_EQ(s.workers_alive, 0);
+
+  LeaseGrant g;
+  ASSERT_EQ(Next(w, &g), "BAKE_TILE 0");
+  ASSERT_TRUE(Done(w, g));
+  ASSERT_EQ(Next(w, &g), "TRANSFORM_COLUMNS 0");
+  ASSERT_TRUE(Done(w, g));
+  ASSERT_EQ(Next(w, &g), "FINALIZE 0");
+  ASSERT_TRUE(Done(w, g));
+  ASSERT_EQ(Next(w, &g), "FINALIZE 1");
+  ASSERT_TRUE(Done(w, g));
+  ASSERT_EQ(PhaseOf(finished), Phase::kDone);
+  s = table_->Metrics(100);
+  EXPECT_EQ(s.workers_alive, 1);
+  EXPECT_EQ(s.jobs_by_phase[static_cast<int>(Phase::kDone) - 1], 1);
+  EXPECT_EQ(s.jobs_by_phase[static_cast<int>(Phase::kQueued) - 1], 1);
+  ASSERT_EQ(s.jobs.size(), 1u);
+  EXPECT_EQ(s.jobs[0].id, live);
+  EXPECT_EQ(s.jobs[0].tasks_total, 5);  // 2 tiles, 1 group, FINALIZE's shard and last task
+
+  clock_.Advance(1001);  // one lease period without a call
+  EXPECT_EQ(table_->Metrics(100).workers_alive, 0);
 }
 
 TEST(LeaseIdTest, RoundTripAndRejects) {

@@ -11,10 +11,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <random>
+#include <set>
 
 #include "core/bake/bake_params_io.h"
 #include "core/wavelets/wavelet2d.h"
@@ -101,6 +103,32 @@ TEST(EmbeddedBakeTest, BitIdenticalAcrossWorkersAndToShuffledRetriedTasks) {
   // Nothing but the stores: the coordinators' data dirs are gone.
   EXPECT_THAT(Names(dir.path()),
               ::testing::UnorderedElementsAre("one.wbk", "three.wbk", "manual.wbk"));
+}
+
+// FINALIZE runs as tasks (core/bake/finalize_shards.h): 4 groups make 4 shards
+// and a last task, each done once, the last after every shard; with 2
+// workers the store is the 1-worker store byte for byte.
+TEST(EmbeddedBakeTest, FinalizeRunsAsShardTasksAndTheStoreIsTheOneWorkerStore) {
+  ScratchDir dir;
+  ASSERT_TRUE(Bake(dir.path() / "one.wbk", 1).ok());
+  std::vector<int> finalize_done;  // task indices, in the order they were done
+  std::set<std::string> finalize_workers;
+  absl::StatusOr<v1::Job> job =
+      Bake(dir.path() / "two.wbk", 2, SmallJob(), kScene, [&](const v1::JobEvent& e) {
+        if (e.kind() == v1::EVENT_TASK_DONE && e.task_kind() == v1::FINALIZE) {
+          finalize_done.push_back(e.task_index());
+          finalize_workers.insert(e.worker_id());
+        }
+      });
+  ASSERT_TRUE(job.ok()) << job.status();
+  ASSERT_EQ(job->groups(), 4);
+  EXPECT_EQ(job->tasks_total(), job->tiles() + 4 + 4 + 1);
+  ASSERT_EQ(finalize_done.size(), 5u);
+  EXPECT_EQ(finalize_done.back(), 4);  // the last task, after the shards
+  EXPECT_THAT(std::vector<int>(finalize_done.begin(), finalize_done.end() - 1),
+              ::testing::UnorderedElementsAre(0, 1, 2, 3));
+  std::cout << "FINALIZE tasks done by " << finalize_workers.size() << " worker(s)\n";
+  EXPECT_TRUE(ReadTree(dir.path() / "two.wbk") == ReadTree(dir.path() / "one.wbk"));
 }
 
 // .zattrs records refinement (params.refine and the options), and a

@@ -59,6 +59,34 @@ TEST_P(ArrayAppenderInFlight, PiecesOfAnySizeReadBackInOrderAndMatchAWholeWrite)
 // One chunk written at a time, and several at once: the same files.
 INSTANTIATE_TEST_SUITE_P(ChunksBeingWritten, ArrayAppenderInFlight, ::testing::Values(1, 3));
 
+// Writers of disjoint chunk ranges (FINALIZE's shards) sharing one array:
+// the chunk files of a whole write, each range's length checked.
+TEST(ArrayAppender, ChunkRangesWrittenApartMatchAWholeWrite) {
+  TempDir tmp;
+  const int64_t length = 64 * 9 + 17;
+  const std::vector<uint32_t> values = TestValues<uint32_t>(length, 11);
+  absl::StatusOr<ZarrArray> parts = ZarrArray::Create(tmp.path() / "parts", Spec(length));
+  absl::StatusOr<ZarrArray> whole = ZarrArray::Create(tmp.path() / "whole", Spec(length));
+  ASSERT_TRUE(parts.ok() && whole.ok());
+  // Chunks [0, 4) and [4, 10): the second range runs to the array's end.
+  for (auto [first, count] : {std::pair<int64_t, int64_t>{0, 4 * 64}, {4, -1}}) {
+    ArrayAppender<uint32_t> appender(*parts, 2, first, count);
+    const int64_t n = count >= 0 ? count : length - first * 64;
+    ASSERT_TRUE(appender.Append(std::span(values).subspan(first * 64, n)).ok());
+    ASSERT_TRUE(appender.Close().ok());
+  }
+  ASSERT_TRUE(whole->WriteAll<uint32_t>(values).ok());
+  for (int c = 0; c < 10; ++c) {
+    const std::string name = std::to_string(c);
+    EXPECT_EQ(ReadFile(tmp.path() / "parts" / name).value(),
+              ReadFile(tmp.path() / "whole" / name).value())
+        << "chunk " << c;
+  }
+  ArrayAppender<uint32_t> short_range(*parts, 1, 2, 64);
+  ASSERT_TRUE(short_range.Append(std::span(values).subspan(128, 10)).ok());
+  EXPECT_FALSE(short_range.Close().ok());
+}
+
 TEST(ArrayAppender, AShortArrayIsAnErrorNamingIt) {
   TempDir tmp;
   absl::StatusOr<ZarrArray> array = ZarrArray::Create(tmp.path() / "short", Spec(200));
@@ -69,7 +97,7 @@ TEST(ArrayAppender, AShortArrayIsAnErrorNamingIt) {
   const absl::Status closed = appender.Close();
   EXPECT_FALSE(closed.ok());
   EXPECT_THAT(std::string(closed.message()), HasSubstr("short"));
-  EXPECT_THAT(std::string(closed.message()), HasSubstr("appended 150 elements to an array of 200"));
+  EXPECT_THAT(std::string(closed.message()), HasSubstr("appended 150 elements where 200 were due"));
 }
 
 // A chunk that cannot be written (its array directory is gone) fails the

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "core/columns/column_coding.h"
+#include "core/bake/finalize_shards.h"
 #include "core/columns/quantizer.h"
 #include "core/wavelets/subband.h"
 #include "core/wavelets/wavelet2d.h"
@@ -471,6 +472,56 @@ TEST(FinalizeTest, StopsWhenCancelledAndFinishesWhenRunAgain) {
   s = Finalize(*ctx, store, {});
   ASSERT_TRUE(s.ok()) << s;
   EXPECT_EQ(ReadTree(store), ReadTree(Bake(SmallJob())->store));
+}
+
+// FINALIZE as tasks (core/bake/finalize_shards.h): with everything kept, 384
+// columns of 1024 coefficients are 393216 elements, two chunks of indices
+// and data whose boundary (262144) lies inside group 2. Shard 0 writes chunk
+// 0 from groups 0-2, shard 2 chunk 1 from groups 2-3, shards 1 and 3 no
+// chunk. Run in a scrambled order with a retry, the last task refused until
+// every shard is done, the store is the one-call FINALIZE's byte for byte,
+// and indices read back as the groups' positions concatenated (read here
+// from the group results, not through FINALIZE).
+TEST(FinalizeTest, ShardsInAnyOrderThenTheLastTaskWriteTheOneCallStore) {
+  BakeParams p = SmallJob();
+  p.column_mode = ColumnMode::kFull;
+  p.column_terms = kW * kH;
+  p.bits = 16;
+  const auto expected = ReadTree(Bake(p)->store);
+  ASSERT_TRUE(expected.contains("transport/indices/1"));
+
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(p);
+  ASSERT_EQ(ctx->plan.groups, 4);
+  ASSERT_EQ(FinalizeShards(ctx->plan.groups), 4);
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, store);
+  std::vector<uint32_t> positions;
+  for (int g = 0; g < ctx->plan.groups; ++g) {
+    absl::StatusOr<GroupResult> r = ReadGroupResult(store, g);
+    ASSERT_TRUE(r.ok()) << r.status();
+    positions.insert(positions.end(), r->positions.begin(), r->positions.end());
+  }
+  ASSERT_EQ(positions.size(), 384u * 1024u);
+  for (int shard : {3, 1, 2}) {
+    ASSERT_TRUE(FinalizeShard(*ctx, store, shard, {.threads = 2}).ok());
+  }
+  absl::Status early = FinalizeStore(*ctx, store, {});
+  EXPECT_EQ(early.code(), absl::StatusCode::kFailedPrecondition) << early;
+  EXPECT_THAT(early.message(), ::testing::HasSubstr("shard 0"));
+  for (int shard : {0, 2}) {
+    ASSERT_TRUE(FinalizeShard(*ctx, store, shard, {.threads = 1}).ok());
+  }
+  EXPECT_EQ(FinalizeShard(*ctx, store, 4, {}).code(), absl::StatusCode::kInvalidArgument);
+  ASSERT_TRUE(FinalizeStore(*ctx, store, {}).ok());
+  EXPECT_EQ(ReadTree(store), expected);
+  absl::StatusOr<ZarrArray> indices = ZarrArray::Open(store / "transport/indices");
+  ASSERT_TRUE(indices.ok());
+  EXPECT_EQ(indices->ReadAll<uint32_t>().value(), positions);
+  // A shard retried after the store is finished has nothing to do.
+  EXPECT_TRUE(FinalizeShard(*ctx, store, 1, {}).ok());
+  EXPECT_EQ(ReadTree(store), expected);
 }
 
 }  // namespace
