@@ -85,7 +85,7 @@ InactiveLimit=0
 MinJobAge=600
 SchedulerParameters=sched_interval=1
 NodeName=$SLURM_NODE NodeAddr=127.0.0.1 NodeHostname=$(hostname) CPUs=4 State=UNKNOWN
-PartitionName=wb Nodes=$SLURM_NODE Default=YES MaxTime=30 State=UP
+PartitionName=wb Nodes=$SLURM_NODE Default=YES MaxTime=UNLIMITED State=UP
 CONF
   export SLURM_CONF=$SLURM_DIR/slurm.conf
   slurmctld -D -i -f "$SLURM_CONF" >"$TMP/slurmctld.log" 2>&1 &
