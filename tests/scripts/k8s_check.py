@@ -441,18 +441,25 @@ def dockerfile():
     # installs with them (or the base image's required packages).
     ldd = subprocess.run(["ldd", WB], capture_output=True, text=True, check=True).stdout
     libs = sorted({m.group(1) for m in re.finditer(r"=> (/\S+)", ldd)})
+    # Which package ships each file: dpkg's own lists, read once (one
+    # `dpkg -S` per library takes seconds on a loaded machine).
+    shipped = {}
+    info = "/var/lib/dpkg/info"
+    for name in os.listdir(info):
+        if name.endswith(".list"):
+            with open(os.path.join(info, name), errors="replace") as f:
+                for line in f:
+                    if ".so" in line:
+                        shipped[line.rstrip("\n")] = name[:-5].split(":")[0]
     owners = {}
     for lib in libs:
         real = os.path.realpath(lib)
         # Debian 12 is merged-/usr: dpkg knows a file by the path its package ships.
         tries = [real, lib] + [p.replace("/usr/lib/", "/lib/", 1) for p in (real, lib)]
-        for path in tries:
-            r = subprocess.run(["dpkg", "-S", path], capture_output=True, text=True)
-            if r.returncode == 0:
-                break
-        else:
+        owner = next((shipped[p] for p in tries if p in shipped), None)
+        if owner is None:
             fail(f"no Debian package owns {lib}, a library of the binary")
-        owners[lib] = r.stdout.split(":")[0].strip()
+        owners[lib] = owner
     # debian:12-slim holds the Priority: required packages and apt; apt-get
     # brings each listed package's dependencies with it.
     prio = subprocess.run(["dpkg-query", "-W", "--showformat=${Package} ${Priority}\n"],
@@ -526,8 +533,11 @@ def rehearse(coord, worker, cm, wm):
     def mapped(args, ports=None):
         out = []
         for a in args:
-            for path in sorted(root, key=len, reverse=True):
-                a = re.sub(rf"=({re.escape(path)})(/|$)", lambda m: "=" + root[path] + m.group(2), a)
+            for path in sorted(root, key=len, reverse=True):  # the longest mount first, once
+                b = re.sub(rf"=({re.escape(path)})(/|$)", lambda m: "=" + root[path] + m.group(2), a)
+                if b != a:
+                    a = b
+                    break
             m = re.fullmatch(r"--([a-z-]+)=(.*)", a)
             if ports and m and m.group(1) in ports:
                 a = f"--{m.group(1)}={ports[m.group(1)]}"
