@@ -149,20 +149,20 @@ TEST_F(GrpcTest, FakeWorkersCompleteAJobAndWatchSeesEveryPhase) {
 
   EXPECT_THAT(phases, ElementsAre(v1::PHASE_QUEUED, v1::PHASE_BAKING, v1::PHASE_TRANSFORMING,
                                   v1::PHASE_FINALIZING, v1::PHASE_DONE));
-  EXPECT_EQ(kinds[v1::EVENT_TASK_DONE], kTiles + kGroups + 1);
-  EXPECT_EQ(kinds[v1::EVENT_TASK_LEASED], kTiles + kGroups + 1);
+  EXPECT_EQ(kinds[v1::EVENT_TASK_DONE], kTiles + kGroups + FinalizeShards(kGroups) + 1);
+  EXPECT_EQ(kinds[v1::EVENT_TASK_LEASED], kTiles + kGroups + FinalizeShards(kGroups) + 1);
   EXPECT_EQ(last.phase(), v1::PHASE_DONE);
-  EXPECT_EQ(last.tasks_done(), kTiles + kGroups + 1);
+  EXPECT_EQ(last.tasks_done(), kTiles + kGroups + FinalizeShards(kGroups) + 1);
   EXPECT_EQ(last.stats_json(), R"({"rel_rms": 0.01})");
   int completed = 0;
   for (auto& w : workers) completed += w->completed();
-  EXPECT_EQ(completed, kTiles + kGroups + 1);
+  EXPECT_EQ(completed, kTiles + kGroups + FinalizeShards(kGroups) + 1);
 
   v1::Job done;
   ASSERT_TRUE(jobs_->Get(CallContext("tok").get(), id, &done).ok());
   EXPECT_EQ(done.phase(), v1::PHASE_DONE);
   EXPECT_EQ(done.rays_traced(), kTiles * 1000);
-  EXPECT_EQ(done.bytes_written(), 10 * (kTiles + kGroups + 1));
+  EXPECT_EQ(done.bytes_written(), 10 * (kTiles + kGroups + FinalizeShards(kGroups) + 1));
 
   // ReadStore streams every file of the finished store.
   auto read_ctx = CallContext("tok");

@@ -25,6 +25,7 @@ namespace {
 
 using test_support::ScratchDir;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr char kToken[] = "s3cret-token";
 
@@ -158,9 +159,11 @@ TEST_F(MonitorServerTest, JobsAndMetricsAgreeWithTheJob) {
   EXPECT_EQ(jobs[0]["tasks_done"], job_.tasks_total());
   EXPECT_EQ(jobs[0]["eta_seconds"], 0);
   // The live coordinator's counters: every task leased and completed once.
-  const std::string total = std::to_string(job_.tasks_total());
+  // The job is DONE: it has no per-job series any more (live jobs only).
+  EXPECT_THAT(live_metrics_, Not(HasSubstr("job_id=\"" + job_.id() + "\"")));
   EXPECT_THAT(live_metrics_,
-              HasSubstr("wavebake_job_tasks_done{job=\"" + job_.id() + "\"} " + total));
+              HasSubstr("wavebake_tasks_completed_total{kind=\"finalize\"} " +
+                        std::to_string(job_.tasks_total() - job_.tiles() - job_.groups())));
   EXPECT_THAT(live_metrics_, HasSubstr("wavebake_tasks_completed_total{kind=\"bake_tile\"} " +
                                        std::to_string(job_.tiles())));
   EXPECT_THAT(live_metrics_,
