@@ -160,8 +160,11 @@ absl::Status Coordinator::BuildServer() {
   return BuildHealthServer();
 }
 
-// A server with no service of ours: the default health service alone, which
-// answers SERVING while the process serves (as it does on the main port).
+// A server with no service of ours: the default health service alone. Its
+// overall status ("") follows the main port's (NOT_SERVING while the table
+// cannot record a change: a readiness probe); kLivenessService answers
+// SERVING while the process serves, full disk or not (a liveness probe: a
+// restart would not free the disk, and the coordinator recovers without one).
 absl::Status Coordinator::BuildHealthServer() {
   if (options_.health_address.empty()) return absl::OkStatus();
   grpc::ServerBuilder builder;
@@ -172,6 +175,7 @@ absl::Status Coordinator::BuildHealthServer() {
     return absl::UnavailableError(
         absl::StrCat("health_address: cannot listen on \"", options_.health_address, "\""));
   }
+  health_server_->GetHealthCheckService()->SetServingStatus(kLivenessService, true);
   spdlog::info("coordinator: health service alone, in plain text, on port {}", health_port_);
   return absl::OkStatus();
 }
@@ -183,6 +187,8 @@ void Coordinator::ReapLoop(std::stop_token stop) {
   std::unique_lock lock(reap_mu_);
   absl::Status last_error;
   grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
+  grpc::HealthCheckServiceInterface* probe_health =
+      health_server_ ? health_server_->GetHealthCheckService() : nullptr;
   while (!stop.stop_requested()) {
     reap_cv_.wait_for(lock, stop, std::chrono::milliseconds(period_ms), [] { return false; });
     if (stop.stop_requested()) break;
@@ -193,7 +199,10 @@ void Coordinator::ReapLoop(std::stop_token stop) {
     if (s.ok() && !last_error.ok()) spdlog::info("coordinator: recovered; serving again");
     // Health says what the table can do: NOT_SERVING while it cannot
     // record a change (clients and probes see it, not a SERVING that fails).
-    if (health && s.ok() != last_error.ok()) health->SetServingStatus(s.ok());
+    if (s.ok() != last_error.ok()) {
+      if (health) health->SetServingStatus(s.ok());
+      if (probe_health) probe_health->SetServingStatus("", s.ok());
+    }
     last_error = s;
   }
 }

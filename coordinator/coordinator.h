@@ -31,6 +31,10 @@
 
 namespace wavebake {
 
+// The health service name of --health-listen's liveness answer
+// (CoordinatorOptions::health_address).
+inline constexpr char kLivenessService[] = "liveness";
+
 struct CoordinatorOptions {
   std::string listen_address = "127.0.0.1:0";  // port 0 picks a free one; "" = in-process only
   std::filesystem::path data_dir{};            // required
@@ -39,7 +43,9 @@ struct CoordinatorOptions {
   std::filesystem::path tls_cert_path{}, tls_key_path{};  // both or neither (PEM)
   // Also serve only the standard gRPC health service, in plain text, here
   // ("" = not): Kubernetes' built-in grpc probes speak no TLS, and this port
-  // carries no job or worker call, so no token crosses it unencrypted.
+  // carries no job or worker call, so no token crosses it unencrypted. Its
+  // service "" is the main port's status (readiness), kLivenessService is
+  // SERVING while the process serves (liveness).
   std::string health_address{};
   double lease_seconds = 30;
   int64_t max_upload_bytes = int64_t{1} << 30;
@@ -73,6 +79,7 @@ class Coordinator {
   grpc::Server* server() { return server_.get(); }
   LeaseTable& table() { return *table_; }
   SceneStore& scenes() { return *scenes_; }
+  JobStore& job_store_for_testing() { return *store_; }  // a full disk, simulated
   const CoordinatorOptions& options() const { return options_; }
 
  private:

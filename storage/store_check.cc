@@ -35,13 +35,15 @@ bool IsTemporary(const std::string& name) {
   return name.size() > 9 && name.front() == '.' && name.ends_with(".partial");
 }
 
-// staging/groups: "<g>.wbg" files and their temporaries, nothing else.
-std::optional<fs::path> ForeignInGroups(const fs::path& dir) {
+// staging/groups and staging/finalize: "<n><suffix>" files (".wbg", ".wbq")
+// and their temporaries, nothing else.
+std::optional<fs::path> ForeignInNumbered(const fs::path& dir, const std::string& suffix) {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    const bool group = name.ends_with(".wbg") && IsChunkKey(name.substr(0, name.size() - 4));
-    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !(group || IsTemporary(name)))
+    const bool numbered =
+        name.ends_with(suffix) && IsChunkKey(name.substr(0, name.size() - suffix.size()));
+    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !(numbered || IsTemporary(name)))
       return e.path();
   }
   if (ec) return dir;
@@ -50,7 +52,8 @@ std::optional<fs::path> ForeignInGroups(const fs::path& dir) {
 
 std::optional<fs::path> ForeignIn(const fs::path& store, const fs::path& dir) {
   std::error_code ec;
-  if (dir == store / store::kStagingGroups) return ForeignInGroups(dir);
+  if (dir == store / store::kStagingGroups) return ForeignInNumbered(dir, ".wbg");
+  if (dir == store / store::kStagingFinalize) return ForeignInNumbered(dir, ".wbq");
   const bool array = fs::exists(dir / ".zarray", ec);
   if (!array && !fs::exists(dir / ".zgroup", ec)) return dir;  // no Zarr node
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {

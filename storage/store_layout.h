@@ -38,6 +38,9 @@ inline constexpr char kStagingTransport[] = "staging/transport";
 inline constexpr char kStagingTileEnergy[] = "staging/tile_energy";
 // Not Zarr: one <g>.wbg file per TRANSFORM_COLUMNS group (worker/group_result.h).
 inline constexpr char kStagingGroups[] = "staging/groups";
+// Not Zarr: one <k>.wbq file per FINALIZE shard, its columns' quantization
+// outcome for the last task (worker/finalize_parts.h).
+inline constexpr char kStagingFinalize[] = "staging/finalize";
 
 inline std::filesystem::path Path(const std::filesystem::path& store, const char* name) {
   return store / name;

@@ -176,7 +176,7 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
 }
 
 std::filesystem::path ShardOutcomePath(const std::filesystem::path& store, int shard) {
-  return store::Path(store, store::kStaging) / "finalize" / absl::StrCat(shard, ".wbq");
+  return store::Path(store, store::kStagingFinalize) / absl::StrCat(shard, ".wbq");
 }
 
 absl::Status WriteShardOutcome(const std::filesystem::path& store, int shard, int first_column,

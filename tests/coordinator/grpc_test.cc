@@ -550,6 +550,33 @@ TEST_F(GrpcTest, ServesTlsWhenGivenCertAndKey) {
   EXPECT_EQ(half.status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+// grpc.health.v1.Health/Check of `service` on a channel, by hand (the
+// project generates no health stubs): the response's bytes, or the error.
+absl::StatusOr<std::string> HealthCheck(const std::shared_ptr<grpc::Channel>& channel,
+                                        const std::string& service) {
+  grpc::GenericStub stub(channel);
+  // HealthCheckRequest{service: 1}, a length-delimited field.
+  const std::string body =
+      service.empty()
+          ? std::string{}
+          : absl::StrCat("\x0a", std::string(1, static_cast<char>(service.size())), service);
+  grpc::Slice slice(body);
+  grpc::ByteBuffer request(&slice, 1), response;
+  std::promise<grpc::Status> done;
+  auto ctx = CallContext("");
+  stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
+                 &response, [&](grpc::Status s) { done.set_value(s); });
+  const grpc::Status s = done.get_future().get();
+  if (!s.ok())
+    return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
+  std::vector<grpc::Slice> slices;
+  if (!response.Dump(&slices).ok()) return absl::DataLossError("response");
+  std::string bytes;
+  for (const auto& sl : slices) bytes.append(reinterpret_cast<const char*>(sl.begin()), sl.size());
+  return bytes;
+}
+const std::string kServing("\x08\x01", 2), kNotServing("\x08\x02", 2);
+
 // health_address: Kubernetes' grpc probe speaks plain text only, so a TLS
 // coordinator offers the health service alone on a plain port; the job and
 // worker services are not there (UNIMPLEMENTED), so no token crosses it.
@@ -571,24 +598,56 @@ TEST_F(GrpcTest, PlainHealthPortBesideTlsServesHealthOnly) {
   ASSERT_NE((*c)->health_port(), (*c)->port());
   auto plain = grpc::CreateChannel(absl::StrCat("127.0.0.1:", (*c)->health_port()),
                                    grpc::InsecureChannelCredentials());
-  grpc::GenericStub stub(plain);
-  grpc::Slice empty(std::string{});
-  grpc::ByteBuffer request(&empty, 1), response;
-  std::promise<grpc::Status> done;
-  auto ctx = CallContext("");
-  stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
-                 &response, [&](grpc::Status s) { done.set_value(s); });
-  ASSERT_TRUE(done.get_future().get().ok());
-  std::vector<grpc::Slice> slices;
-  ASSERT_TRUE(response.Dump(&slices).ok());
-  std::string bytes;
-  for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // HealthCheckResponse{status: SERVING}
+  EXPECT_EQ(HealthCheck(plain, "").value_or("error"), kServing);
+  EXPECT_EQ(HealthCheck(plain, kLivenessService).value_or("error"), kServing);
+  EXPECT_EQ(HealthCheck(plain, "no.such.Service").status().code(), absl::StatusCode::kNotFound);
   v1::JobList list;
   EXPECT_EQ(v1::JobService::NewStub(plain)
                 ->List(CallContext("").get(), v1::ListRequest(), &list)
                 .error_code(),
             grpc::StatusCode::UNIMPLEMENTED);
+  (*c)->Shutdown();
+}
+
+// The probe port on a full disk: its overall status follows the main port's
+// (NOT_SERVING while the table cannot record a change: not ready), while
+// the liveness service stays SERVING (a restart would not free the disk),
+// and both serve again once the reaper's recovery commits.
+TEST_F(GrpcTest, ProbePortIsNotReadyButAliveWhileTheDiskIsFull) {
+  auto c = Coordinator::Start({.listen_address = "127.0.0.1:0",
+                               .data_dir = dir_.path() / "data",
+                               .health_address = "127.0.0.1:0",
+                               .lease_seconds = 0.2},
+                              FakePlan, nullptr);
+  ASSERT_TRUE(c.ok()) << c.status();
+  auto main_port = grpc::CreateChannel((*c)->address(), grpc::InsecureChannelCredentials());
+  auto probe = grpc::CreateChannel(absl::StrCat("127.0.0.1:", (*c)->health_port()),
+                                   grpc::InsecureChannelCredentials());
+  LeaseTable& table = (*c)->table();
+  ASSERT_TRUE(table.AddJob(table.ReserveJobId(), "", 1, testing::Plan(2, 1, "a.wbk")).ok());
+  JobStore& store = (*c)->job_store_for_testing();
+  ASSERT_TRUE(store.LimitGrowthForTesting(0).ok());
+  store.SetFullForTesting(true);
+  // A refused commit stops the table; the reaper's reload must commit the
+  // job's RESUMED event, which the full disk refuses too.
+  EXPECT_EQ(table.AddJob(table.ReserveJobId(), "", 1, testing::Plan(2, 1, "b.wbk")).status().code(),
+            absl::StatusCode::kResourceExhausted);
+  const auto wait_for = [](const std::shared_ptr<grpc::Channel>& ch, const std::string& service,
+                           const std::string& want) {
+    for (int i = 0; i < 100; ++i) {
+      if (HealthCheck(ch, service).value_or("") == want) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  };
+  EXPECT_TRUE(wait_for(main_port, "", kNotServing));
+  EXPECT_TRUE(wait_for(probe, "", kNotServing));
+  EXPECT_EQ(HealthCheck(probe, kLivenessService).value_or("error"), kServing);
+  ASSERT_TRUE(store.LimitGrowthForTesting(int64_t{1} << 30).ok());
+  store.SetFullForTesting(false);
+  EXPECT_TRUE(wait_for(probe, "", kServing));
+  EXPECT_TRUE(wait_for(main_port, "", kServing));
+  EXPECT_EQ(HealthCheck(probe, kLivenessService).value_or("error"), kServing);
   (*c)->Shutdown();
 }
 

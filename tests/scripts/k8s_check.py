@@ -63,6 +63,9 @@ MODELS = {
 NEWER_FIELDS = {("V1Probe", "grpc"): {"port": int, "service": str}}
 NEWER_REQUIRED = {("V1Probe", "grpc"): {"port"}}
 PRIMITIVES = {"str": str, "int": int, "bool": bool, "float": (int, float)}
+# The health service --health-listen keeps SERVING while the process serves
+# (kLivenessService, coordinator/coordinator.h).
+LIVENESS_SERVICE = "liveness"
 
 
 def fail(msg):
@@ -302,6 +305,13 @@ def policy(docs, svc, sts, dep, coord, worker):
         probe = coord.get(p, {})
         if probe.get("grpc", {}).get("port") != hport or "exec" in probe:
             fail(f"coordinator.{p} is not a grpc probe on the health port {hport}")
+    # Readiness is the overall status (NOT_SERVING on a full --data disk);
+    # liveness the service that stays SERVING then (coordinator/coordinator.h).
+    if coord["readinessProbe"]["grpc"].get("service", "") != "":
+        fail("coordinator.readinessProbe does not ask the overall health status")
+    if coord["livenessProbe"]["grpc"].get("service") != LIVENESS_SERVICE:
+        fail(f"coordinator.livenessProbe does not ask the service {LIVENESS_SERVICE!r}: a full "
+             "disk would restart the pod")
     if any(p in worker for p in ("readinessProbe", "livenessProbe", "startupProbe")) and \
             any("exec" in worker[p] for p in worker if p.endswith("Probe")):
         fail("a worker probe runs a command: probes are the kubelet's own")
@@ -489,7 +499,7 @@ def readme(pkgs, version):
         fail(f"README's Kubernetes section does not list the runtime packages {sorted(pkgs)}")
     for needle in ("disruption.yaml", "network-policy.yaml", "examples/servicemonitor.yaml",
                    "wavebake-token", "wavebake-tls", "--health-listen", "--http", "600 s",
-                   f"newTag", version, "restricted"):
+                   f"newTag", version, "restricted", f"`{LIVENESS_SERVICE}`"):
         if needle not in section:
             fail(f"README's Kubernetes section does not mention {needle}")
 
@@ -502,6 +512,21 @@ def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def health_check(address, service):
+    """grpc.health.v1.Health/Check as the kubelet's grpc probe sends it (plain
+    text), encoded by hand: HealthCheckRequest{service = 1}, and the
+    response's status = 1 (1 SERVING, 2 NOT_SERVING); or the error's code."""
+    import grpc
+    request = b"" if not service else b"\x0a" + bytes([len(service)]) + service.encode()
+    with grpc.insecure_channel(address) as channel:
+        check = channel.unary_unary("/grpc.health.v1.Health/Check")
+        try:
+            reply = check(request, timeout=4)
+        except grpc.RpcError as e:
+            return str(e.code())
+    return {b"\x08\x01": "SERVING", b"\x08\x02": "NOT_SERVING"}.get(reply, repr(reply))
 
 
 def rehearse(coord, worker, cm, wm):
@@ -562,11 +587,13 @@ def rehearse(coord, worker, cm, wm):
             time.sleep(0.1)
         addr = open(addr_file).read().strip()
         http_addr = open(http_file).read().strip()
-        # The kubelet's grpc probe: grpc.health.v1 Check in plain text on the probe's port.
-        r = subprocess.run([WB, "health", f"--coordinator=127.0.0.1:{hport}", "--timeout=4"],
-                           capture_output=True, text=True, timeout=30)
-        if r.returncode != 0:
-            fail(f"the grpc probe on port {hport} failed: {r.stderr.strip()}")
+        # The kubelet's grpc probes: grpc.health.v1 Check in plain text on the
+        # probe's port, each with the service its probe names.
+        for p in ("readinessProbe", "livenessProbe"):
+            service = coord[p]["grpc"].get("service", "")
+            status = health_check(f"127.0.0.1:{hport}", service)
+            if status != "SERVING":
+                fail(f"the {p} (grpc, port {hport}, service {service!r}) answers {status}")
         # The TLS port refuses plain text: tokens never cross in the clear.
         r = subprocess.run([WB, "health", f"--coordinator={addr}", "--timeout=2"],
                            capture_output=True, text=True, timeout=30)
