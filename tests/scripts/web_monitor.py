@@ -180,7 +180,7 @@ def main():
         # Both jobs have finished: no per-job series are left for them (bounded
         # series), their phases are counted in wavebake_jobs; no sample carries
         # a label named job or instance (Prometheus' target labels).
-        assert all(j["phase"] in ("PHASE_DONE", "PHASE_CANCELLED") for j in jobs), jobs
+        assert all(j["phase"] in ("DONE", "CANCELLED") for j in jobs), jobs
         assert not [x for x in samples if x.name.startswith("wavebake_job_")], "per-job series of finished jobs"
         assert not [x for x in samples if {"job", "instance"} & set(x.labels)]
         assert kind("wavebake_workers_registered_total") == "counter"
