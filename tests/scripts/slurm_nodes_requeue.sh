@@ -39,7 +39,12 @@ kill -KILL "$coord"
 wait_slurm_job_end 60 "$job"
 grep -q "the coordinator exited" "$log" || fail "the script did not notice its coordinator died: $(tail -n 5 "$log")"
 on_ctl scontrol requeue "$job" || fail "scontrol requeue $job"
-# Slurm holds a requeued job for two minutes (BeginTime); the test does not wait.
+# Slurm holds a requeued job for two minutes (BeginTime); the test does not
+# wait that long, but a node refuses a launch credential made in the second
+# it revoked the job's credentials (when the job ended there: "Job
+# credential revoked"), so the nodes are idle and a second has passed first.
+wait_until 30 "three idle Slurm nodes after the job ended" slurm_hosts_idle
+sleep 1.1
 on_ctl scontrol update "JobId=$job" StartTime=now || fail "scontrol update $job StartTime=now"
 restarted() { (($(grep -c "coordinator at" "$log") >= 2)); }
 wait_until 90 "the requeued job's coordinator" restarted
