@@ -4,9 +4,9 @@
 // then staging is dropped. It runs as several tasks (core/bake/finalize_shards.h):
 // shards that write the nnz-long arrays' chunks, each on its own worker, and
 // a last task that writes the column arrays and the manifest. Quantization happens here because the
-// steps are a matrix-wide choice (core/columns/quantization_steps.h): each group recorded, per column,
-// max_i |v_i/k_i| and the expected dither energy per unit step; FINALIZE picks every column's step
-// Δ_c (stored as `scale`) and quantizes.
+// steps are a matrix-wide choice (core/columns/quantization_steps.h): each group recorded, per
+// column, max_i |v_i/k_i| and the expected dither energy per unit step; FINALIZE picks every
+// column's step Δ_c (stored as `scale`) and quantizes.
 //
 // Memory: a few groups' coded columns (threads + 1) plus O(M) column arrays,
 // never S×M; each task reads every group's column table (O(M)).

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/columns/column_coding.h"
 #include "core/bake/finalize_shards.h"
+#include "core/columns/column_coding.h"
 #include "core/columns/quantizer.h"
 #include "core/wavelets/subband.h"
 #include "core/wavelets/wavelet2d.h"
