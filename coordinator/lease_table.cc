@@ -131,6 +131,7 @@ absl::Status LeaseTable::RecoverLocked() {
 // A job of a previous coordinator: its leases are void, so leased tasks are
 // pending again without being charged an attempt (§4 "resumes after a restart").
 absl::Status LeaseTable::ResumeJob(JobState& js, absl::string_view why, Transition& tx) {
+  UpgradeFinalizeRows(js, tx);
   if (static_cast<int>(js.tasks.size()) != js.rec.tasks_total()) {
     return absl::DataLossError(absl::StrCat("job ", js.rec.id, ": ", js.tasks.size(),
                                             " task rows, expected ", js.rec.tasks_total()));
@@ -154,6 +155,30 @@ absl::Status LeaseTable::ResumeJob(JobState& js, absl::string_view why, Transiti
   AddEvent(js, tx, EventKind::kResumed, nullptr,
            absl::StrCat(why, "; ", requeued, " leased tasks back to pending"));
   return absl::OkStatus();
+}
+
+// A job planned before FINALIZE was split has one FINALIZE row (index tiles
+// + groups) where the layout now has the shards and the last task: that row
+// becomes shard 0 and the others are added, all pending (an unfinished job's
+// FINALIZE is not done; the shards rewrite whatever a killed one-task
+// FINALIZE wrote, byte for byte).
+void LeaseTable::UpgradeFinalizeRows(JobState& js, Transition& tx) {
+  const int first = js.rec.tiles + js.rec.groups;
+  if (static_cast<int>(js.tasks.size()) != first + 1 || js.rec.tasks_total() == first + 1 ||
+      js.tasks[first].kind != TaskKind::kFinalize || js.tasks[first].state == TaskState::kDone) {
+    return;
+  }
+  const TaskRecord old = js.tasks[first];
+  js.tasks.resize(js.rec.tasks_total());
+  for (int i = first; i < js.rec.tasks_total(); ++i) {
+    js.tasks[i] = {.job_id = js.rec.id,
+                   .index = i,
+                   .kind = TaskKind::kFinalize,
+                   .kind_index = i - first,
+                   .attempts = i == first ? old.attempts : 0,
+                   .failures = i == first ? old.failures : 0};
+    tx.tasks.push_back(js.tasks[i]);
+  }
 }
 
 int64_t LeaseTable::ReserveJobId() {

@@ -222,6 +222,7 @@ class LeaseTable {
   // The pending tasks of the job's stage become leasable (FINALIZE's last
   // task only once every shard is done).
   void QueueStage(JobState& js);
+  void UpgradeFinalizeRows(JobState& js, Transition& tx);
   static bool ShardsDone(const JobState& js);
   // The counts (done, leased, rays, bytes); InfoLocked adds rays/s and the ETA.
   JobInfo CountsLocked(const JobState& js) const;

@@ -4,6 +4,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <string>
 
 #include "coordinator/lease_table.h"
 #include "tests/coordinator/test_util.h"
@@ -141,6 +144,43 @@ TEST_F(JobStoreTest, RestartInFinalizeStageHoldsTheLastTaskForItsShards) {
   ASSERT_TRUE(*p.table->Complete(worker, last.key, {.stats_json = R"({"nnz":1})"}));
   EXPECT_EQ(p.table->Get(job)->record.phase, Phase::kDone);
   EXPECT_EQ(p.table->Get(job)->record.stats_json, R"({"nnz":1})");
+}
+
+// A job planned by a coordinator from before FINALIZE was split (one
+// FINALIZE row, leased when it died) resumes under the split layout: its
+// row becomes shard 0, the other shard and the last task are added, and the
+// job finishes, instead of the coordinator refusing to start.
+TEST_F(JobStoreTest, JobWithTheOneTaskFinalizeLayoutResumesWithShards) {
+  int64_t job = 0, worker = 0;
+  {
+    Process p(DbPath(), &clock_);
+    job = p.table->ReserveJobId();
+    ASSERT_TRUE(p.table->AddJob(job, "", 3, testing::Plan(1, 2)).ok());
+    worker = *p.table->RegisterWorker("w", 1);
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(*p.table->Complete(worker, p.Lease(worker).key, {}));
+    const LeaseGrant shard0 = p.Lease(worker);
+    ASSERT_EQ(shard0.kind, TaskKind::kFinalize);
+  }  // dies with FINALIZE leased
+  {  // the rows as the one-task layout had them: tiles, groups, one FINALIZE
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(DbPath().c_str(), &db), SQLITE_OK);
+    const std::string sql = "DELETE FROM tasks WHERE job_id = " + std::to_string(job) +
+                            " AND idx > 3; UPDATE tasks SET kind_index = 0 WHERE idx = 3";
+    EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  Process p(DbPath(), &clock_);
+  ASSERT_EQ(p.table->Get(job)->record.phase, Phase::kFinalizing);
+  EXPECT_EQ(p.store->ReadTasks(job)->size(), 6u);  // 1 tile, 2 groups, 2 shards, the last
+  const LeaseGrant a = p.Lease(worker), b = p.Lease(worker);
+  EXPECT_EQ(a.kind_index + b.kind_index, 1);          // shards 0 and 1
+  EXPECT_FALSE(p.table->Lease(worker)->has_value());  // the last task waits for both
+  ASSERT_TRUE(*p.table->Complete(worker, a.key, {}));
+  ASSERT_TRUE(*p.table->Complete(worker, b.key, {}));
+  const LeaseGrant last = p.Lease(worker);
+  EXPECT_EQ(last.kind_index, 2);
+  ASSERT_TRUE(*p.table->Complete(worker, last.key, {}));
+  EXPECT_EQ(p.table->Get(job)->record.phase, Phase::kDone);
 }
 
 TEST_F(JobStoreTest, CleanupInterruptedByRestartRunsAtStart) {
