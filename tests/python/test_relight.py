@@ -155,3 +155,17 @@ def test_an_overflowing_numpy_environment_is_refused(stores):
     at_bound = np.full((8, 16, 3), 1e30, dtype=np.float32)
     image = wavebake.relight(s, at_bound)
     assert np.isfinite(image[~np.isnan(image)]).all() and not np.isnan(image).all()
+
+
+def test_an_exposure_beyond_float_is_refused(stores):
+    """2**200 is no float32: the image came back inf (and NaN where it was
+    0); a finite exposure that overflows a bright value is named too."""
+    s = wavebake.Store(str(stores["furnace"]))
+    for stops in (200, -200, float("nan")):
+        with pytest.raises(wavebake.InvalidArgument, match="^exposure: "):
+            wavebake.relight(s, "builtin:constant", exposure=stops)
+    at_bound = np.full((8, 16, 3), 1e30, dtype=np.float32)
+    with pytest.raises(wavebake.InvalidArgument, match=r"^exposure: 100 stops overflow"):
+        wavebake.relight(s, at_bound, exposure=100)
+    image = wavebake.relight(s, "builtin:constant", exposure=126)
+    assert np.isfinite(image[~np.isnan(image)]).all()

@@ -45,6 +45,19 @@ PY
   must_fail "eval, scale $value" "transport/scale[$column]" \
     "$WB" eval "$TMP/bad.wbk" --env builtin:sky --reference --no-dense
 done
+# Exposures whose factor 2^stops is no float, and a rotation that is no
+# number: each used to exit 0 (a black PNG; eval of the unrotated map).
+for stops in nan inf -inf 200; do
+  must_fail "exposure $stops" "exposure: " \
+    "$WB" relight "$TMP/good.wbk" --env builtin:sky --exposure "$stops" --out "$TMP/o.png"
+done
+must_fail "exposure 200, a sequence" "exposure: " \
+  "$WB" relight "$TMP/good.wbk" --env builtin:sky --exposure 200 --rotate-sequence 0:90:2 --out "$TMP/seq"
+[[ ! -e $TMP/seq ]] || fail "exposure 200, a sequence: left $TMP/seq"
+for angle in nan inf; do
+  must_fail "eval rotate $angle" "rotate: " \
+    "$WB" eval "$TMP/good.wbk" --env builtin:sky --rotate "$angle" --no-dense
+done
 # A NaN normal.
 rm -rf "$TMP/bad.wbk" && cp -r "$TMP/good.wbk" "$TMP/bad.wbk"
 /usr/bin/python3 - "$TMP/bad.wbk" <<'PY'
