@@ -33,6 +33,8 @@ class Server;
 
 namespace wavebake::web {
 
+struct GpuViewState;
+
 struct GpuViewOptions {
   std::string listen = "127.0.0.1:0";  // loopback only: the view has no token
   std::vector<std::filesystem::path> stores;
@@ -51,11 +53,9 @@ class GpuViewServer {
   std::string address() const;
   void Stop();
 
-  struct State;
-
  private:
   GpuViewServer();
-  std::unique_ptr<State> state_;
+  std::unique_ptr<GpuViewState> state_;
   std::unique_ptr<httplib::Server> server_;
   std::string host_;
   int port_ = 0;

@@ -1,0 +1,88 @@
+#pragma once
+// What `wavebake view` (web/gpu_view.h) holds per store and shares between
+// its two modes' routes: the tree textures (web/gpu_view.cc) and the 4D
+// store's arrays (web/gpu_view_columns.cc).
+#include <httplib.h>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/columns/compressed_columns.h"
+#include "runtime/env/env_map.h"
+#include "runtime/gpu/wavelet_tree_reader.h"
+#include "runtime/relight/lighting.h"
+#include "runtime/relight/relighter.h"
+#include "web/pages.h"
+#include "web/probe_catalogue.h"
+
+namespace wavebake::web {
+
+// mode=4d: the store's CSC arrays as served, and the CPU relighter of the
+// same store (the oracle; one frame at a time, its scratch is not shared).
+struct ServedColumns {
+  CompressedColumns columns;
+  nlohmann::json meta;
+  std::string entries, indptr, depth;
+  std::unique_ptr<Relighter> relighter;
+  std::unique_ptr<std::mutex> mu = std::make_unique<std::mutex>();
+};
+
+// One store as served: the exported tree bytes and the oracle reading them
+// (mode=tree), its columns (mode=4d).
+struct ServedStore {
+  std::string name;
+  int width = 0, height = 0, light_res = 0, bits = 0;
+  nlohmann::json header;
+  std::string line, blocks, cells;
+  std::unique_ptr<WaveletTreeReader> reader;
+  std::vector<float> support;  // SupportSolidAngles(N)
+  ServedColumns cols;
+};
+
+struct GpuViewState {
+  std::vector<ServedStore> stores;
+  ProbeCatalogue probes;
+  Pages pages;
+  std::mutex mu;  // the probe cache
+  struct Probe {
+    EnvMap env;
+    std::map<int, EnvProjector> projectors;  // by light_res
+  };
+  std::map<std::string, Probe> probe_cache;
+
+  // The lights of a frame: the relight view's (web/relight_service.cc).
+  absl::StatusOr<WaveletLights> Lights(const ServedStore& s, const std::string& name, double rotate,
+                                       int terms);
+};
+
+// A frame's query: ?store=I&probe=NAME&rotate=DEG&terms=K.
+struct FrameQuery {
+  const ServedStore* store = nullptr;
+  std::string probe = "builtin:sky";
+  double rotate = 0;
+  int terms = 256;
+};
+absl::StatusOr<FrameQuery> ParseFrameQuery(const httplib::Request& req,
+                                           const std::vector<ServedStore>& stores);
+
+void SendJsonBody(httplib::Response& res, const nlohmann::json& j, int status = 200);
+// 400 / 404 / 409 / 500 by the status code, {"error": message}.
+void SendStatus(httplib::Response& res, const absl::Status& s);
+void SendBytes(httplib::Response& res, std::string body);
+
+// mode=4d: the store's columns and its CPU relighter (errors name the
+// field: a column filter the GPU cannot invert, a matrix too large for
+// 32-bit texel indices).
+absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& columns,
+                                           const SampleSet& samples);
+//   /api/view/columns/I/{meta.json,entries.bin,indptr.bin,depth.bin}
+//   /api/view/lights?store=I&probe=&rotate=&terms=     the kept lights
+//   /api/view/oracle4d?store=I&probe=&rotate=&terms=   the CPU relighter's frame
+void AddColumnRoutes(httplib::Server& server, GpuViewState& st);
+
+}  // namespace wavebake::web
