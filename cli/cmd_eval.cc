@@ -10,10 +10,12 @@
 #include <mutex>
 #include <string>
 
+#include "absl/strings/numbers.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
 #include "driver/evaluate.h"
+#include "driver/tree_eval.h"
 
 namespace wavebake::cli {
 namespace {
@@ -26,7 +28,22 @@ struct EvalFlags {
   int reference_batches = 8;
   driver::AreaLightCommand area;
   GlossyFlags glossy;
+  std::vector<std::string> tree_cut_offs;  // "default" or a number each
+  int tree_bits = 8;
 };
+
+// --tree-cut-off: the export's settings ("default": its --target-error).
+std::vector<WaveletTreeOptions> TreeSettings(const EvalFlags& f) {
+  std::vector<WaveletTreeOptions> out;
+  for (const std::string& c : f.tree_cut_offs) {
+    WaveletTreeOptions o;
+    o.bits = f.tree_bits;
+    if (c != "default" && (!absl::SimpleAtod(c, &o.cut_off) || !(o.cut_off >= 0)))
+      Fail("eval", "--tree-cut-off: '" + c + "' is not 'default' or a number >= 0", kExitBadInput);
+    out.push_back(o);
+  }
+  return out;
+}
 
 // The reference's progress on stderr (DESIGN.md §5: a bar on a terminal,
 // plain lines otherwise), from the tracing threads.
@@ -76,6 +93,13 @@ void Run(EvalFlags f) {
     progress.Show(done, total);
   };
   options.glossy = GlossyOf(f.glossy, "eval");
+  if (!f.tree_cut_offs.empty()) {
+    absl::StatusOr<driver::TreeEvalReport> trees =
+        driver::EvaluateTrees(f.store, f.env, f.terms, options, TreeSettings(f));
+    if (!trees.ok()) Fail("eval", trees.status());
+    return (void)std::printf("%s", f.json ? (driver::TreeEvalJson(*trees).dump() + "\n").c_str()
+                                          : driver::TreeEvalText(*trees).c_str());
+  }
   absl::StatusOr<EvalReport> report = driver::Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   std::printf("%s", f.json ? (EvalReportJson(*report).dump() + "\n").c_str()
@@ -117,6 +141,13 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_flag("--json", flags->json,
                 "print {\"terms\", \"dense\": {rel_rms, max_abs, psnr, seconds}, "
                 "\"compressed\": {...}, \"reference\": {...}}");
+  cmd->add_option("--tree-cut-off", flags->tree_cut_offs,
+                  "also relight the store's wavelet-tree export (as export --format "
+                  "wavelet-tree; 'default': its default setting) at each cut-off given, "
+                  "against the same reference; no dense retrace");
+  cmd->add_option("--tree-bits", flags->tree_bits, "bits of the --tree-cut-off exports")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
   cmd->callback([flags] { Run(*flags); });
 }
 
