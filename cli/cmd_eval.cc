@@ -28,18 +28,32 @@ struct EvalFlags {
   int reference_batches = 8;
   driver::AreaLightCommand area;
   GlossyFlags glossy;
-  std::vector<std::string> tree_cut_offs;  // "default" or a number each
+  std::vector<std::string> tree_cut_offs;  // SETTING[@LEVEL_WEIGHT] each
   int tree_bits = 8;
 };
 
-// --tree-cut-off: the export's settings ("default": its --target-error).
+// --tree-cut-off SETTING[@W]: SETTING "default" (the export's), a cut-off
+// C or tE (a target error E); W the level weight (default: the export's).
 std::vector<WaveletTreeOptions> TreeSettings(const EvalFlags& f) {
   std::vector<WaveletTreeOptions> out;
-  for (const std::string& c : f.tree_cut_offs) {
+  for (const std::string& spec : f.tree_cut_offs) {
     WaveletTreeOptions o;
     o.bits = f.tree_bits;
-    if (c != "default" && (!absl::SimpleAtod(c, &o.cut_off) || !(o.cut_off >= 0)))
-      Fail("eval", "--tree-cut-off: '" + c + "' is not 'default' or a number >= 0", kExitBadInput);
+    std::string c = spec;
+    const size_t at = c.find('@');
+    bool ok = true;
+    if (at != std::string::npos) {
+      ok = absl::SimpleAtod(c.substr(at + 1), &o.level_weight);
+      c = c.substr(0, at);
+    }
+    if (c.size() > 1 && c[0] == 't')
+      ok = ok && absl::SimpleAtod(c.substr(1), &o.target_error) && o.target_error >= 0;
+    else if (c != "default")
+      ok = ok && absl::SimpleAtod(c, &o.cut_off) && o.cut_off >= 0;
+    if (!ok)
+      Fail("eval",
+           "--tree-cut-off: '" + spec + "' is not default, a cut-off or tE, then optionally @W",
+           kExitBadInput);
     out.push_back(o);
   }
   return out;
@@ -142,9 +156,9 @@ void AddEvalCommand(CLI::App& app) {
                 "print {\"terms\", \"dense\": {rel_rms, max_abs, psnr, seconds}, "
                 "\"compressed\": {...}, \"reference\": {...}}");
   cmd->add_option("--tree-cut-off", flags->tree_cut_offs,
-                  "also relight the store's wavelet-tree export (as export --format "
-                  "wavelet-tree; 'default': its default setting) at each cut-off given, "
-                  "against the same reference; no dense retrace");
+                  "also relight the store's wavelet-tree export at each setting given, "
+                  "against the same reference (no dense retrace): 'default' (the export's), "
+                  "a cut-off C or tE (a target error E), each optionally @W (level weight)");
   cmd->add_option("--tree-bits", flags->tree_bits, "bits of the --tree-cut-off exports")
       ->check(CLI::IsMember({8, 16}))
       ->capture_default_str();

@@ -99,6 +99,7 @@ nlohmann::json TreeEvalJson(const TreeEvalReport& r) {
   nlohmann::json rows = nlohmann::json::array();
   for (const TreeEvalRow& t : r.trees) {
     nlohmann::json row = {{"cut_off", t.cut_off},
+                          {"level_weight", t.asked.level_weight},
                           {"bits", t.asked.bits},
                           {"bytes", t.bytes},
                           {"trees", t.trees},
@@ -121,10 +122,10 @@ std::string TreeEvalText(const TreeEvalReport& r) {
   std::string text = EvalReportText(r.store);
   for (const TreeEvalRow& t : r.trees)
     text += absl::StrFormat(
-        "trees cut-off %.4g (%d bits): rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %lld bytes  "
+        "trees cut-off %.4g @%g (%d bits): rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %lld bytes  "
         "%.2f%% of nodes kept\n",
-        t.cut_off, t.asked.bits, t.error.rel_rms, t.error.max_abs, t.error.psnr,
-        static_cast<long long>(t.bytes),
+        t.cut_off, t.asked.level_weight, t.asked.bits, t.error.rel_rms, t.error.max_abs,
+        t.error.psnr, static_cast<long long>(t.bytes),
         t.nodes_total > 0 ? 100.0 * double(t.nodes_kept) / double(t.nodes_total) : 0.0);
   return text;
 }

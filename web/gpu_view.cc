@@ -22,41 +22,6 @@
 
 namespace wavebake::web {
 
-absl::StatusOr<WaveletLights> GpuViewState::Lights(const ServedStore& s, const std::string& name,
-                                                   double rotate, int terms) {
-  if (terms < 1) return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, " < 1"));
-  if (!std::isfinite(rotate))
-    return absl::InvalidArgumentError("rotate: not a finite number of degrees");
-  absl::StatusOr<EnvProjector*> projector;
-  const EnvMap* env = nullptr;
-  {
-    std::lock_guard lock(mu);
-    auto it = probe_cache.find(name);
-    if (it == probe_cache.end()) {
-      absl::StatusOr<std::string> spec = probes.Spec(name);
-      if (!spec.ok()) return spec.status();
-      absl::StatusOr<EnvMap> loaded = LoadEnvMap(*spec);
-      if (!loaded.ok()) return loaded.status();
-      it = probe_cache.emplace(name, Probe{*std::move(loaded), {}}).first;
-    }
-    Probe& p = it->second;
-    env = &p.env;
-    auto pj = p.projectors.find(s.light_res);
-    if (pj == p.projectors.end()) {
-      absl::StatusOr<EnvProjector> created =
-          EnvProjector::Create(p.env.width, p.env.height, s.light_res, WaveletFilter::kHaar);
-      if (!created.ok()) return created.status();
-      pj = p.projectors.emplace(s.light_res, *std::move(created)).first;
-    }
-    projector = &pj->second;
-  }
-  // Entries of a std::map stay put; probes are never evicted.
-  absl::StatusOr<LightingCoefficients> lighting =
-      rotate != 0 ? (*projector)->Project(Rotated(*env, rotate)) : (*projector)->Project(*env);
-  if (!lighting.ok()) return lighting.status();
-  return SelectWaveletLights(*lighting, terms, s.support);
-}
-
 void SendJsonBody(httplib::Response& res, const nlohmann::json& j, int status) {
   res.status = status;
   res.set_header("Cache-Control", "no-cache");
@@ -165,7 +130,7 @@ void AddRoutes(httplib::Server& server, GpuViewState& st) {
                page(req.matches[1].str(), res);
              });
   server.Get("/api/probes", [&st](const httplib::Request&, httplib::Response& res) {
-    SendJsonBody(res, st.probes.names());
+    SendJsonBody(res, st.lights->probes().names());
   });
   server.Get("/api/view/stores", [&st](const httplib::Request&, httplib::Response& res) {
     nlohmann::json list = nlohmann::json::array();
@@ -242,7 +207,7 @@ absl::StatusOr<std::unique_ptr<GpuViewServer>> GpuViewServer::Start(GpuViewOptio
   if (options.stores.empty()) return absl::InvalidArgumentError("stores: none given");
   std::unique_ptr<GpuViewServer> v(new GpuViewServer());
   v->state_ = std::make_unique<GpuViewState>();
-  v->state_->probes = std::move(options.probes);
+  v->state_->lights = std::make_unique<GpuLights>(std::move(options.probes));
   v->state_->pages = Pages(options.pages_dir);
   for (const auto& path : options.stores) {
     absl::StatusOr<ServedStore> s = Serve(path, options.trees);

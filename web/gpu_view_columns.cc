@@ -11,10 +11,12 @@
 #include <chrono>
 #include <cstring>
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "core/wavelets/wavelet2d.h"
 #include "runtime/gpu/relight_magnitude.h"
 #include "runtime/gpu/wavelet_tree.h"
+#include "runtime/relight/row_basis.h"
 #include "web/gpu_view_state.h"
 
 namespace wavebake::web {
@@ -63,6 +65,19 @@ absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& t, const Sam
     entries[2 * k + 1] = std::bit_cast<uint32_t>(t.values[k]);
   }
   std::vector<uint32_t> indptr(t.indptr.begin(), t.indptr.end());
+  std::vector<float> cells(4 * size_t(t.width) * t.height, 0.0f);
+  for (size_t c = 0; c < samples.grid.size(); ++c) {
+    const int32_t id = samples.grid[c];
+    if (id < 0) continue;
+    const Vec3 a = samples.albedo[id];
+    cells[4 * c] = a.x;
+    cells[4 * c + 1] = a.y;
+    cells[4 * c + 2] = a.z;
+    cells[4 * c + 3] = 1.0f;
+  }
+  s.cells = BytesOf(cells);
+  s.light_res = t.light_res;
+  s.support = SupportSolidAngles(t.light_res);
   s.entries = BytesOf(entries);
   s.indptr = BytesOf(indptr);
   s.depth = BytesOf(t.depth);
@@ -96,6 +111,13 @@ absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& t, const Sam
         {"type", "uint8"},
         {"shape", {t.columns}},
         {"meaning", "column m's transform depth: Haar steps 0..depth-1 were applied"}}},
+      {"cells",
+       {{"file", "cells.bin"},
+        {"type", "float32"},
+        {"channels", 4},
+        {"shape", {t.height, t.width}},
+        {"webgl", "RGBA32F / RGBA / FLOAT"},
+        {"meaning", "cell y*W + x: albedo RGB, A 1 sampled / 0 masked"}}},
       {"bytes", s.entries.size() + s.indptr.size() + s.depth.size()}};
   return s;
 }
@@ -111,19 +133,43 @@ int64_t Scattered(const CompressedColumns& t, const WaveletLights& lights) {
 
 }  // namespace
 
-void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
-  server.Get(R"(/api/view/columns/(\d+)/(meta\.json|entries\.bin|indptr\.bin|depth\.bin))",
-             [&st](const httplib::Request& req, httplib::Response& res) {
-               size_t i = 0;
-               if (!absl::SimpleAtoi(req.matches[1].str(), &i) || i >= st.stores.size())
-                 return SendStatus(res, absl::NotFoundError("store: no such index"));
-               const ServedColumns& c = st.stores[i].cols;
+std::string LightsBody(const WaveletLights& lights) {
+  std::string body(16 * lights.lights.size(), '\0');
+  for (size_t k = 0; k < lights.lights.size(); ++k) {
+    const WaveletLight& l = lights.lights[k];
+    std::memcpy(&body[16 * k], &l.column, 4);
+    std::memcpy(&body[16 * k + 4], l.weight.data(), 12);
+  }
+  return body;
+}
+
+void AddColumnArrayRoutes(httplib::Server& server, const std::string& prefix, ColumnsOf of) {
+  server.Get(prefix + R"((meta\.json|entries\.bin|indptr\.bin|depth\.bin|cells\.bin))",
+             [of](const httplib::Request& req, httplib::Response& res) {
+               std::shared_ptr<const ServedColumns> c = of(req, res);
+               if (!c) return;
                const std::string file = req.matches[2].str();
-               if (file == "meta.json") return SendJsonBody(res, c.meta);
-               SendBytes(res, file == "entries.bin"  ? c.entries
-                              : file == "indptr.bin" ? c.indptr
-                                                     : c.depth);
+               if (file == "meta.json") return SendJsonBody(res, c->meta);
+               SendBytes(res, file == "entries.bin"  ? c->entries
+                              : file == "indptr.bin" ? c->indptr
+                              : file == "depth.bin"  ? c->depth
+                                                     : c->cells);
              });
+}
+
+void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
+  AddColumnArrayRoutes(server, "/api/view/columns/(\\d+)/",
+                       [&st](const httplib::Request& req,
+                             httplib::Response& res) -> std::shared_ptr<const ServedColumns> {
+                         size_t i = 0;
+                         if (!absl::SimpleAtoi(req.matches[1].str(), &i) || i >= st.stores.size()) {
+                           SendStatus(res, absl::NotFoundError("store: no such index"));
+                           return nullptr;
+                         }
+                         // Aliasing: the stores outlive the server's routes.
+                         return std::shared_ptr<const ServedColumns>(std::shared_ptr<void>(),
+                                                                     &st.stores[i].cols);
+                       });
   // The kept lights, most important first: per light uint32 column, then
   // float32 R, G, B (little-endian, 16 bytes).
   server.Get("/api/view/lights", [&st](const httplib::Request& req, httplib::Response& res) {
@@ -131,14 +177,8 @@ void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
     if (!q.ok()) return SendStatus(res, q.status());
     absl::StatusOr<WaveletLights> lights = st.Lights(*q->store, q->probe, q->rotate, q->terms);
     if (!lights.ok()) return SendStatus(res, lights.status());
-    std::string body(16 * lights->lights.size(), '\0');
-    for (size_t k = 0; k < lights->lights.size(); ++k) {
-      const WaveletLight& l = lights->lights[k];
-      std::memcpy(&body[16 * k], &l.column, 4);
-      std::memcpy(&body[16 * k + 4], l.weight.data(), 12);
-    }
     res.set_header("X-Coefficients", std::to_string(Scattered(q->store->cols.columns, *lights)));
-    SendBytes(res, std::move(body));
+    SendBytes(res, LightsBody(*lights));
   });
   // The CPU relighter's frame of the same lights (Relighter::Relight, Eq. 8),
   // float32 [H·W·3] then M·|albedo| [H·W·3] (runtime/gpu/relight_magnitude.h,

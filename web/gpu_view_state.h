@@ -4,7 +4,7 @@
 // store's arrays (web/gpu_view_columns.cc).
 #include <httplib.h>
 
-#include <map>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -17,6 +17,7 @@
 #include "runtime/gpu/wavelet_tree_reader.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/relighter.h"
+#include "web/gpu_lights.h"
 #include "web/pages.h"
 #include "web/probe_catalogue.h"
 
@@ -28,6 +29,9 @@ struct ServedColumns {
   CompressedColumns columns;
   nlohmann::json meta;
   std::string entries, indptr, depth;
+  std::string cells;  // [W·H] × RGBA float32: albedo RGB, A 1 sampled / 0 masked
+  int light_res = 0;
+  std::vector<float> support;  // SupportSolidAngles(N)
   std::unique_ptr<Relighter> relighter;
   std::unique_ptr<std::mutex> mu = std::make_unique<std::mutex>();
 };
@@ -46,18 +50,14 @@ struct ServedStore {
 
 struct GpuViewState {
   std::vector<ServedStore> stores;
-  ProbeCatalogue probes;
+  std::unique_ptr<GpuLights> lights;
   Pages pages;
-  std::mutex mu;  // the probe cache
-  struct Probe {
-    EnvMap env;
-    std::map<int, EnvProjector> projectors;  // by light_res
-  };
-  std::map<std::string, Probe> probe_cache;
 
-  // The lights of a frame: the relight view's (web/relight_service.cc).
-  absl::StatusOr<WaveletLights> Lights(const ServedStore& s, const std::string& name, double rotate,
-                                       int terms);
+  // The lights of a frame of store s.
+  absl::StatusOr<WaveletLights> Lights(const ServedStore& s, const std::string& probe,
+                                       double rotate, int terms) {
+    return lights->Lights(probe, rotate, terms, s.light_res, s.support);
+  }
 };
 
 // A frame's query: ?store=I&probe=NAME&rotate=DEG&terms=K.
@@ -80,7 +80,16 @@ void SendBytes(httplib::Response& res, std::string body);
 // 32-bit texel indices).
 absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& columns,
                                            const SampleSet& samples);
-//   /api/view/columns/I/{meta.json,entries.bin,indptr.bin,depth.bin}
+// The kept lights, most important first: per light uint32 column, then
+// float32 R, G, B (little-endian, 16 bytes).
+std::string LightsBody(const WaveletLights& lights);
+// The arrays' routes: prefix + {meta.json,entries.bin,indptr.bin,depth.bin,
+// cells.bin}, `of` finding the store's columns by the request's first match
+// (or sending the error).
+using ColumnsOf = std::function<std::shared_ptr<const ServedColumns>(const httplib::Request&,
+                                                                     httplib::Response&)>;
+void AddColumnArrayRoutes(httplib::Server& server, const std::string& prefix, ColumnsOf of);
+//   /api/view/columns/I/{meta.json,entries.bin,indptr.bin,depth.bin,cells.bin}
 //   /api/view/lights?store=I&probe=&rotate=&terms=     the kept lights
 //   /api/view/oracle4d?store=I&probe=&rotate=&terms=   the CPU relighter's frame
 void AddColumnRoutes(httplib::Server& server, GpuViewState& st);

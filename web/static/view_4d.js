@@ -14,7 +14,9 @@ window.WavebakeColumnMode = async function (gl, ctx) {
   const G = window.WavebakeGL;
   if (!gl.getExtension("EXT_float_blend"))
     throw new Error("EXT_float_blend is missing: no additive blending into float targets");
-  const base = `/api/view/columns/${ctx.store}/`;
+  // `wavebake view`'s routes, or the job page's (ctx.columnsBase, ctx.lightsUrl).
+  const base = ctx.columnsBase || `/api/view/columns/${ctx.store}/`;
+  const lightsUrl = ctx.lightsUrl || ((q) => `/api/view/lights?${q}`);
   const meta = await G.getJson(base + "meta.json");
   if (meta.format !== "wavebake-columns/1") throw new Error("unknown columns format");
   if (meta.column_filter !== "haar") throw new Error(`column filter ${meta.column_filter}: not Haar`);
@@ -128,7 +130,7 @@ window.WavebakeColumnMode = async function (gl, ctx) {
   return {
     name: "4d",
     async relight(q) {
-      const r = await G.getBytes(`/api/view/lights?${q}`);
+      const r = await G.getBytes(lightsUrl(q));
       plan(r.buffer);
       draw();
       return `${terms} wavelet lights; ${coefficients} coefficients scattered in ` +
