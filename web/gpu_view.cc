@@ -17,6 +17,8 @@
 #include "runtime/gpu/wavelet_tree_reader.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/row_basis.h"
+#include "runtime/relight/store_relight.h"
+#include "storage/store_reader.h"
 #include "web/gpu_view_state.h"
 #include "web/pages.h"
 
@@ -101,6 +103,21 @@ absl::StatusOr<ServedStore> Serve(const std::filesystem::path& path,
   absl::StatusOr<ServedColumns> cols = ServeColumns(source->columns, source->samples);
   if (!cols.ok()) return named(cols.status());
   s.cols = *std::move(cols);
+  if (absl::StatusOr<StoreInfo> info = ReadStoreInfo(path); info.ok()) {
+    absl::StatusOr<LightmapMesh> mesh = LightmapMeshOf(*info, source->samples);
+    if (mesh.ok()) {
+      const uint32_t counts[2] = {static_cast<uint32_t>(mesh->positions.size() / 3),
+                                  static_cast<uint32_t>(mesh->indices.size())};
+      s.mesh = Bytes(counts, sizeof counts) +
+               Bytes(mesh->positions.data(), 4 * mesh->positions.size()) +
+               Bytes(mesh->texels.data(), 4 * mesh->texels.size()) +
+               Bytes(mesh->indices.data(), 4 * mesh->indices.size());
+    } else if (mesh.status().code() != absl::StatusCode::kFailedPrecondition ||
+               info->params.layout.starts_with("uv")) {
+      spdlog::warn("view: {}: no 3D mesh ({}); the lightmap is shown flat", path.string(),
+                   std::string(mesh.status().message()));
+    }
+  }
   return s;
 }
 
@@ -142,6 +159,7 @@ void AddRoutes(httplib::Server& server, GpuViewState& st) {
                       {"height", s.height},
                       {"light_res", s.light_res},
                       {"bits", s.bits},
+                      {"mesh", !s.mesh.empty()},
                       {"bytes", s.line.size() + s.blocks.size() + s.cells.size()}});
     }
     SendJsonBody(res, list);
@@ -160,6 +178,13 @@ void AddRoutes(httplib::Server& server, GpuViewState& st) {
                res.set_header("Cache-Control", "no-cache");
                res.set_content(body, "application/octet-stream");
              });
+  server.Get(R"(/api/view/mesh/(\d+))", [&st](const httplib::Request& req, httplib::Response& res) {
+    size_t i = 0;
+    if (!absl::SimpleAtoi(req.matches[1].str(), &i) || i >= st.stores.size() ||
+        st.stores[i].mesh.empty())
+      return SendStatus(res, absl::NotFoundError("store: no mesh for this index"));
+    SendBytes(res, st.stores[i].mesh);
+  });
   server.Get("/api/view/env", [&st](const httplib::Request& req, httplib::Response& res) {
     absl::StatusOr<FrameQuery> q = ParseFrameQuery(req, st.stores);
     if (!q.ok()) return SendStatus(res, q.status());

@@ -46,6 +46,11 @@ struct ServedStore {
   std::unique_ptr<WaveletTreeReader> reader;
   std::vector<float> support;  // SupportSolidAngles(N)
   ServedColumns cols;
+  // uv stores whose scene loads: the lightmapped mesh for the 3D display,
+  // uint32 vertices V, uint32 indices I, float32 positions [V·3], float32
+  // lightmap texel positions [V·2] (x right, y down from grid row 0),
+  // uint32 indices [I]; empty otherwise.
+  std::string mesh;
 };
 
 struct GpuViewState {

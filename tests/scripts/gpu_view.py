@@ -29,6 +29,7 @@ array (runtime/gpu/relight_magnitude.h): |gpu − cpu| ≤ 2·γ_n·M, γ_n =
 n·u/(1 − n·u), plus M's own float rounding (one more u).
 """
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -133,8 +134,10 @@ def main():
         assert p.returncode != 0 and "transport" in p.stderr, p.stderr
 
         addr = tmp / "addr"
+        # The uv store's scene is found by name on WAVEBAKE_SCENE_PATH (its 3D mesh).
+        env = dict(os.environ, WAVEBAKE_SCENE_PATH=str(DATA / "models"))
         server = subprocess.Popen([WB, "view", *map(str, paths), "--http", "127.0.0.1:0",
-                                   "--http-address-file", str(addr)],
+                                   "--http-address-file", str(addr)], env=env,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         driver = None
         try:
@@ -245,6 +248,30 @@ def main():
                     "return performance.getEntriesByType('resource').map(e => e.name)")
                 assert urls and all(lighting in u for u in urls), (mode, urls)
                 check(last, paths[-1], "builtin:sky", 90, 1000)
+
+            # The uv store in 3D: the lightmapped mesh drawn (a mesh only for
+            # uv), and turning the camera redraws with no request.
+            listed = json.loads(get(f"{base}/api/view/stores"))
+            assert [s["mesh"] for s in listed] == [False, True, False], listed
+            status = load(f"{base}/view?store=1&probe=builtin:sky&terms=64&mode=4d")
+            assert status == "ready", status
+            assert driver.execute_script("return document.body.dataset.view3d;") == "1"
+            shown = ("const c = document.getElementById('view'); const gl = c.getContext('webgl2');"
+                     "const p = new Uint8Array(c.width * c.height * 4);"
+                     "gl.bindFramebuffer(gl.FRAMEBUFFER, null);"
+                     "gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, p);"
+                     "return Array.from(p);")
+            before = np.array(driver.execute_script(shown)).reshape(-1, 4)
+            background = np.all(np.abs(before[:, :3] - before[0, :3]) <= 2, axis=1)
+            assert 0.05 < 1 - background.mean() < 0.95, f"mesh covers {1 - background.mean():.2f} of the view"
+            driver.execute_script("performance.clearResourceTimings(); window.wavebakeOrbit(1.2, 0.3);")
+            after = np.array(driver.execute_script(shown)).reshape(-1, 4)
+            changed = np.any(np.abs(after.astype(int) - before) > 8, axis=1).mean()
+            assert changed > 0.05, f"the orbit changed {changed:.3f} of the pixels"
+            assert driver.execute_script("return performance.getEntriesByType('resource').length;") == 0
+            compare4d(1, paths[1], "builtin:sky", 0, 64)
+            print(f"uv store in 3D: mesh on {1 - background.mean():.2f} of the view, orbit changed "
+                  f"{changed:.2f}, no request")
 
             status = load(f"{base}/view?store=0&mode=3d")
             assert status.startswith("error: mode 3d"), status

@@ -11,7 +11,10 @@
 // Float32Array of linear RGB, row 0 at the top, NaN where masked — the shape
 // of the Python module's wavebake.relight(Store, probe, terms, rotate).
 // window.wavebakeGpuBench(frames) redraws the current lighting `frames`
-// times and returns {mode, device, msPerFrame, bytesOnGpu, work}.
+// times and returns {mode, device, msPerFrame, bytesOnGpu, work}. For uv
+// stores the canvas shows the lightmapped mesh in 3D (view_mesh.js; &view=flat
+// or the checkbox for the flat lightmap); window.wavebakeOrbit(dyaw, dpitch,
+// zoom) turns its camera.
 "use strict";
 
 (async function () {
@@ -75,7 +78,27 @@
     const displayProgram = await G.program(gl, "fullscreen.vert", "display.frag");
     const mode = await modes[state.mode](gl, ctx);
 
+    // uv stores: the lightmapped mesh under an orbit camera (view_mesh.js),
+    // unless unticked; the flat frame otherwise. Display only.
+    let mesh = null;
+    if (info.mesh && window.WavebakeMeshView) {
+      mesh = await window.WavebakeMeshView(gl, ctx, canvas);
+      $("view3d-label").hidden = false;
+      if (params.get("view") === "flat") $("view3d").checked = false;
+      window.wavebakeOrbit = (dyaw, dpitch, zoom) => mesh.turn(dyaw, dpitch, zoom);
+    }
     function display() {
+      if (mesh && $("view3d").checked) {
+        if (canvas.width !== 512) canvas.width = canvas.height = 512;
+        mesh.draw(state.exposure);
+        document.body.dataset.view3d = "1";
+        return;
+      }
+      if (canvas.width !== W || canvas.height !== H) {
+        canvas.width = W;
+        canvas.height = H;
+      }
+      document.body.dataset.view3d = "0";
       gl.bindVertexArray(ctx.vao);
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
       gl.viewport(0, 0, W, H);
@@ -170,6 +193,7 @@
       state.probe = $("probe").value;
       relight();
     });
+    $("view3d").addEventListener("change", display);
     $("exposure").addEventListener("input", () => {
       state.exposure = Number($("exposure").value);
       display();
