@@ -173,7 +173,7 @@ def main():
         fps = 1000 / r["ms"]
         err = f"{r['error']:.4f}" if r["error"] is not None else "-"
         print(f"{r['mode']:14} {str(r['cut_off']):>9} {r['bytes'] / 1e6:10.2f} {r['ms']:9.2f} "
-              f"{fps:9.1f} {fps / cpu_fps:7.2f} {r['work']:12.2f} {r['unit']:>18}"
+              f"{fps:9.1f} {fps / cpu_fps:7.3g} {r['work']:12.2f} {r['unit']:>18}"
               f" +{r['passes']} {err:>8}")
     if a.csv:
         with open(a.csv, "w", newline="") as f:

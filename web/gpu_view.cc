@@ -100,9 +100,13 @@ absl::StatusOr<ServedStore> Serve(const std::filesystem::path& path,
   if (!r.ok()) return r.status();
   s.reader = std::make_unique<WaveletTreeReader>(*std::move(r));
   s.support = SupportSolidAngles(s.light_res);
+  // A store mode=4d cannot relight (a column filter other than Haar) is
+  // still served as trees; its 4d routes answer with the reason.
   absl::StatusOr<ServedColumns> cols = ServeColumns(source->columns, source->samples);
-  if (!cols.ok()) return named(cols.status());
-  s.cols = *std::move(cols);
+  if (cols.ok())
+    s.cols = *std::move(cols);
+  else
+    s.cols_status = named(cols.status());
   if (absl::StatusOr<StoreInfo> info = ReadStoreInfo(path); info.ok()) {
     absl::StatusOr<LightmapMesh> mesh = LightmapMeshOf(*info, source->samples);
     if (mesh.ok()) {

@@ -166,6 +166,10 @@ void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
                            SendStatus(res, absl::NotFoundError("store: no such index"));
                            return nullptr;
                          }
+                         if (!st.stores[i].cols_status.ok()) {
+                           SendStatus(res, st.stores[i].cols_status);
+                           return nullptr;
+                         }
                          // Aliasing: the stores outlive the server's routes.
                          return std::shared_ptr<const ServedColumns>(std::shared_ptr<void>(),
                                                                      &st.stores[i].cols);
@@ -175,6 +179,7 @@ void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
   server.Get("/api/view/lights", [&st](const httplib::Request& req, httplib::Response& res) {
     absl::StatusOr<FrameQuery> q = ParseFrameQuery(req, st.stores);
     if (!q.ok()) return SendStatus(res, q.status());
+    if (!q->store->cols_status.ok()) return SendStatus(res, q->store->cols_status);
     absl::StatusOr<WaveletLights> lights = st.Lights(*q->store, q->probe, q->rotate, q->terms);
     if (!lights.ok()) return SendStatus(res, lights.status());
     res.set_header("X-Coefficients", std::to_string(Scattered(q->store->cols.columns, *lights)));
@@ -187,6 +192,7 @@ void AddColumnRoutes(httplib::Server& server, GpuViewState& st) {
   server.Get("/api/view/oracle4d", [&st](const httplib::Request& req, httplib::Response& res) {
     absl::StatusOr<FrameQuery> q = ParseFrameQuery(req, st.stores);
     if (!q.ok()) return SendStatus(res, q.status());
+    if (!q->store->cols_status.ok()) return SendStatus(res, q->store->cols_status);
     const ServedColumns& c = q->store->cols;
     absl::StatusOr<WaveletLights> lights = st.Lights(*q->store, q->probe, q->rotate, q->terms);
     if (!lights.ok()) return SendStatus(res, lights.status());

@@ -46,6 +46,7 @@ struct ServedStore {
   std::unique_ptr<WaveletTreeReader> reader;
   std::vector<float> support;  // SupportSolidAngles(N)
   ServedColumns cols;
+  absl::Status cols_status;  // why mode=4d cannot serve this store (trees still can)
   // uv stores whose scene loads: the lightmapped mesh for the 3D display,
   // uint32 vertices V, uint32 indices I, float32 positions [V·3], float32
   // lightmap texel positions [V·2] (x right, y down from grid row 0),

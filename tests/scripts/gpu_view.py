@@ -35,6 +35,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
 import urllib.request
 
 import numpy as np
@@ -133,10 +134,14 @@ def main():
         p = run("export", str(vis), "--format", "wavelet-tree", "--out", str(tmp / "v"), ok=False)
         assert p.returncode != 0 and "transport" in p.stderr, p.stderr
 
+        # A LeGall column store: trees yes, mode=4d refused by name.
+        legall = tmp / "legall.wbk"
+        run("bake", "builtin:disk-over-plane", "--layout", "camera:16x16", "--light-res", "8",
+            "--column-filter", "legall53", "--quiet", "--out", str(legall))
         addr = tmp / "addr"
         # The uv store's scene is found by name on WAVEBAKE_SCENE_PATH (its 3D mesh).
         env = dict(os.environ, WAVEBAKE_SCENE_PATH=str(DATA / "models"))
-        server = subprocess.Popen([WB, "view", *map(str, paths), "--http", "127.0.0.1:0",
+        server = subprocess.Popen([WB, "view", *map(str, paths), str(legall), "--http", "127.0.0.1:0",
                                    "--http-address-file", str(addr)], env=env,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         driver = None
@@ -252,7 +257,16 @@ def main():
             # The uv store in 3D: the lightmapped mesh drawn (a mesh only for
             # uv), and turning the camera redraws with no request.
             listed = json.loads(get(f"{base}/api/view/stores"))
-            assert [s["mesh"] for s in listed] == [False, True, False], listed
+            assert [s["mesh"] for s in listed] == [False, True, False, False], listed
+            try:
+                get(f"{base}/api/view/columns/3/meta.json")
+                raise AssertionError("a LeGall store's columns were served")
+            except urllib.error.HTTPError as e:
+                body = e.read().decode()
+                assert e.code == 409 and "column_filter" in body, (e.code, body)
+            assert json.loads(get(f"{base}/api/view/trees/3/header.json"))["format"]
+            status = load(f"{base}/view?store=3&mode=4d")
+            assert status.startswith("error: ") and "column_filter" in status, status
             status = load(f"{base}/view?store=1&probe=builtin:sky&terms=64&mode=4d")
             assert status == "ready", status
             assert driver.execute_script("return document.body.dataset.view3d;") == "1"
