@@ -82,7 +82,13 @@
     // unless unticked; the flat frame otherwise. Display only.
     let mesh = null;
     if (info.mesh && window.WavebakeMeshView) {
-      mesh = await window.WavebakeMeshView(gl, ctx, canvas);
+      try {
+        mesh = await window.WavebakeMeshView(gl, ctx, canvas);
+      } catch (e) {
+        console.log(`3D view: ${e.message}; the lightmap is shown flat`);
+      }
+    }
+    if (mesh) {
       $("view3d-label").hidden = false;
       if (params.get("view") === "flat") $("view3d").checked = false;
       window.wavebakeOrbit = (dyaw, dpitch, zoom) => mesh.turn(dyaw, dpitch, zoom);
