@@ -102,7 +102,7 @@ absl::StatusOr<ServedStore> Serve(const std::filesystem::path& path,
   s.support = SupportSolidAngles(s.light_res);
   // A store mode=4d cannot relight (a column filter other than Haar) is
   // still served as trees; its 4d routes answer with the reason.
-  absl::StatusOr<ServedColumns> cols = ServeColumns(source->columns, source->samples);
+  absl::StatusOr<ServedColumns> cols = ServeColumns(source->columns, source->samples, true);
   if (cols.ok())
     s.cols = *std::move(cols);
   else

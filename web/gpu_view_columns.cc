@@ -43,7 +43,8 @@ const char* FilterName(WaveletFilter f) {
 
 }  // namespace
 
-absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& t, const SampleSet& samples) {
+absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& t, const SampleSet& samples,
+                                           bool oracle) {
   if (t.column_filter != WaveletFilter::kHaar)
     return absl::FailedPreconditionError(
         absl::StrCat("store: column_filter is ", FilterName(t.column_filter),
@@ -52,11 +53,13 @@ absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& t, const Sam
   if (nnz >= (int64_t{1} << 31))
     return absl::FailedPreconditionError(
         absl::StrCat("transport: ", nnz, " coefficients do not fit 32-bit texel indices"));
-  absl::StatusOr<Relighter> r = Relighter::Create(t, samples);
+  absl::StatusOr<Relighter> r = Relighter::Create(t, samples);  // its checks, always
   if (!r.ok()) return r.status();
   ServedColumns s;
-  s.columns = t;
-  s.relighter = std::make_unique<Relighter>(*std::move(r));
+  if (oracle) {
+    s.columns = t;
+    s.relighter = std::make_unique<Relighter>(*std::move(r));
+  }
   // Entries: RG32UI, position then the value's float bits, kTreeLineWidth a row.
   const int64_t rows = std::max<int64_t>(1, WaveletTreeTextures::RowsFor(nnz));
   std::vector<uint32_t> entries(2 * rows * kTreeLineWidth, 0u);

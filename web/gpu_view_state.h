@@ -26,7 +26,7 @@ namespace wavebake::web {
 // mode=4d: the store's CSC arrays as served, and the CPU relighter of the
 // same store (the oracle; one frame at a time, its scratch is not shared).
 struct ServedColumns {
-  CompressedColumns columns;
+  CompressedColumns columns;  // with the oracle only
   nlohmann::json meta;
   std::string entries, indptr, depth;
   std::string cells;  // [W·H] × RGBA float32: albedo RGB, A 1 sampled / 0 masked
@@ -81,11 +81,12 @@ void SendJsonBody(httplib::Response& res, const nlohmann::json& j, int status = 
 void SendStatus(httplib::Response& res, const absl::Status& s);
 void SendBytes(httplib::Response& res, std::string body);
 
-// mode=4d: the store's columns and its CPU relighter (errors name the
-// field: a column filter the GPU cannot invert, a matrix too large for
-// 32-bit texel indices).
+// mode=4d: the store's columns, and with `oracle` its CPU relighter and a
+// copy of the matrix for the magnitude (the view's oracle4d; the job page
+// needs neither). Errors name the field: a column filter the GPU cannot
+// invert, a matrix too large for 32-bit texel indices, the matrix's checks.
 absl::StatusOr<ServedColumns> ServeColumns(const CompressedColumns& columns,
-                                           const SampleSet& samples);
+                                           const SampleSet& samples, bool oracle);
 // The kept lights, most important first: per light uint32 column, then
 // float32 R, G, B (little-endian, 16 bytes).
 std::string LightsBody(const WaveletLights& lights);

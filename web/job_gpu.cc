@@ -32,7 +32,7 @@ absl::StatusOr<std::shared_ptr<const ServedColumns>> JobGpu::Open(
   if (!samples.ok()) return samples.status();
   absl::StatusOr<CompressedColumns> columns = ReadTransport(store);
   if (!columns.ok()) return columns.status();
-  absl::StatusOr<ServedColumns> served = ServeColumns(*columns, *samples);
+  absl::StatusOr<ServedColumns> served = ServeColumns(*columns, *samples, false);
   if (!served.ok()) return served.status();
   auto shared = std::make_shared<const ServedColumns>(*std::move(served));
   std::lock_guard lock(mu_);
