@@ -10,10 +10,12 @@
 #include <mutex>
 #include <string>
 
+#include "absl/strings/numbers.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
 #include "driver/evaluate.h"
+#include "driver/tree_eval.h"
 
 namespace wavebake::cli {
 namespace {
@@ -26,7 +28,36 @@ struct EvalFlags {
   int reference_batches = 8;
   driver::AreaLightCommand area;
   GlossyFlags glossy;
+  std::vector<std::string> tree_cut_offs;  // SETTING[@LEVEL_WEIGHT] each
+  int tree_bits = 8;
 };
+
+// --tree-cut-off SETTING[@W]: SETTING "default" (the export's), a cut-off
+// C or tE (a target error E); W the level weight (default: the export's).
+std::vector<WaveletTreeOptions> TreeSettings(const EvalFlags& f) {
+  std::vector<WaveletTreeOptions> out;
+  for (const std::string& spec : f.tree_cut_offs) {
+    WaveletTreeOptions o;
+    o.bits = f.tree_bits;
+    std::string c = spec;
+    const size_t at = c.find('@');
+    bool ok = true;
+    if (at != std::string::npos) {
+      ok = absl::SimpleAtod(c.substr(at + 1), &o.level_weight);
+      c = c.substr(0, at);
+    }
+    if (c.size() > 1 && c[0] == 't')
+      ok = ok && absl::SimpleAtod(c.substr(1), &o.target_error) && o.target_error >= 0;
+    else if (c != "default")
+      ok = ok && absl::SimpleAtod(c, &o.cut_off) && o.cut_off >= 0;
+    if (!ok)
+      Fail("eval",
+           "--tree-cut-off: '" + spec + "' is not default, a cut-off or tE, then optionally @W",
+           kExitBadInput);
+    out.push_back(o);
+  }
+  return out;
+}
 
 // The reference's progress on stderr (DESIGN.md §5: a bar on a terminal,
 // plain lines otherwise), from the tracing threads.
@@ -76,6 +107,13 @@ void Run(EvalFlags f) {
     progress.Show(done, total);
   };
   options.glossy = GlossyOf(f.glossy, "eval");
+  if (!f.tree_cut_offs.empty()) {
+    absl::StatusOr<driver::TreeEvalReport> trees =
+        driver::EvaluateTrees(f.store, f.env, f.terms, options, TreeSettings(f));
+    if (!trees.ok()) Fail("eval", trees.status());
+    return (void)std::printf("%s", f.json ? (driver::TreeEvalJson(*trees).dump() + "\n").c_str()
+                                          : driver::TreeEvalText(*trees).c_str());
+  }
   absl::StatusOr<EvalReport> report = driver::Evaluate(f.store, f.env, f.terms, options);
   if (!report.ok()) Fail("eval", report.status());
   std::printf("%s", f.json ? (EvalReportJson(*report).dump() + "\n").c_str()
@@ -117,6 +155,13 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_flag("--json", flags->json,
                 "print {\"terms\", \"dense\": {rel_rms, max_abs, psnr, seconds}, "
                 "\"compressed\": {...}, \"reference\": {...}}");
+  cmd->add_option("--tree-cut-off", flags->tree_cut_offs,
+                  "also relight the store's wavelet-tree export at each setting given, "
+                  "against the same reference (no dense retrace): 'default' (the export's), "
+                  "a cut-off C or tE (a target error E), each optionally @W (level weight)");
+  cmd->add_option("--tree-bits", flags->tree_bits, "bits of the --tree-cut-off exports")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
   cmd->callback([flags] { Run(*flags); });
 }
 

@@ -13,7 +13,7 @@ namespace {
 
 struct ExportFlags {
   std::string store, format, out;
-  double cut_off = -1, target_error = -1;
+  double cut_off = -1, target_error = -1, level_weight = 0;
   int bits = 8;
 };
 
@@ -22,6 +22,7 @@ void Run(const ExportFlags& f) {
     Fail("export", "--format: '" + f.format + "' is not wavelet-tree", kExitBadInput);
   WaveletTreeOptions options;
   options.bits = f.bits;
+  options.level_weight = f.level_weight;
   if (f.cut_off >= 0) options.cut_off = f.cut_off;
   if (f.target_error >= 0) options.target_error = f.target_error;
   absl::StatusOr<nlohmann::json> h = driver::ExportWaveletTrees(f.store, f.out, options);
@@ -53,6 +54,11 @@ void AddExportCommand(CLI::App& app) {
                                  "relative L2 error of the pruned rows (default 0.02)")
                      ->check(CLI::NonNegativeNumber);
   cut->excludes(target);
+  cmd->add_option("--level-weight", flags->level_weight,
+                  "importance weighting: a level-l node counts max|c| * 2^(-W l) against the "
+                  "cut-off (0: Boulton's rule as written)")
+      ->check(CLI::Range(-4.0, 8.0))
+      ->capture_default_str();
   cmd->add_option("--bits", flags->bits, "bits per quantized coefficient")
       ->check(CLI::IsMember({8, 16}))
       ->capture_default_str();

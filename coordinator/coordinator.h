@@ -79,7 +79,7 @@ class Coordinator {
   grpc::Server* server() { return server_.get(); }
   LeaseTable& table() { return *table_; }
   SceneStore& scenes() { return *scenes_; }
-  JobStore& job_store_for_testing() { return *store_; }  // a full disk, simulated
+  JobStore& job_store() { return *store_; }  // the database (tests inject a full disk)
   const CoordinatorOptions& options() const { return options_; }
 
  private:

@@ -84,6 +84,16 @@ depth, positions, values = store.column(0, domain="wavelet")
 print("column 0:", column.shape, "sum", round(float(column.sum()), 5), "depth", depth,
       len(positions), "coefficients")
 
+# %% GPU export
+# A diffuse store's rows as Boulton's wavelet-tree textures (4.4-4.5), the
+# files `wavebake export` writes and `wavebake view` serves; the header
+# comes back as a dict. `target_error` (or an absolute `cut_off`) prunes.
+trees = out / "cubes-trees"
+header = wavebake.export(store, trees, target_error=0.02)
+stats = header["stats"]
+print(f"{stats['trees']} trees, {100 * stats['nodes_kept'] / stats['nodes_total']:.1f}% of nodes kept,",
+      f"pruned rows' error {stats['rel_error_pruned']:.4f};", sorted(p.name for p in trees.iterdir()))
+
 # %% Glossy: a visibility store through a BRDF
 # `transport="visibility"` keeps V alone in the rows; `brdf=` (`phong:E`,
 # `blinn:E`, `ggx:ALPHA`, `lambert`) is applied at relight time by the

@@ -8,6 +8,7 @@
 #include "core/products/coupling_table.h"
 #include "driver/area_relight.h"
 #include "runtime/reference/area_eval.h"
+#include "runtime/relight/finite_output.h"
 #include "runtime/relight/store_relight.h"
 
 namespace wavebake::driver {
@@ -32,6 +33,7 @@ absl::StatusOr<std::optional<CouplingTable>> MaybeTable(const AreaLightCommand& 
 }  // namespace
 
 absl::StatusOr<std::string> RelightWithAreaLights(const AreaLightCommand& c) {
+  if (absl::Status s = CheckExposure(c.exposure); !s.ok()) return s;
   AreaRelightOptions o;
   o.near = {.source_fraction = c.source_fraction,
             .target_fraction = c.target_fraction,
@@ -59,6 +61,7 @@ absl::StatusOr<std::string> RelightWithAreaLights(const AreaLightCommand& c) {
 
 absl::StatusOr<std::string> EvaluateWithAreaLights(const AreaLightCommand& c, int reference_batches,
                                                    bool json) {
+  if (absl::Status s = CheckExposure(c.exposure); !s.ok()) return s;
   const std::vector<std::filesystem::path> files = Paths(c.lights);
   absl::StatusOr<std::vector<AreaLight>> lights = LoadAllAreaLights(files);
   if (!lights.ok()) return lights.status();

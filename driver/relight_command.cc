@@ -5,6 +5,7 @@
 #include "driver/material_command.h"
 #include "driver/relight_sequence.h"
 #include "driver/relight_to_file.h"
+#include "runtime/relight/finite_output.h"
 
 namespace wavebake::driver {
 namespace {
@@ -33,6 +34,8 @@ absl::StatusOr<std::string> RelightRotating(const RelightCommand& c) {
 }  // namespace
 
 absl::StatusOr<std::string> Relight(const RelightCommand& c) {
+  // Before any work: a sequence would otherwise fail at its first frame.
+  if (absl::Status s = CheckExposure(c.exposure); !s.ok()) return s;
   if (!c.brdf_sequence.empty() && !c.rotate_sequence.empty())
     return absl::InvalidArgumentError(
         "brdf-sequence: give --rotate-sequence or --brdf-sequence, not both");

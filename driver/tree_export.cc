@@ -17,8 +17,7 @@ absl::Status Write(const std::filesystem::path& path, const void* data, size_t b
 
 }  // namespace
 
-absl::StatusOr<WaveletTreeTextures> StoreWaveletTrees(const std::filesystem::path& store,
-                                                      const WaveletTreeOptions& options) {
+absl::StatusOr<TreeSource> OpenTreeSource(const std::filesystem::path& store) {
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(store);
   if (!info.ok()) return info.status();
   if (absl::Status s = RequireCubeDomain(*info); !s.ok()) return s;
@@ -33,10 +32,21 @@ absl::StatusOr<WaveletTreeTextures> StoreWaveletTrees(const std::filesystem::pat
   if (!samples.ok()) return samples.status();
   absl::StatusOr<CompressedColumns> columns = ReadTransport(store);
   if (!columns.ok()) return columns.status();
-  absl::StatusOr<SampleRows> rows = SampleRows::Decode(*columns);
+  return TreeSource{*std::move(samples), *std::move(columns)};
+}
+
+absl::StatusOr<WaveletTreeTextures> WaveletTreesOf(const TreeSource& source,
+                                                   const WaveletTreeOptions& options) {
+  absl::StatusOr<SampleRows> rows = SampleRows::Decode(source.columns);
   if (!rows.ok()) return rows.status();
-  *columns = {};  // the rows hold it all now
-  return BuildWaveletTrees(*rows, *samples, options);
+  return BuildWaveletTrees(*rows, source.samples, options);
+}
+
+absl::StatusOr<WaveletTreeTextures> StoreWaveletTrees(const std::filesystem::path& store,
+                                                      const WaveletTreeOptions& options) {
+  absl::StatusOr<TreeSource> source = OpenTreeSource(store);
+  if (!source.ok()) return source.status();
+  return WaveletTreesOf(*source, options);
 }
 
 absl::StatusOr<nlohmann::json> ExportWaveletTrees(const std::filesystem::path& store,

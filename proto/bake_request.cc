@@ -8,9 +8,8 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/string_view.h"
 #include "absl/strings/strip.h"
+#include "core/bake/bake_param_words.h"
 #include "core/bake/bake_params_io.h"
-#include "core/layouts/layout.h"
-#include "core/util/power_of_two.h"
 
 namespace wavebake {
 namespace {
@@ -21,25 +20,6 @@ absl::Status Bad(absl::string_view field, absl::string_view why) {
 
 // The spelling is the core's (core/layouts/layout.h); the request keeps it as given
 // ("camera" stays "camera", not "camera:64x64"), since the store records it.
-absl::Status CheckLayout(std::string& layout) {
-  if (layout.empty()) layout = "camera";
-  return ParseLayout(layout).status();
-}
-
-absl::Status CheckChoice(absl::string_view field, std::string& value, absl::string_view fallback,
-                         std::initializer_list<absl::string_view> choices) {
-  if (value.empty()) value = std::string(fallback);
-  for (absl::string_view c : choices) {
-    if (value == c) return absl::OkStatus();
-  }
-  return Bad(field, absl::StrCat("\"", value, "\" is not one of ", absl::StrJoin(choices, ", ")));
-}
-
-absl::Status CheckLightDomain(std::string& domain) {
-  if (domain.empty()) domain = "cube";
-  return ParseLightDomain(domain).status();
-}
-
 absl::Status CheckScene(v1::BakeRequest& r) {
   const v1::SceneSource& scene = r.scene();
   switch (scene.source_case()) {
@@ -76,36 +56,7 @@ absl::Status CheckOutputName(v1::BakeRequest& r) {
   return absl::OkStatus();
 }
 
-absl::Status CheckNumbers(v1::BakeRequest& r) {
-  // An unset field (proto3: 0) takes the core's default (core/bake/bake_params.h).
-  const BakeParams defaults;
-  if (r.light_res() == 0) r.set_light_res(defaults.light_res);
-  if (!IsPowerOfTwoIn(r.light_res(), 8, 256)) {
-    return Bad("light_res", absl::StrCat(r.light_res(), " is not a power of two in 8..256"));
-  }
-  if (r.supersample() == 0) r.set_supersample(defaults.supersample);
-  if (r.supersample() < 1 || r.supersample() > 256) {
-    return Bad("supersample", absl::StrCat(r.supersample(), " is not in 1..256"));
-  }
-  if (r.target_error() == 0) r.set_target_error(defaults.target_error);
-  if (!std::isfinite(r.target_error()) || r.target_error() < 0 || r.target_error() > 1) {
-    return Bad("target_error", absl::StrCat(r.target_error(), " is not in (0, 1]"));
-  }
-  if (r.column_terms() < 0) {
-    return Bad("column_terms", absl::StrCat(r.column_terms(), " is negative"));
-  }
-  if (r.bits() != 0 && (r.bits() < 2 || r.bits() > 16)) {
-    return Bad("bits", absl::StrCat(r.bits(), " is not 0 (auto) or 2..16"));
-  }
-  if (!r.has_seed()) r.set_seed(defaults.seed);
-  if (r.tile_size() == 0) r.set_tile_size(defaults.tile_size);
-  if (!IsPowerOfTwoIn(r.tile_size(), 4, 256)) {
-    return Bad("tile_size", absl::StrCat(r.tile_size(), " is not a power of two in 4..256"));
-  }
-  if (r.column_group() < 0 || r.column_group() > 65536) {  // 0: the plan's
-    return Bad("column_group",
-               absl::StrCat(r.column_group(), " is not in 1..65536 (or 0: the plan's)"));
-  }
+absl::Status CheckMaxAttempts(v1::BakeRequest& r) {
   if (r.max_attempts() == 0) r.set_max_attempts(kDefaultMaxAttempts);
   if (r.max_attempts() < 1 || r.max_attempts() > 100) {
     return Bad("max_attempts", absl::StrCat(r.max_attempts(), " is not in 1..100"));
@@ -113,31 +64,114 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
   return absl::OkStatus();
 }
 
-// The core parameters of a request whose fields are each in range.
-BakeParams ParamsOf(const v1::BakeRequest& r) {
+using google::protobuf::FieldDescriptor;
+
+// The request's field of a table row: the same name (core/bake/bake_param_table.h;
+// BakeParamTableTest checks that every row with in_request has one of a
+// matching type).
+const FieldDescriptor* FieldOf(const params::Info& info) {
+  return v1::BakeRequest::descriptor()->FindFieldByName(std::string(info.name));
+}
+
+// Every table row between a request and BakeParams: numbers as numbers
+// (proto3's unset 0 takes the default where the row says so; the seed has
+// presence, since 0 is a seed), everything spelled in words as its words
+// (an empty string takes the default).
+struct RowsFromRequest {
+  const v1::BakeRequest& r;
+  BakeParams& p;
+  absl::Status status = absl::OkStatus();
+
+  template <class T>
+  void operator()(const params::Number<T>& row) {
+    const FieldDescriptor* f = FieldOf(row.info);
+    if (!status.ok() || !row.info.in_request || f == nullptr) return;
+    const google::protobuf::Reflection& refl = *r.GetReflection();
+    if (f->has_presence() && !refl.HasField(r, f)) return;  // the default
+    double v = 0;
+    switch (f->cpp_type()) {
+      case FieldDescriptor::CPPTYPE_INT32:
+        v = refl.GetInt32(r, f);
+        break;
+      case FieldDescriptor::CPPTYPE_UINT64: {
+        p.*row.field = static_cast<T>(refl.GetUInt64(r, f));  // 64 bits do not fit a double
+        return;
+      }
+      case FieldDescriptor::CPPTYPE_DOUBLE:
+        v = refl.GetDouble(r, f);
+        break;
+      default:
+        status = Bad(std::string(row.info.name), "the request's field is not a number");
+        return;
+    }
+    if (v == 0 && row.unset_is_default) return;
+    p.*row.field = static_cast<T>(v);
+  }
+  void operator()(const params::Switch& row) {
+    const FieldDescriptor* f = FieldOf(row.info);
+    if (!status.ok() || f == nullptr) return;
+    if (f->cpp_type() == FieldDescriptor::CPPTYPE_BOOL) {
+      p.*row.field = r.GetReflection()->GetBool(r, f);
+      return;
+    }
+    Words(row);
+  }
+  template <class Row>
+  void operator()(const Row& row) {
+    if (status.ok() && FieldOf(row.info) != nullptr) Words(row);
+  }
+  template <class Row>
+  void Words(const Row& row) {
+    const std::string s = r.GetReflection()->GetString(r, FieldOf(row.info));
+    if (!s.empty()) status = params::ParseInto(row, s, p);
+  }
+};
+
+struct RowsToRequest {
+  const BakeParams& p;
+  v1::BakeRequest& r;
+
+  template <class T>
+  void operator()(const params::Number<T>& row) {
+    const FieldDescriptor* f = FieldOf(row.info);
+    if (!row.info.in_request || f == nullptr) return;
+    const google::protobuf::Reflection& refl = *r.GetReflection();
+    const T v = p.*row.field;
+    switch (f->cpp_type()) {
+      case FieldDescriptor::CPPTYPE_INT32:
+        refl.SetInt32(&r, f, static_cast<int32_t>(v));
+        break;
+      case FieldDescriptor::CPPTYPE_UINT64:
+        refl.SetUInt64(&r, f, static_cast<uint64_t>(v));
+        break;
+      case FieldDescriptor::CPPTYPE_DOUBLE:
+        refl.SetDouble(&r, f, static_cast<double>(v));
+        break;
+      default:
+        break;
+    }
+  }
+  void operator()(const params::Switch& row) {
+    const FieldDescriptor* f = FieldOf(row.info);
+    if (f == nullptr) return;
+    if (f->cpp_type() == FieldDescriptor::CPPTYPE_BOOL)
+      r.GetReflection()->SetBool(&r, f, p.*row.field);
+    else
+      r.GetReflection()->SetString(&r, f, params::Spell(row, p));
+  }
+  template <class Row>
+  void operator()(const Row& row) {
+    if (const FieldDescriptor* f = FieldOf(row.info); f != nullptr)
+      r.GetReflection()->SetString(&r, f, params::Spell(row, p));
+  }
+};
+
+// The core parameters of a request whose fields each parse.
+absl::StatusOr<BakeParams> ParamsOf(const v1::BakeRequest& r) {
   BakeParams p;
-  p.light_res = r.light_res();
-  p.layout = r.layout();
-  p.supersample = r.supersample();
-  p.row_filter = r.row_filter() == "daub4" ? WaveletFilter::kDaub4 : WaveletFilter::kHaar;
-  p.column_mode = r.column_mode() == "2d"     ? ColumnMode::k2d
-                  : r.column_mode() == "full" ? ColumnMode::kFull
-                                              : ColumnMode::kAdaptive;
-  p.column_filter = r.column_filter() == "legall53" ? WaveletFilter::kLeGall53
-                    : r.column_filter() == "cdf97"  ? WaveletFilter::kCdf97
-                                                    : WaveletFilter::kHaar;
-  p.target_error = r.target_error();
-  p.error_scope = r.error_scope() == "column" ? ErrorScope::kColumn : ErrorScope::kMatrix;
-  p.column_terms = r.column_terms();
-  p.bits = r.bits();
-  p.level_scaling = r.level_scaling() == "paper" ? LevelScaling::kPaper : LevelScaling::kUniform;
-  p.transport = r.transport() == "visibility" ? Transport::kVisibility : Transport::kDiffuse;
-  p.light_domain = ParseLightDomain(r.light_domain()).value_or(LightDomain{});
-  p.seed = r.seed();
-  p.tile_size = r.tile_size();
-  p.column_group = r.column_group();
-  p.keep_staging = r.keep_staging();
-  p.refine = r.refine() != "off";
+  RowsFromRequest rows{r, p};
+  params::ForEach(rows);
+  if (!rows.status.ok()) return rows.status;
   return p;
 }
 
@@ -152,34 +186,31 @@ std::string BuiltinSceneName(const v1::BakeRequest& request) {
 
 absl::Status NormalizeBakeRequest(v1::BakeRequest& r) {
   const bool refine_unset = r.refine().empty();
-  for (absl::Status s :
-       {CheckScene(r), CheckNumbers(r), CheckLayout(*r.mutable_layout()),
-        CheckChoice("column_mode", *r.mutable_column_mode(), "adaptive",
-                    {"adaptive", "full", "2d"}),
-        CheckChoice("column_filter", *r.mutable_column_filter(), "haar",
-                    {"haar", "legall53", "cdf97"}),
-        CheckChoice("row_filter", *r.mutable_row_filter(), "haar", {"haar", "daub4"}),
-        CheckChoice("error_scope", *r.mutable_error_scope(), "matrix", {"matrix", "column"}),
-        CheckChoice("level_scaling", *r.mutable_level_scaling(), "uniform", {"uniform", "paper"}),
-        CheckChoice("transport", *r.mutable_transport(), "diffuse", {"diffuse", "visibility"}),
-        CheckChoice("refine", *r.mutable_refine(), "on", {"on", "off"}),
-        CheckLightDomain(*r.mutable_light_domain()), CheckOutputName(r)}) {
+  for (absl::Status s : {CheckScene(r), CheckMaxAttempts(r), CheckOutputName(r)}) {
     if (!s.ok()) return s;
   }
+  absl::StatusOr<BakeParams> p = ParamsOf(r);
+  if (!p.ok()) return p.status();
   // Refinement follows the cube's faces and integrates cosines: a plane
   // domain and a visibility transport default to brute force and cannot ask
   // for refinement.
-  const bool plane = ParseLightDomain(r.light_domain())->is_plane();
-  if (plane || r.transport() == "visibility") {
-    if (!refine_unset && r.refine() == "on")
-      return Bad("refine", plane ? "\"on\" needs the cube light domain (plane domains trace "
-                                   "every texel)"
-                                 : "\"on\" needs the diffuse transport (visibility rows are "
-                                   "traced by brute force)");
-    r.set_refine("off");
+  if (p->light_domain.is_plane() || p->transport == Transport::kVisibility) {
+    if (!refine_unset && p->refine)
+      return Bad("refine", p->light_domain.is_plane()
+                               ? "\"on\" needs the cube light domain (plane domains trace "
+                                 "every texel)"
+                               : "\"on\" needs the diffuse transport (visibility rows are "
+                                 "traced by brute force)");
+    p->refine = false;
   }
-  // The fields one by one are fine; the core's own rules have the last word.
-  return ValidateBakeParams(ParamsOf(r));
+  if (absl::Status s = ValidateBakeParams(*p); !s.ok()) return s;
+  // The request shows the effective parameters: every default filled in,
+  // the layout as it was spelled.
+  const std::string layout = r.layout();
+  RowsToRequest rows{*p, r};
+  params::ForEach(rows);
+  if (!layout.empty()) r.set_layout(layout);
+  return absl::OkStatus();
 }
 
 absl::StatusOr<BakeParams> ToBakeParams(const v1::BakeRequest& request) {
@@ -190,24 +221,8 @@ absl::StatusOr<BakeParams> ToBakeParams(const v1::BakeRequest& request) {
 
 v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   v1::BakeRequest r;
-  r.set_light_res(p.light_res);
-  r.set_layout(p.layout);
-  r.set_supersample(p.supersample);
-  r.set_column_mode(std::string(ToString(p.column_mode)));
-  r.set_column_filter(std::string(ToString(p.column_filter)));
-  r.set_target_error(p.target_error);
-  r.set_error_scope(std::string(ToString(p.error_scope)));
-  r.set_column_terms(p.column_terms);
-  r.set_bits(p.bits);
-  r.set_level_scaling(std::string(ToString(p.level_scaling)));
-  r.set_transport(std::string(ToString(p.transport)));
-  if (p.light_domain.is_plane()) r.set_light_domain(ToString(p.light_domain));
-  r.set_seed(p.seed);
-  r.set_row_filter(std::string(ToString(p.row_filter)));
-  r.set_tile_size(p.tile_size);
-  r.set_column_group(p.column_group);
-  r.set_keep_staging(p.keep_staging);
-  r.set_refine(p.refines() ? "on" : "off");
+  RowsToRequest rows{p, r};
+  params::ForEach(rows);
   return r;
 }
 

@@ -1,9 +1,11 @@
 // `import wavebake` (DESIGN.md §6 python/): stores, relighting and
-// evaluation (runtime/), the embedded bake and the job client (driver/).
+// evaluation (runtime/), the GPU export, the embedded bake and the job
+// client (driver/).
 #include <pybind11/pybind11.h>
 #include <spdlog/spdlog.h>
 
 #include "python/py_client.h"
+#include "python/py_export.h"
 #include "python/py_shading.h"
 #include "python/py_store.h"
 
@@ -16,4 +18,5 @@ PYBIND11_MODULE(_wavebake, m) {
   wavebake::python::AddStoreBindings(m);
   wavebake::python::AddShadingBindings(m);
   wavebake::python::AddClientBindings(m);
+  wavebake::python::AddExportBindings(m);
 }

@@ -23,6 +23,7 @@
 #include "runtime/near_field/area_light.h"
 #include "runtime/near_field/near_field.h"
 #include "runtime/reference/eval.h"
+#include "runtime/relight/finite_output.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/store_relight.h"
 
@@ -53,7 +54,13 @@ py::array_t<float> ToImage(const std::vector<float>& rgb, int width, int height,
   std::copy(rgb.begin(), rgb.end(), out);
   if (exposure != 0) {
     const float scale = static_cast<float>(std::exp2(exposure));
-    for (size_t i = 0; i < rgb.size(); ++i) out[i] *= scale;
+    for (size_t i = 0; i < rgb.size(); ++i) {
+      out[i] *= scale;
+      // Masked cells stay NaN; a finite value times a finite scale is inf or finite.
+      if (std::isinf(out[i]))
+        RaiseInvalid(absl::StrCat("exposure: ", exposure, " stops overflow single precision at (",
+                                  (i / 3) % width, ", ", i / 3 / width, "); lower it"));
+    }
   }
   return image;
 }
@@ -115,7 +122,8 @@ std::vector<float> RelightArea(PyStore& s, const Shading& shading,
   {
     py::gil_scoped_release release;
     rgb = [&]() -> absl::StatusOr<std::vector<float>> {
-      absl::StatusOr<std::vector<AreaLight>> lights = driver::LoadAllAreaLights(shading.area_lights);
+      absl::StatusOr<std::vector<AreaLight>> lights =
+          driver::LoadAllAreaLights(shading.area_lights);
       if (!lights.ok()) return lights.status();
       if (moving) lights->push_back(*moving);
       if (lights->empty()) return absl::InvalidArgumentError("area_lights: no light given");
@@ -138,7 +146,7 @@ py::array_t<float> Relight(const py::object& store, const py::object& env, int t
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
   CheckFinite(rotate, "rotate", "a finite number of degrees");
-  CheckFinite(exposure, "exposure", "a finite number of stops");
+  Check(CheckExposure(exposure));
   const Shading shading = ShadingFrom(brdf, view, area_lights, source_fraction, target_fraction);
   const int width = s.info().width, height = s.info().height;
   if (!shading.area_lights.empty()) {
@@ -174,7 +182,7 @@ py::array_t<float> RelightAreaFrame(const py::object& store, const std::string& 
                                     double source_fraction, double target_fraction) {
   std::optional<PyStore> owned;
   PyStore& s = StoreOf(store, owned);
-  CheckFinite(exposure, "exposure", "a finite number of stops");
+  Check(CheckExposure(exposure));
   const AreaLightSequence seq = Unwrap(LoadAreaLightSequence(sequence));
   if (frame < 0 || frame >= seq.frames)
     throw py::index_error(absl::StrCat("frame: ", frame, " is not in 0..", seq.frames - 1));

@@ -11,8 +11,9 @@ mkdir -p "$out"
 repo=$(cd "$(dirname "$0")/.." && pwd)
 data=${WB_SHARED_DATA:-$repo/../shared/data}
 small=(--layout camera:32x32 --light-res 16)
+export WAVEBAKE_SCENE_PATH=$data/models  # .ply outputs reload the mesh by its name
 
-run() {  # run BINARY DIR: every case into DIR
+run() {  # run BINARY DIR: every case into DIR (stops at the first failure)
   local bin=$1 dir=$2
   rm -rf "$dir" && mkdir -p "$dir"
   for s in furnace disk-over-plane cylinder-bump cubes-wall sphere-plane; do
@@ -29,7 +30,12 @@ run() {  # run BINARY DIR: every case into DIR
   "$bin" relight "$dir/p4.wbk" --area-light "$repo/docs/lights/softbox.json" --out "$dir/p4_near.exr"
 }
 
-run "$old" "$out/old" >"$out.old.log" 2>&1 || { echo "old binary failed: $out.old.log"; exit 2; }
-run "$new" "$out/new" >"$out.new.log" 2>&1 || { echo "new binary failed: $out.new.log"; exit 2; }
+# Each run in a bash of its own: set -e does not hold inside a function that
+# is the left side of ||, and a failed case must not pass as identical.
+cases() {  # cases BINARY DIR
+  bash -euo pipefail -c "$(declare -p data small repo); $(declare -f run); run \"\$@\"" _ "$@"
+}
+cases "$old" "$out/old" >"$out.old.log" 2>&1 || { echo "old binary failed: $out.old.log"; exit 2; }
+cases "$new" "$out/new" >"$out.new.log" 2>&1 || { echo "new binary failed: $out.new.log"; exit 2; }
 echo "files compared: $(find "$out/old" -type f | wc -l)"
 diff -r "$out/old" "$out/new" && echo "identical: every store and relit output"

@@ -3,120 +3,107 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "core/bake/bake_param_words.h"
 #include "core/bake/bake_params_io.h"
 
 namespace wavebake {
 namespace {
 
-absl::Status Bad(const char* field, const std::string& why) {
-  return absl::InvalidArgumentError(absl::StrCat("params.", field, ": ", why));
+using nlohmann::json;
+
+absl::Status Bad(std::string_view field, std::string_view why) {
+  return absl::InvalidArgumentError(
+      absl::StrCat("params.", std::string(field), ": ", std::string(why)));
 }
 
-// Reads j[field] into *out when it has the right JSON type.
-absl::Status GetInt(const nlohmann::json& j, const char* field, int* out) {
-  if (!j.contains(field) || !j[field].is_number_integer())
-    return Bad(field, "missing or not an integer");
-  *out = j[field].get<int>();
-  return absl::OkStatus();
+// A row's value as .zattrs hold it: numbers as JSON numbers (a number's word
+// for 0 as that word: "bits": "auto"), everything else as its words (a
+// flag-only switch as a JSON bool).
+template <class T>
+json ValueOf(const params::Number<T>& row, const BakeParams& p) {
+  const T v = p.*row.field;
+  return v == 0 && row.zero_is_word ? json(std::string(row.zero)) : json(v);
 }
-absl::Status GetNumber(const nlohmann::json& j, const char* field, double* out) {
-  if (!j.contains(field) || !j[field].is_number()) return Bad(field, "missing or not a number");
-  *out = j[field].get<double>();
-  return absl::OkStatus();
+inline json ValueOf(const params::Switch& row, const BakeParams& p) {
+  return params::InWords(row) ? json(params::Spell(row, p)) : json(p.*row.field);
 }
-absl::Status GetString(const nlohmann::json& j, const char* field, std::string* out) {
-  if (!j.contains(field) || !j[field].is_string()) return Bad(field, "missing or not a string");
-  *out = j[field].get<std::string>();
-  return absl::OkStatus();
+template <class Row>
+json ValueOf(const Row& row, const BakeParams& p) {
+  return params::Spell(row, p);
 }
 
-// An enum spelled as core/bake/bake_params_io.h spells it.
-template <class E, class Parse>
-absl::Status GetEnum(const nlohmann::json& j, const char* field, Parse parse, E* out) {
-  std::string s;
-  if (absl::Status st = GetString(j, field, &s); !st.ok()) return st;
-  absl::StatusOr<E> v = parse(s);
-  if (!v.ok()) return Bad(field, std::string(v.status().message()));
-  *out = *v;
-  return absl::OkStatus();
+// The value a store without the row means (Record::kUnlessAbsent).
+template <class Row>
+json AbsentOf(const Row& row) {
+  return ValueOf(row, BakeParams{});
+}
+inline json AbsentOf(const params::Switch& row) {
+  return params::InWords(row) ? json(std::string(row.absent ? row.yes : row.no)) : json(row.absent);
 }
 
-absl::Status GetBits(const nlohmann::json& j, int* bits) {
-  if (j.contains("bits") && j["bits"] == "auto") {
-    *bits = 0;
+template <class T>
+absl::Status Read(const params::Number<T>& row, const json& v, BakeParams& p) {
+  if (row.zero_is_word && v == row.zero) {
+    p.*row.field = 0;
     return absl::OkStatus();
   }
-  return GetInt(j, "bits", bits);
+  if constexpr (std::is_same_v<T, uint64_t>) {
+    if (!v.is_number_unsigned()) return Bad(row.info.name, "missing or not an unsigned integer");
+  } else if constexpr (std::is_integral_v<T>) {
+    if (!v.is_number_integer()) return Bad(row.info.name, "missing or not an integer");
+  } else if (!v.is_number()) {
+    return Bad(row.info.name, "missing or not a number");
+  }
+  if constexpr (std::is_integral_v<T>)
+    p.*row.field = v.get<T>();
+  else
+    p.*row.field = static_cast<T>(v.get<double>());
+  return absl::OkStatus();
+}
+template <class Row>
+absl::Status Read(const Row& row, const json& v, BakeParams& p) {
+  if (!v.is_string()) return Bad(row.info.name, "missing or not a string");
+  if (absl::Status s = params::ParseInto(row, v.get<std::string>(), p); !s.ok())
+    return absl::InvalidArgumentError(absl::StrCat("params.", s.message()));
+  return absl::OkStatus();
 }
 
 }  // namespace
 
-nlohmann::json ToJson(const BakeParams& p) {
-  nlohmann::json j = {{"light_res", p.light_res},
-                      {"layout", p.layout},
-                      {"supersample", p.supersample},
-                      {"row_filter", std::string(ToString(p.row_filter))},
-                      {"column_mode", std::string(ToString(p.column_mode))},
-                      {"column_filter", std::string(ToString(p.column_filter))},
-                      {"target_error", p.target_error},
-                      {"error_scope", std::string(ToString(p.error_scope))},
-                      {"column_terms", p.column_terms},
-                      {"bits", p.bits == 0 ? nlohmann::json("auto") : nlohmann::json(p.bits)},
-                      {"level_scaling", std::string(ToString(p.level_scaling))},
-                      {"seed", p.seed},
-                      {"tile_size", p.tile_size},
-                      {"column_group", p.column_group},
-                      {"ray_epsilon", p.ray_epsilon}};
-  // Absent means brute force: what every store baked before refinement
-  // existed holds, so a --refine off store keeps their exact bytes.
-  if (p.refines()) j["refine"] = "on";
-  // Only a visibility transport and a plane light domain are spelled out: a
-  // default store's .zattrs stays byte-identical to the stores written before
-  // the fields existed.
-  if (p.transport != Transport::kDiffuse) j["transport"] = std::string(ToString(p.transport));
-  if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
+json ToJson(const BakeParams& p) {
+  json j = json::object();
+  params::ForEach([&](const auto& row) {
+    if (row.info.record == params::Record::kNever) return;
+    json v = ValueOf(row, p);
+    if (row.info.record == params::Record::kUnlessAbsent && v == AbsentOf(row)) return;
+    j[std::string(row.info.name)] = std::move(v);
+  });
   return j;
 }
 
-absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
+json ToJson(const BakeParams& p, params::Stage stage) {
+  json j = json::object();
+  params::ForEach([&](const auto& row) {
+    if (row.info.stage == stage) j[std::string(row.info.name)] = ValueOf(row, p);
+  });
+  return j;
+}
+
+absl::StatusOr<BakeParams> BakeParamsFromJson(const json& j) {
   if (!j.is_object()) return absl::InvalidArgumentError("params: not an object");
   BakeParams p;
-  double target = 0, epsilon = 0;
-  for (absl::Status s : {
-           GetInt(j, "light_res", &p.light_res),
-           GetString(j, "layout", &p.layout),
-           GetInt(j, "supersample", &p.supersample),
-           GetEnum(j, "row_filter", ParseWaveletFilter, &p.row_filter),
-           GetEnum(j, "column_mode", ParseColumnMode, &p.column_mode),
-           GetEnum(j, "column_filter", ParseWaveletFilter, &p.column_filter),
-           GetNumber(j, "target_error", &target),
-           GetEnum(j, "error_scope", ParseErrorScope, &p.error_scope),
-           GetInt(j, "column_terms", &p.column_terms),
-           GetBits(j, &p.bits),
-           GetEnum(j, "level_scaling", ParseLevelScaling, &p.level_scaling),
-           GetInt(j, "tile_size", &p.tile_size),
-           GetInt(j, "column_group", &p.column_group),
-           GetNumber(j, "ray_epsilon", &epsilon),
-       }) {
-    if (!s.ok()) return s;
-  }
-  if (!j.contains("seed") || !j["seed"].is_number_unsigned())
-    return Bad("seed", "missing or not an unsigned integer");
-  p.seed = j["seed"].get<uint64_t>();
-  if (j.contains("transport")) {  // absent: diffuse (stores before the field)
-    if (absl::Status s = GetEnum(j, "transport", ParseTransport, &p.transport); !s.ok()) return s;
-  }
-  p.refine = false;
-  if (j.contains("refine")) {
-    if (j["refine"] != "on" && j["refine"] != "off") return Bad("refine", "not \"on\" or \"off\"");
-    p.refine = j["refine"] == "on";
-  }
-  if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
-    if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
-      return s;
-  }
-  p.target_error = target;
-  p.ray_epsilon = static_cast<float>(epsilon);
+  absl::Status status = absl::OkStatus();
+  params::ForEach([&](const auto& row) {
+    if (!status.ok() || row.info.record == params::Record::kNever) return;
+    const std::string name(row.info.name);
+    if (j.contains(name))
+      status = Read(row, j[name], p);
+    else if (row.info.record == params::Record::kUnlessAbsent)
+      status = Read(row, AbsentOf(row), p);
+    else
+      status = Read(row, json(nullptr), p);  // "missing or not ..."
+  });
+  if (!status.ok()) return status;
   if (absl::Status s = ValidateBakeParams(p); !s.ok())
     return absl::InvalidArgumentError(absl::StrCat("params.", s.message()));
   return p;

@@ -17,71 +17,14 @@
 #include "runtime/gpu/wavelet_tree_reader.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/row_basis.h"
+#include "runtime/relight/store_relight.h"
+#include "storage/store_reader.h"
+#include "web/gpu_view_state.h"
 #include "web/pages.h"
 
 namespace wavebake::web {
 
-// One store as served: the exported bytes, and the oracle reading them.
-struct ServedTrees {
-  std::string name;
-  int width = 0, height = 0, light_res = 0, bits = 0;
-  nlohmann::json header;
-  std::string line, blocks, cells;
-  std::unique_ptr<WaveletTreeReader> reader;
-  std::vector<float> support;  // SupportSolidAngles(N)
-};
-
-struct GpuViewServer::State {
-  std::vector<ServedTrees> stores;
-  ProbeCatalogue probes;
-  Pages pages;
-  std::mutex mu;  // the probe cache
-  struct Probe {
-    EnvMap env;
-    std::map<int, EnvProjector> projectors;  // by light_res
-  };
-  std::map<std::string, Probe> probe_cache;
-
-  // The lights of a frame: the relight view's (web/relight_service.cc).
-  absl::StatusOr<WaveletLights> Lights(const ServedTrees& s, const std::string& name, double rotate,
-                                       int terms) {
-    if (terms < 1) return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, " < 1"));
-    if (!std::isfinite(rotate))
-      return absl::InvalidArgumentError("rotate: not a finite number of degrees");
-    absl::StatusOr<EnvProjector*> projector;
-    const EnvMap* env = nullptr;
-    {
-      std::lock_guard lock(mu);
-      auto it = probe_cache.find(name);
-      if (it == probe_cache.end()) {
-        absl::StatusOr<std::string> spec = probes.Spec(name);
-        if (!spec.ok()) return spec.status();
-        absl::StatusOr<EnvMap> loaded = LoadEnvMap(*spec);
-        if (!loaded.ok()) return loaded.status();
-        it = probe_cache.emplace(name, Probe{*std::move(loaded), {}}).first;
-      }
-      Probe& p = it->second;
-      env = &p.env;
-      auto pj = p.projectors.find(s.light_res);
-      if (pj == p.projectors.end()) {
-        absl::StatusOr<EnvProjector> created =
-            EnvProjector::Create(p.env.width, p.env.height, s.light_res, WaveletFilter::kHaar);
-        if (!created.ok()) return created.status();
-        pj = p.projectors.emplace(s.light_res, *std::move(created)).first;
-      }
-      projector = &pj->second;
-    }
-    // Entries of a std::map stay put; probes are never evicted.
-    absl::StatusOr<LightingCoefficients> lighting =
-        rotate != 0 ? (*projector)->Project(Rotated(*env, rotate)) : (*projector)->Project(*env);
-    if (!lighting.ok()) return lighting.status();
-    return SelectWaveletLights(*lighting, terms, s.support);
-  }
-};
-
-namespace {
-
-void SendJsonBody(httplib::Response& res, const nlohmann::json& j, int status = 200) {
+void SendJsonBody(httplib::Response& res, const nlohmann::json& j, int status) {
   res.status = status;
   res.set_header("Cache-Control", "no-cache");
   res.set_content(j.dump(), "application/json");
@@ -105,15 +48,13 @@ void SendStatus(httplib::Response& res, const absl::Status& s) {
   SendJsonBody(res, {{"error", std::string(s.message())}}, code);
 }
 
-struct FrameQuery {
-  const ServedTrees* store = nullptr;
-  std::string probe = "builtin:sky";
-  double rotate = 0;
-  int terms = 256;
-};
+void SendBytes(httplib::Response& res, std::string body) {
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content(std::move(body), "application/octet-stream");
+}
 
-absl::StatusOr<FrameQuery> ParseQuery(const httplib::Request& req,
-                                      const std::vector<ServedTrees>& stores) {
+absl::StatusOr<FrameQuery> ParseFrameQuery(const httplib::Request& req,
+                                           const std::vector<ServedStore>& stores) {
   FrameQuery q;
   int index = 0;
   if (req.has_param("store") && !absl::SimpleAtoi(req.get_param_value("store"), &index))
@@ -129,14 +70,20 @@ absl::StatusOr<FrameQuery> ParseQuery(const httplib::Request& req,
   return q;
 }
 
+namespace {
+
 std::string Bytes(const void* p, size_t n) { return std::string(static_cast<const char*>(p), n); }
 
-absl::StatusOr<ServedTrees> Serve(const std::filesystem::path& path,
+absl::StatusOr<ServedStore> Serve(const std::filesystem::path& path,
                                   const WaveletTreeOptions& options) {
-  absl::StatusOr<WaveletTreeTextures> t = driver::StoreWaveletTrees(path, options);
-  if (!t.ok())
-    return absl::Status(t.status().code(), absl::StrCat(path.string(), ": ", t.status().message()));
-  ServedTrees s;
+  auto named = [&path](const absl::Status& s) {
+    return absl::Status(s.code(), absl::StrCat(path.string(), ": ", s.message()));
+  };
+  absl::StatusOr<driver::TreeSource> source = driver::OpenTreeSource(path);
+  if (!source.ok()) return named(source.status());
+  absl::StatusOr<WaveletTreeTextures> t = driver::WaveletTreesOf(*source, options);
+  if (!t.ok()) return named(t.status());
+  ServedStore s;
   s.name = path.filename().string();
   if (s.name.empty()) s.name = path.parent_path().filename().string();
   s.width = t->width;
@@ -153,6 +100,28 @@ absl::StatusOr<ServedTrees> Serve(const std::filesystem::path& path,
   if (!r.ok()) return r.status();
   s.reader = std::make_unique<WaveletTreeReader>(*std::move(r));
   s.support = SupportSolidAngles(s.light_res);
+  // A store mode=4d cannot relight (a column filter other than Haar) is
+  // still served as trees; its 4d routes answer with the reason.
+  absl::StatusOr<ServedColumns> cols = ServeColumns(source->columns, source->samples, true);
+  if (cols.ok())
+    s.cols = *std::move(cols);
+  else
+    s.cols_status = named(cols.status());
+  if (absl::StatusOr<StoreInfo> info = ReadStoreInfo(path); info.ok()) {
+    absl::StatusOr<LightmapMesh> mesh = LightmapMeshOf(*info, source->samples);
+    if (mesh.ok()) {
+      const uint32_t counts[2] = {static_cast<uint32_t>(mesh->positions.size() / 3),
+                                  static_cast<uint32_t>(mesh->indices.size())};
+      s.mesh = Bytes(counts, sizeof counts) +
+               Bytes(mesh->positions.data(), 4 * mesh->positions.size()) +
+               Bytes(mesh->texels.data(), 4 * mesh->texels.size()) +
+               Bytes(mesh->indices.data(), 4 * mesh->indices.size());
+    } else if (mesh.status().code() != absl::StatusCode::kFailedPrecondition ||
+               info->params.layout.starts_with("uv")) {
+      spdlog::warn("view: {}: no 3D mesh ({}); the lightmap is shown flat", path.string(),
+                   std::string(mesh.status().message()));
+    }
+  }
   return s;
 }
 
@@ -160,7 +129,7 @@ bool IsLoopback(const std::string& host) {
   return host == "127.0.0.1" || host == "localhost" || host == "::1";
 }
 
-void AddRoutes(httplib::Server& server, GpuViewServer::State& st) {
+void AddRoutes(httplib::Server& server, GpuViewState& st) {
   auto page = [&st](const std::string& name, httplib::Response& res) {
     std::optional<std::string> body = st.pages.Get(name);
     if (!body) {
@@ -182,18 +151,19 @@ void AddRoutes(httplib::Server& server, GpuViewServer::State& st) {
                page(req.matches[1].str(), res);
              });
   server.Get("/api/probes", [&st](const httplib::Request&, httplib::Response& res) {
-    SendJsonBody(res, st.probes.names());
+    SendJsonBody(res, st.lights->probes().names());
   });
   server.Get("/api/view/stores", [&st](const httplib::Request&, httplib::Response& res) {
     nlohmann::json list = nlohmann::json::array();
     for (size_t i = 0; i < st.stores.size(); ++i) {
-      const ServedTrees& s = st.stores[i];
+      const ServedStore& s = st.stores[i];
       list.push_back({{"index", i},
                       {"name", s.name},
                       {"width", s.width},
                       {"height", s.height},
                       {"light_res", s.light_res},
                       {"bits", s.bits},
+                      {"mesh", !s.mesh.empty()},
                       {"bytes", s.line.size() + s.blocks.size() + s.cells.size()}});
     }
     SendJsonBody(res, list);
@@ -203,7 +173,7 @@ void AddRoutes(httplib::Server& server, GpuViewServer::State& st) {
                size_t i = 0;
                if (!absl::SimpleAtoi(req.matches[1].str(), &i) || i >= st.stores.size())
                  return SendStatus(res, absl::NotFoundError("store: no such index"));
-               const ServedTrees& s = st.stores[i];
+               const ServedStore& s = st.stores[i];
                const std::string file = req.matches[2].str();
                if (file == "header.json") return SendJsonBody(res, s.header);
                const std::string& body = file == "line.bin"     ? s.line
@@ -212,17 +182,24 @@ void AddRoutes(httplib::Server& server, GpuViewServer::State& st) {
                res.set_header("Cache-Control", "no-cache");
                res.set_content(body, "application/octet-stream");
              });
+  server.Get(R"(/api/view/mesh/(\d+))", [&st](const httplib::Request& req, httplib::Response& res) {
+    size_t i = 0;
+    if (!absl::SimpleAtoi(req.matches[1].str(), &i) || i >= st.stores.size() ||
+        st.stores[i].mesh.empty())
+      return SendStatus(res, absl::NotFoundError("store: no mesh for this index"));
+    SendBytes(res, st.stores[i].mesh);
+  });
   server.Get("/api/view/env", [&st](const httplib::Request& req, httplib::Response& res) {
-    absl::StatusOr<FrameQuery> q = ParseQuery(req, st.stores);
+    absl::StatusOr<FrameQuery> q = ParseFrameQuery(req, st.stores);
     if (!q.ok()) return SendStatus(res, q.status());
     absl::StatusOr<WaveletLights> lights = st.Lights(*q->store, q->probe, q->rotate, q->terms);
     if (!lights.ok()) return SendStatus(res, lights.status());
     SendJsonBody(res, EnvTreesJson(BuildEnvTrees(*lights)));
   });
   server.Get("/api/view/oracle", [&st](const httplib::Request& req, httplib::Response& res) {
-    absl::StatusOr<FrameQuery> q = ParseQuery(req, st.stores);
+    absl::StatusOr<FrameQuery> q = ParseFrameQuery(req, st.stores);
     if (!q.ok()) return SendStatus(res, q.status());
-    const ServedTrees& s = *q->store;
+    const ServedStore& s = *q->store;
     absl::StatusOr<WaveletLights> lights = st.Lights(s, q->probe, q->rotate, q->terms);
     if (!lights.ok()) return SendStatus(res, lights.status());
     std::vector<float> dense(3 * 6 * size_t(s.light_res) * s.light_res, 0.0f);
@@ -258,11 +235,11 @@ absl::StatusOr<std::unique_ptr<GpuViewServer>> GpuViewServer::Start(GpuViewOptio
         "listen: ", host, " is not a loopback address; the view has no token to guard it"));
   if (options.stores.empty()) return absl::InvalidArgumentError("stores: none given");
   std::unique_ptr<GpuViewServer> v(new GpuViewServer());
-  v->state_ = std::make_unique<State>();
-  v->state_->probes = std::move(options.probes);
+  v->state_ = std::make_unique<GpuViewState>();
+  v->state_->lights = std::make_unique<GpuLights>(std::move(options.probes));
   v->state_->pages = Pages(options.pages_dir);
   for (const auto& path : options.stores) {
-    absl::StatusOr<ServedTrees> s = Serve(path, options.trees);
+    absl::StatusOr<ServedStore> s = Serve(path, options.trees);
     if (!s.ok()) return s.status();
     spdlog::info("view: {} as {}x{} trees, {} bytes", path.string(), s->width, s->height,
                  s->line.size() + s->blocks.size() + s->cells.size());
@@ -273,6 +250,7 @@ absl::StatusOr<std::unique_ptr<GpuViewServer>> GpuViewServer::Start(GpuViewOptio
   server.new_task_queue = [] { return new httplib::ThreadPool(8); };
   server.set_payload_max_length(1 << 16);
   AddRoutes(server, *v->state_);
+  AddColumnRoutes(server, *v->state_);
   v->host_ = host;
   v->port_ =
       port == 0 ? server.bind_to_any_port(host) : (server.bind_to_port(host, port) ? port : -1);

@@ -142,6 +142,7 @@ absl::StatusOr<std::unique_ptr<MonitorServer>> MonitorServer::Start(
   AddPageRoutes(server, ctx);
   AddJobRoutes(server, ctx);
   AddStoreRoutes(server, ctx);
+  AddGpuRoutes(server, ctx);
 
   const auto& [host, port] = *host_port;
   m->port_ =

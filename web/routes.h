@@ -2,7 +2,8 @@
 // The monitor's request handlers, registered on one httplib::Server by
 // MonitorServer (web/monitor_server.h): the pages and their files
 // (routes_pages.cc), the jobs API with its event stream (routes_jobs.cc), and
-// the store, probes and relight API (routes_store.cc).
+// the store, probes and relight API (routes_store.cc), the relight view's
+// GPU path (routes_gpu.cc).
 #include <httplib.h>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "absl/status/status.h"
+#include "web/job_gpu.h"
 #include "web/job_source.h"
 #include "web/pages.h"
 #include "web/relight_service.h"
@@ -23,12 +25,14 @@ struct RouteContext {
                std::filesystem::path pages_dir, bool serves_tls)
       : source(source_slot),
         auth(std::move(token)),
-        relight(std::move(probes)),
+        relight(probes),
+        gpu(std::move(probes)),
         pages(std::move(pages_dir)),
         tls(serves_tls) {}
   SourceSlot* source = nullptr;
   WebAuth auth;
   RelightService relight;
+  JobGpu gpu;  // the relight view on the browser's GPU
   Pages pages;
   bool tls = false;
   // Half the serving threads at most (web/monitor_server.cc has 16); a
@@ -40,6 +44,7 @@ struct RouteContext {
 void AddPageRoutes(httplib::Server& server, RouteContext& ctx);
 void AddJobRoutes(httplib::Server& server, RouteContext& ctx);
 void AddStoreRoutes(httplib::Server& server, RouteContext& ctx);
+void AddGpuRoutes(httplib::Server& server, RouteContext& ctx);  // routes_gpu.cc
 
 // JSON bodies; errors as {"error": message} with the status's HTTP code
 // (INVALID_ARGUMENT 400, NOT_FOUND 404, FAILED_PRECONDITION 409, ...). The

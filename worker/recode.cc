@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/bake/bake_params_io.h"
 #include "core/util/parallel_for.h"
+#include "storage/params_json.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_group.h"
 #include "worker/bake_tile.h"
@@ -65,17 +66,10 @@ std::filesystem::path PartialBeside(const std::filesystem::path& out, const char
 }  // namespace
 
 nlohmann::json TraceRecord(const BakeContext& ctx) {
-  const BakeParams& p = ctx.params;
-  return {{"scene_hash", ctx.scene_hash},
-          {"light_res", p.light_res},
-          {"layout", p.layout},
-          {"supersample", p.supersample},
-          {"seed", p.seed},
-          {"row_filter", std::string(ToString(p.row_filter))},
-          {"tile_size", p.tile_size},
-          {"column_group", p.column_group},
-          {"ray_epsilon", ctx.epsilon},
-          {"refine", p.refine}};
+  nlohmann::json j = ToJson(ctx.params, params::Stage::kTrace);
+  j["scene_hash"] = ctx.scene_hash;
+  j["ray_epsilon"] = ctx.epsilon;  // the offset the rows were traced with
+  return j;
 }
 
 absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesystem::path& dir,

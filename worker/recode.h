@@ -18,8 +18,8 @@
 namespace wavebake {
 
 // Everything the staged values depend on: the scene (by hash) and the trace
-// parameters (light resolution, layout, supersampling, seed, row filter,
-// tiles and groups, the effective ray offset, refinement). BAKE_TILE's
+// parameters (the Stage::kTrace rows of core/bake/bake_param_table.h, with the
+// effective ray offset). BAKE_TILE's
 // CreateStaging records it in staging/.zattrs.
 nlohmann::json TraceRecord(const BakeContext& ctx);
 

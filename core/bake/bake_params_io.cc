@@ -1,117 +1,132 @@
 #include "core/bake/bake_params_io.h"
 
+#include <cmath>
+#include <limits>
+
 #include "absl/strings/str_cat.h"
+#include "core/bake/bake_param_words.h"
+#include "core/layouts/layout.h"
 #include "core/util/power_of_two.h"
 
 namespace wavebake {
+namespace params {
 
-std::string_view ToString(ColumnMode m) {
-  switch (m) {
-    case ColumnMode::k2d:
-      return "2d";
-    case ColumnMode::kFull:
-      return "full";
-    case ColumnMode::kAdaptive:
-      return "adaptive";
-  }
-  return "?";
+// The layout is kept as spelled (a request's "camera" stays "camera"): the
+// store records what was asked for.
+absl::StatusOr<std::string> ParseLayoutSpelling(std::string_view s) {
+  if (absl::Status st = ParseLayout(s).status(); !st.ok()) return st;
+  return std::string(s);
+}
+std::string PrintLayout(const std::string& s) { return s; }
+absl::StatusOr<LightDomain> ParseDomainSpelling(std::string_view s) { return ParseLightDomain(s); }
+std::string PrintDomain(const LightDomain& d) { return ToString(d); }
+
+}  // namespace params
+
+namespace {
+
+using namespace params;  // NOLINT: the table's row types
+
+template <class T>
+std::string RangeText(const Number<T>& r) {
+  std::string text;
+  if constexpr (std::is_integral_v<T>)
+    text = absl::StrCat(static_cast<long long>(r.lo), "..", static_cast<long long>(r.hi));
+  else
+    text = absl::StrCat("[", r.lo, ", ", r.hi, "]");
+  if (!r.zero.empty())
+    absl::StrAppend(&text, r.zero_is_word ? absl::StrCat(" (or ", std::string(r.zero), ")")
+                                          : absl::StrCat(" (or 0: ", std::string(r.zero), ")"));
+  return text;
 }
 
+// Each row's own range or words; the rules between rows follow in
+// ValidateBakeParams.
+struct CheckRow {
+  const BakeParams& p;
+  absl::Status status;
+
+  template <class T>
+  void operator()(const Number<T>& r) {
+    const T v = p.*r.field;
+    if (!status.ok() || (v == 0 && !r.zero.empty())) return;
+    const double d = static_cast<double>(v);
+    const bool unbounded = r.hi == kInf || r.hi >= double(std::numeric_limits<int>::max());
+    if (r.power_of_two && !(d >= r.lo && d <= r.hi && IsPowerOfTwo(static_cast<int>(v))))
+      status = Bad(r.info, absl::StrCat(v, " is not a power of two in ", RangeText(r)));
+    else if (!(d >= r.lo) && unbounded && r.lo == 0)
+      status = Bad(r.info, absl::StrCat(v, " is negative"));
+    else if (!(d >= r.lo && d <= r.hi))
+      status = Bad(r.info, absl::StrCat(v, " is outside ", RangeText(r)));
+  }
+  template <class E>
+  void operator()(const Words<E>& r) {
+    if (status.ok() && WordOf(r.words, p.*r.field) == "?")
+      status =
+          Bad(r.info, absl::StrCat("not a ", std::string(r.info.name), " (", Joined(r.words), ")"));
+  }
+  void operator()(const Switch&) {}
+  template <class T>
+  void operator()(const Spelled<T>& r) {
+    if (!status.ok()) return;
+    if (absl::StatusOr<T> back = r.parse(r.print(p.*r.field)); !back.ok())
+      status = back.status();  // the parsers name their field
+  }
+
+  static absl::Status Bad(const Info& info, const std::string& why) {
+    return absl::InvalidArgumentError(absl::StrCat(std::string(info.name), ": ", why));
+  }
+};
+
+}  // namespace
+
+std::string_view ToString(ColumnMode m) { return WordOf<ColumnMode>(kColumnModes, m); }
 std::string_view ToString(WaveletFilter f) {
-  switch (f) {
-    case WaveletFilter::kHaar:
-      return "haar";
-    case WaveletFilter::kDaub4:
-      return "daub4";
-    case WaveletFilter::kLeGall53:
-      return "legall53";
-    case WaveletFilter::kCdf97:
-      return "cdf97";
-  }
-  return "?";
+  std::string_view w = WordOf<WaveletFilter>(kColumnFilters, f);
+  return w != "?" ? w : WordOf<WaveletFilter>(kRowFilters, f);
 }
-
-std::string_view ToString(ErrorScope s) { return s == ErrorScope::kMatrix ? "matrix" : "column"; }
-
-std::string_view ToString(LevelScaling s) {
-  return s == LevelScaling::kUniform ? "uniform" : "paper";
-}
-
-std::string_view ToString(Transport t) {
-  return t == Transport::kDiffuse ? "diffuse" : "visibility";
-}
-
-absl::StatusOr<Transport> ParseTransport(std::string_view s) {
-  if (s == "diffuse") return Transport::kDiffuse;
-  if (s == "visibility") return Transport::kVisibility;
-  return absl::InvalidArgumentError(
-      absl::StrCat("transport: unknown transport '", std::string(s), "' (diffuse|visibility)"));
-}
+std::string_view ToString(ErrorScope s) { return WordOf<ErrorScope>(kErrorScopes, s); }
+std::string_view ToString(LevelScaling s) { return WordOf<LevelScaling>(kLevelScalings, s); }
+std::string_view ToString(Transport t) { return WordOf<Transport>(kTransports, t); }
 
 absl::StatusOr<ColumnMode> ParseColumnMode(std::string_view s) {
-  for (ColumnMode m : {ColumnMode::k2d, ColumnMode::kFull, ColumnMode::kAdaptive})
-    if (s == ToString(m)) return m;
-  return absl::InvalidArgumentError(
-      absl::StrCat("column_mode: unknown mode '", std::string(s), "' (adaptive|full|2d)"));
+  return ParseWord<ColumnMode>("column_mode", kColumnModes, s);
 }
-
 absl::StatusOr<WaveletFilter> ParseWaveletFilter(std::string_view s) {
-  for (WaveletFilter f : {WaveletFilter::kHaar, WaveletFilter::kDaub4, WaveletFilter::kLeGall53,
-                          WaveletFilter::kCdf97})
-    if (s == ToString(f)) return f;
-  return absl::InvalidArgumentError(
-      absl::StrCat("filter: unknown filter '", std::string(s), "' (haar|daub4|legall53|cdf97)"));
+  if (s == "daub4") return WaveletFilter::kDaub4;
+  absl::StatusOr<WaveletFilter> f = ParseWord<WaveletFilter>("filter", kColumnFilters, s);
+  if (!f.ok())
+    return absl::InvalidArgumentError(
+        absl::StrCat("filter: unknown filter '", std::string(s), "' (haar|daub4|legall53|cdf97)"));
+  return f;
 }
-
 absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s) {
-  if (s == "matrix") return ErrorScope::kMatrix;
-  if (s == "column") return ErrorScope::kColumn;
-  return absl::InvalidArgumentError(
-      absl::StrCat("error_scope: unknown scope '", std::string(s), "' (matrix|column)"));
+  return ParseWord<ErrorScope>("error_scope", kErrorScopes, s);
 }
-
 absl::StatusOr<LevelScaling> ParseLevelScaling(std::string_view s) {
-  if (s == "uniform") return LevelScaling::kUniform;
-  if (s == "paper") return LevelScaling::kPaper;
-  return absl::InvalidArgumentError(
-      absl::StrCat("level_scaling: unknown scaling '", std::string(s), "' (uniform|paper)"));
+  return ParseWord<LevelScaling>("level_scaling", kLevelScalings, s);
+}
+absl::StatusOr<Transport> ParseTransport(std::string_view s) {
+  return ParseWord<Transport>("transport", kTransports, s);
 }
 
 absl::Status ValidateBakeParams(const BakeParams& p) {
-  // Debian's Abseil has its own string_view, so views are passed as strings.
-  auto bad = [](const char* field, const auto&... msg) {
-    return absl::InvalidArgumentError(absl::StrCat(field, ": ", msg...));
+  CheckRow check{p, absl::OkStatus()};
+  ForEach(check);
+  if (!check.status.ok()) return check.status;
+  auto bad = [](const char* field, const char* why) {
+    return absl::InvalidArgumentError(absl::StrCat(field, ": ", why));
   };
-  if (!IsPowerOfTwoIn(p.light_res, 8, 256))
-    return bad("light_res", p.light_res, " is not a power of two in 8..256");
-  if (absl::Status s = ValidateLightDomain(p.light_domain); !s.ok()) return s;
-  if (p.supersample < 1 || p.supersample > 256)
-    return bad("supersample", p.supersample, " is outside 1..256");
-  if (p.row_filter != WaveletFilter::kHaar && p.row_filter != WaveletFilter::kDaub4)
-    return bad("row_filter", std::string(ToString(p.row_filter)),
-               " is not a row filter (haar|daub4)");
   // The triple product's tripling coefficients are those of the Haar basis.
   if (p.transport == Transport::kVisibility && p.row_filter != WaveletFilter::kHaar)
     return bad("row_filter", "a visibility transport needs haar rows (the Haar triple product)");
   // The tripling coefficients are those of the six-face cube's Haar basis.
   if (p.transport == Transport::kVisibility && p.light_domain.is_plane())
     return bad("light_domain",
-               "a visibility transport needs the cube (the triple product is "
-               "over the whole sphere of directions)");
-  if (p.column_filter == WaveletFilter::kDaub4)
-    return bad("column_filter", "daub4 is a row filter (haar|legall53|cdf97)");
-  if (!(p.target_error >= 0) || p.target_error > 1)
-    return bad("target_error", p.target_error, " is outside [0, 1]");
-  if (p.column_terms < 0) return bad("column_terms", p.column_terms, " is negative");
+               "a visibility transport needs the cube (the triple product is over the whole "
+               "sphere of directions)");
   if (p.column_terms == 0 && p.target_error == 0)
     return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
-  if (p.bits != 0 && (p.bits < 2 || p.bits > 16))
-    return bad("bits", p.bits, " is outside 2..16 (or auto)");
-  if (!IsPowerOfTwoIn(p.tile_size, 1, 256))
-    return bad("tile_size", p.tile_size, " is not a power of two up to 256");
-  if (p.column_group < 0 || p.column_group > 65536)
-    return bad("column_group", p.column_group, " is outside 1..65536 (or 0: the plan's)");
-  if (!(p.ray_epsilon >= 0)) return bad("ray_epsilon", p.ray_epsilon, " is negative");
   return absl::OkStatus();
 }
 

@@ -30,7 +30,7 @@ __all__ = [
     "Aborted", "AlreadyExists", "Cancelled", "Client", "DataLoss", "DeadlineExceeded",
     "Error", "FailedPrecondition", "Internal", "InvalidArgument", "NotFound", "OutOfRange",
     "PermissionDenied", "ResourceExhausted", "Store", "Unauthenticated", "Unavailable", "Unimplemented",
-    "Unknown", "Watch", "__version__", "bake", "eval", "relight", "relight_sequence",
+    "Unknown", "Watch", "__version__", "bake", "eval", "export", "relight", "relight_sequence",
 ]
 
 
@@ -315,6 +315,30 @@ def eval(store: Store | _Path, env: _Path | ArrayLike | None = None, reference: 
                           view=view, area_lights=_lights(area_lights),
                           source_fraction=source_fraction, target_fraction=target_fraction,
                           reference_batches=reference_batches)
+
+
+def export(store: Store | _Path, out: _Path, format: Literal["wavelet-tree"] = "wavelet-tree",
+           cut_off: float | None = None, target_error: float | None = None,
+           bits: int = 8) -> dict[str, Any]:
+    """A diffuse store's transport rows as GPU wavelet-tree textures
+    (Boulton 4.4-4.5), as `wavebake export` writes them: out/header.json and
+    the raw arrays it names (line.bin, blocks.bin, cells.bin).
+
+    Parameters
+    ----------
+    store: a Store, or the path of one (diffuse, cube light domain, Haar rows).
+    out: the directory to write (created).
+    format: "wavelet-tree", the one format.
+    cut_off: the absolute cut-off of a node's largest |coefficient|; or
+    target_error: the relative L2 error of the pruned rows (default 0.02).
+        Give one of them at most.
+    bits: bits per quantized coefficient, 8 or 16.
+
+    Returns the header written (header.json) as a dict.
+    """
+    path = store.path if isinstance(store, _wavebake.Store) else _path(store)
+    return _wavebake.export(store=path, out=_path(out), format=format, cut_off=cut_off,
+                            target_error=target_error, bits=bits)
 
 
 def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]:

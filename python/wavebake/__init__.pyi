@@ -74,6 +74,9 @@ def eval(store: Store | _Path, env: _Path | ArrayLike | None = None, reference: 
          target_rel_se: float = 0.002, brdf: str = "lambert", view: Sequence[float] | None = None,
          area_lights: Iterable[_Path] = (), source_fraction: float = 0.01,
          target_fraction: float = 0.30, reference_batches: int = 8) -> dict[str, Any]: ...
+def export(store: Store | _Path, out: _Path, format: Literal["wavelet-tree"] = "wavelet-tree",
+           cut_off: float | None = None, target_error: float | None = None,
+           bits: int = 8) -> dict[str, Any]: ...
 def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]: ...
 
 class Watch(Iterator[dict[str, Any]]):

@@ -26,17 +26,21 @@ void FaceRow(const SampleRows& rows, int cell, int face, std::vector<float>& out
   for (size_t k = 0; k < terms.size(); ++k) out[terms[k] - face * per_face] = values[k];
 }
 
-// The three coefficients of every square of a face, and each square's
-// largest magnitude (what §4.4 compares with the cut-off).
+// The three coefficients of every square of a face, each square's largest
+// magnitude (the quantization window), and its significance: what §4.4
+// compares with the cut-off, the magnitude × 2^(−level_weight·l) (the
+// importance-weighted variant; 0: Boulton's rule as written).
 struct FaceSquares {
   std::vector<std::array<float, 3>> c;
-  std::vector<float> max_abs;
+  std::vector<float> max_abs, significance;
 };
-void SquaresOfFace(int n, const std::vector<float>& row, FaceSquares& out) {
+void SquaresOfFace(int n, const std::vector<float>& row, double level_weight, FaceSquares& out) {
   const int squares = haar::SquaresOf(n);
   out.c.resize(squares);
   out.max_abs.resize(squares);
+  out.significance.resize(squares);
   for (int l = 0; l < haar::LevelsOf(n); ++l) {
+    const float weight = static_cast<float>(std::exp2(-level_weight * l));
     for (int sy = 0; sy < (1 << l); ++sy) {
       for (int sx = 0; sx < (1 << l); ++sx) {
         const int id = haar::SquareId(l, sx, sy);
@@ -46,6 +50,7 @@ void SquaresOfFace(int n, const std::vector<float>& row, FaceSquares& out) {
           m = std::max(m, std::fabs(out.c[id][t]));
         }
         out.max_abs[id] = m;
+        out.significance[id] = m * weight;
       }
     }
   }
@@ -67,7 +72,8 @@ constexpr int kChunks = 64;
 
 // Energy of the nodes §4.4's rule prunes at `cut_off`, the sibling rule
 // included (a node below the cut-off whose sibling group survives is kept).
-double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut_off) {
+double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut_off,
+                    double level_weight) {
   const int n = rows.light_res(), cells = rows.cells();
   std::vector<double> lost(kChunks, 0.0);
   ParallelFor(kChunks, [&](int chunk) {
@@ -78,9 +84,9 @@ double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut
       if (samples.grid[cell] < 0) continue;
       for (int face = 0; face < 6; ++face) {
         FaceRow(rows, cell, face, row);
-        SquaresOfFace(n, row, sq);
+        SquaresOfFace(n, row, level_weight, sq);
         significant.resize(sq.c.size());
-        for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.max_abs[s] >= cut_off;
+        for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.significance[s] >= cut_off;
         const std::vector<uint8_t> kept = KeepSiblingGroups(n, significant);
         for (size_t s = 0; s < sq.c.size(); ++s)
           if (!kept[s])
@@ -98,7 +104,7 @@ double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut
 // without the sibling rule (which only keeps more), then bisection over the
 // bins above it, since the pruned energy grows with the cut-off.
 double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target,
-                 double& energy_total) {
+                 double level_weight, double& energy_total) {
   const int n = rows.light_res();
   std::vector<std::vector<double>> hist(kChunks, std::vector<double>(kBins, 0.0));
   std::vector<double> total(kChunks, 0.0);
@@ -111,11 +117,11 @@ double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target
       for (int face = 0; face < 6; ++face) {
         FaceRow(rows, cell, face, row);
         total[chunk] += double{row[0]} * row[0];
-        SquaresOfFace(n, row, sq);
+        SquaresOfFace(n, row, level_weight, sq);
         for (size_t s = 0; s < sq.c.size(); ++s) {
           double e = 0;
           for (float v : sq.c[s]) e += double{v} * v;
-          hist[chunk][BinOf(sq.max_abs[s])] += e;
+          hist[chunk][BinOf(sq.significance[s])] += e;
           total[chunk] += e;
         }
       }
@@ -137,7 +143,7 @@ double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target
   int lo = std::min(b, kBins - 1), hi = kBins;  // lo is safe; hi is past every bin
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
-    if (PrunedEnergy(rows, samples, BinEdge(mid)) <= budget)
+    if (PrunedEnergy(rows, samples, BinEdge(mid), level_weight) <= budget)
       lo = mid;
     else
       hi = mid;
@@ -153,11 +159,11 @@ struct TreeOut {
   double pruned = 0;
 };
 
-void BuildTree(int n, const std::vector<float>& row, double cut_off, int max_code, int bias,
-               int bits, FaceSquares& sq, TreeOut& out) {
-  SquaresOfFace(n, row, sq);
+void BuildTree(int n, const std::vector<float>& row, double cut_off, double level_weight,
+               int max_code, int bias, int bits, FaceSquares& sq, TreeOut& out) {
+  SquaresOfFace(n, row, level_weight, sq);
   std::vector<uint8_t> significant(sq.c.size());
-  for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.max_abs[s] >= cut_off;
+  for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.significance[s] >= cut_off;
   const std::vector<uint8_t> kept = KeepSiblingGroups(n, significant);
   const std::vector<TreeRecord> line = DepthFirstLine(n, kept);
   float max_abs = 0;
@@ -204,6 +210,8 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
     return absl::InvalidArgumentError("target_error: must be ≥ 0 when no cut-off is given");
   if (!std::isfinite(options.cut_off))
     return absl::InvalidArgumentError("cut_off: not a finite number");
+  if (!(options.level_weight >= -4 && options.level_weight <= 8))
+    return absl::InvalidArgumentError("level_weight: not in [-4, 8]");
   if (rows.width() != samples.width || rows.height() != samples.height ||
       static_cast<int>(samples.grid.size()) != rows.cells())
     return absl::InvalidArgumentError("samples: grid differs from the transport's");
@@ -216,12 +224,14 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
   t.height = rows.height();
   t.light_res = rows.light_res();
   t.bits = options.bits;
+  t.level_weight = options.level_weight;
   const int n = t.light_res;
   if (options.cut_off >= 0) {
     t.cut_off = options.cut_off;
   } else {
     t.target_error = options.target_error;
-    t.cut_off = CutOffFor(rows, samples, options.target_error, t.stats.energy_total);
+    t.cut_off =
+        CutOffFor(rows, samples, options.target_error, options.level_weight, t.stats.energy_total);
   }
 
   const int cells = rows.cells();
@@ -235,7 +245,8 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
       for (int face = 0; face < 6; ++face) {
         FaceRow(rows, cell, face, row);
         for (float v : row) chunk_energy[chunk] += double{v} * v;
-        BuildTree(n, row, t.cut_off, t.max_code(), t.bias(), t.bits, sq, trees[cell][face]);
+        BuildTree(n, row, t.cut_off, options.level_weight, t.max_code(), t.bias(), t.bits, sq,
+                  trees[cell][face]);
       }
     }
   });
@@ -305,6 +316,7 @@ nlohmann::json WaveletTreeHeader(const WaveletTreeTextures& t, const nlohmann::j
   h["bias"] = t.bias();
   h["cut_off"] = t.cut_off;
   if (t.target_error >= 0) h["target_error"] = t.target_error;
+  h["level_weight"] = t.level_weight;
   h["line"] = {{"file", "line.bin"},
                {"texels", t.line_texels},
                {"width", kTreeLineWidth},
@@ -347,9 +359,10 @@ nlohmann::json WaveletTreeHeader(const WaveletTreeTextures& t, const nlohmann::j
        "type 0 at Mallat (2^l+sx, sy), type 1 at (sx, 2^l+sy), type 2 at "
        "(2^l+sx, 2^l+sy)"},
       {"pruning",
-       "Boulton 4.4: a node is significant when max |c| >= cut_off; a node is "
-       "kept when it or a descendant is significant, and the four children of a "
-       "node are kept together"},
+       "Boulton 4.4, importance-weighted by level: a node of level l is significant "
+       "when max |c| * 2^(-level_weight * l) >= cut_off (level_weight 0: the rule "
+       "as written); a node is kept when it or a descendant is significant, and the "
+       "four children of a node are kept together"},
       {"order",
        "depth first from the root (0,0,0); children (2sx,2sy), (2sx+1,2sy), "
        "(2sx,2sy+1), (2sx+1,2sy+1)"},

@@ -37,12 +37,19 @@ struct WaveletTreeOptions {
   // target_error² of the rows' energy.
   double target_error = 0.02;
   int bits = 8;  // 8 or 16
+  // The importance-weighted variant of §4.4's rule: a node of level l
+  // (0 = the whole face) is significant when max |c| · 2^(−level_weight·l)
+  // ≥ cut_off. 0 is the rule as written. The lighting's terms are chosen by
+  // area-weighted magnitude (runtime/relight/lighting.h), so they sit
+  // mostly at coarse levels, where a transfer node then matters most.
+  double level_weight = 0;
 };
 
 struct WaveletTreeTextures {
   int width = 0, height = 0, light_res = 0, bits = 8;
   double cut_off = 0;
   double target_error = -1;  // the one asked for, −1 when cut_off was given
+  double level_weight = 0;
   // RGBA texels, line_width per row, raw little-endian: bits/8 bytes a channel.
   int64_t line_texels = 0;
   std::vector<uint8_t> line;

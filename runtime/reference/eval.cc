@@ -145,6 +145,11 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, const En
   if (terms <= 0) {
     return absl::InvalidArgumentError(absl::StrCat("terms: ", terms, "; need at least 1"));
   }
+  // Rotated leaves the map as it is for a non-finite angle: refused here, or
+  // the report would be of an unrotated environment.
+  if (!std::isfinite(options.rotate_degrees))
+    return absl::InvalidArgumentError(
+        absl::StrCat("rotate: ", options.rotate_degrees, " is not finite"));
   absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
   if (!store_info.ok()) return store_info.status();
   if (store_info->params.transport == Transport::kVisibility)

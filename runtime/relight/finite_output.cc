@@ -28,4 +28,11 @@ absl::Status CheckRelitFinite(std::span<const float> rgb, std::span<const int32_
   return absl::OkStatus();
 }
 
+absl::Status CheckExposure(double stops) {
+  if (std::isfinite(stops) && std::abs(stops) <= kMaxExposureStops) return absl::OkStatus();
+  return absl::InvalidArgumentError(absl::StrCat("exposure: ", stops,
+                                                 " stops; need a finite number of stops within ±",
+                                                 kMaxExposureStops, " (2^stops as a float)"));
+}
+
 }  // namespace wavebake

@@ -21,4 +21,10 @@ namespace wavebake {
 absl::Status CheckRelitFinite(std::span<const float> rgb, std::span<const int32_t> grid, int width,
                               std::string_view inputs);
 
+// An exposure multiplies a relit image by 2^stops in float: beyond ±126
+// stops that factor is inf or 0 (and inf × 0 is NaN), a NaN exposure turned
+// every tone-mapped pixel black. InvalidArgument naming `exposure`.
+inline constexpr double kMaxExposureStops = 126;
+absl::Status CheckExposure(double stops);
+
 }  // namespace wavebake

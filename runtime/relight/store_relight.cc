@@ -106,6 +106,7 @@ absl::Status WriteRelit(const StoreInfo& info, const SampleSet& samples, std::sp
                         float exposure_stops, const std::filesystem::path& out) {
   const std::string ext = LowerExtension(out);
   const int w = samples.width, h = samples.height;
+  if (absl::Status s = CheckExposure(exposure_stops); !s.ok()) return s;
   // The last check before any export: whatever path produced `rgb`, a
   // non-finite value is not written as a picture.
   if (absl::Status s = CheckRelitFinite(rgb, samples.grid, w, "the lighting"); !s.ok()) return s;

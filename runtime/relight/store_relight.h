@@ -55,4 +55,17 @@ absl::Status WriteLightmapOutput(const StoreInfo& info, const SampleSet& samples
                                  std::span<const float> rgb, float exposure_stops,
                                  const std::filesystem::path& out);
 
+// A uv store's meshes as one triangle list for a viewer (the GPU view's 3D
+// mode): positions, every vertex's lightmap position in texel units of the
+// W×H grid (x right, y down from row 0, the grid's own convention; through
+// LightmapUvs of runtime/io/lightmap.h), and the triangles. The scene is
+// reloaded from the store's spec and checked against its hash. Errors: not
+// a uv layout (named), the scene (as for glTF output).
+struct LightmapMesh {
+  std::vector<float> positions;   // 3 a vertex
+  std::vector<float> texels;      // 2 a vertex
+  std::vector<uint32_t> indices;  // 3 a triangle
+};
+absl::StatusOr<LightmapMesh> LightmapMeshOf(const StoreInfo& info, const SampleSet& samples);
+
 }  // namespace wavebake

@@ -57,4 +57,30 @@ absl::Status WriteLightmapOutput(const StoreInfo& info, const SampleSet& s,
   return WriteLightmapGltf(out, *scene, *uvs, *png);
 }
 
+absl::StatusOr<LightmapMesh> LightmapMeshOf(const StoreInfo& info, const SampleSet& s) {
+  absl::StatusOr<LayoutSpec> layout = ParseLayout(info.params.layout);
+  if (!layout.ok()) return layout.status();
+  if (layout->kind != LayoutKind::kUv)
+    return absl::FailedPreconditionError(
+        absl::StrCat("store: layout ", info.params.layout, " is not a uv lightmap"));
+  absl::StatusOr<Scene> scene = BakedScene(info);
+  if (!scene.ok()) return scene.status();
+  absl::StatusOr<std::vector<std::vector<Vec2>>> uvs = LightmapUvs(*scene, s, layout->uv_channel);
+  if (!uvs.ok()) return uvs.status();
+  LightmapMesh out;
+  for (size_t i = 0; i < scene->meshes.size(); ++i) {
+    const Mesh& m = scene->meshes[i];
+    const uint32_t base = static_cast<uint32_t>(out.positions.size() / 3);
+    for (size_t v = 0; v < m.positions.size(); ++v) {
+      out.positions.insert(out.positions.end(),
+                           {m.positions[v].x, m.positions[v].y, m.positions[v].z});
+      const Vec2 uv = (*uvs)[i][v];
+      out.texels.insert(out.texels.end(), {uv.u * float(s.width), (1.0f - uv.v) * float(s.height)});
+    }
+    for (const auto& t : m.triangles)
+      out.indices.insert(out.indices.end(), {base + t[0], base + t[1], base + t[2]});
+  }
+  return out;
+}
+
 }  // namespace wavebake

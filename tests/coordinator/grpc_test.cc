@@ -202,21 +202,53 @@ TEST_F(GrpcTest, MissingOrWrongTokenIsUnauthenticated) {
   EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAUTHENTICATED);
 }
 
-TEST_F(GrpcTest, HealthCheckServesWithoutToken) {
-  Start("s3cret");
-  grpc::GenericStub stub(channel_);
+// grpc.health.v1.Health/Check of the whole server, without a token: the
+// HealthCheckResponse's bytes ("" when the call failed).
+std::string HealthBytes(const std::shared_ptr<grpc::Channel>& channel) {
+  grpc::GenericStub stub(channel);
   grpc::Slice empty(std::string{});
   grpc::ByteBuffer request(&empty, 1), response;
   std::promise<grpc::Status> done;
   auto ctx = CallContext("");
   stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
                  &response, [&](grpc::Status s) { done.set_value(s); });
-  ASSERT_TRUE(done.get_future().get().ok());
+  if (!done.get_future().get().ok()) return "";
   std::vector<grpc::Slice> slices;
-  ASSERT_TRUE(response.Dump(&slices).ok());
+  if (!response.Dump(&slices).ok()) return "";
   std::string bytes;
   for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  EXPECT_EQ(bytes, std::string("\x08\x01", 2));  // HealthCheckResponse{status: SERVING}
+  return bytes;
+}
+const std::string kServing("\x08\x01", 2), kNotServing("\x08\x02", 2);  // status: 1, 2
+
+TEST_F(GrpcTest, HealthCheckServesWithoutToken) {
+  Start("s3cret");
+  EXPECT_EQ(HealthBytes(channel_), kServing);
+}
+
+// A database that cannot record a change (every commit refused, as on a full
+// disk): the failed submit stops the table, the reaper's recoveries fail too
+// (each would record the unfinished job's resumption), and health says
+// NOT_SERVING instead of a SERVING whose every call fails; once commits work
+// again the reaper recovers the table and health is SERVING, no restart.
+TEST_F(GrpcTest, HealthIsNotServingWhileTheStateCannotBeRecorded) {
+  Start("", 1 << 20, /*lease_seconds=*/0.2);            // the reaper ticks every 50 ms
+  ASSERT_TRUE(Submit(testing::BuiltinRequest()).ok());  // unfinished: recovery must commit
+  coordinator_->job_store().SetFullForTesting(true);
+  EXPECT_EQ(Submit(testing::BuiltinRequest()).error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  // Polled, each wait bounded: the reaper sets it at its next tick.
+  auto health_becomes = [&](const std::string& want) {
+    for (int i = 0; i < 100; ++i) {
+      if (HealthBytes(channel_) == want) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  };
+  EXPECT_TRUE(health_becomes(kNotServing));
+  EXPECT_FALSE(coordinator_->table().broken().ok());
+  coordinator_->job_store().SetFullForTesting(false);
+  EXPECT_TRUE(health_becomes(kServing));
+  EXPECT_TRUE(Submit(testing::BuiltinRequest()).ok());
 }
 
 TEST_F(GrpcTest, BadRequestsNameTheField) {
@@ -625,7 +657,7 @@ TEST_F(GrpcTest, ProbePortIsNotReadyButAliveWhileTheDiskIsFull) {
                                    grpc::InsecureChannelCredentials());
   LeaseTable& table = (*c)->table();
   ASSERT_TRUE(table.AddJob(table.ReserveJobId(), "", 1, testing::Plan(2, 1, "a.wbk")).ok());
-  JobStore& store = (*c)->job_store_for_testing();
+  JobStore& store = (*c)->job_store();
   ASSERT_TRUE(store.LimitGrowthForTesting(0).ok());
   store.SetFullForTesting(true);
   // A refused commit stops the table; the reaper's reload must commit the

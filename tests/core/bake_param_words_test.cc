@@ -14,13 +14,15 @@ using ::testing::StartsWith;
 
 TEST(BakeParamWordsTest, EveryWordLandsInItsField) {
   BakeParamWords w;
-  w.row_filter = "daub4";
-  w.column_mode = "2d";
-  w.column_filter = "cdf97";
-  w.error_scope = "column";
-  w.bits = "12";
-  w.level_scaling = "paper";
-  w.refine = "off";
+  w.words = {{"row_filter", "daub4"},
+             {"column_mode", "2d"},
+             {"column_filter", "cdf97"},
+             {"error_scope", "column"},
+             {"bits", "12"},
+             {"level_scaling", "paper"},
+             {"refine", "off"},
+             {"light_domain", "plane:4"},
+             {"layout", "grid"}};
   absl::StatusOr<BakeParams> p = ParseBakeParamWords(BakeParams{}, w);
   ASSERT_TRUE(p.ok()) << p.status();
   EXPECT_EQ(p->row_filter, WaveletFilter::kDaub4);
@@ -30,24 +32,28 @@ TEST(BakeParamWordsTest, EveryWordLandsInItsField) {
   EXPECT_EQ(p->bits, 12);
   EXPECT_EQ(p->level_scaling, LevelScaling::kPaper);
   EXPECT_FALSE(p->refine);
+  EXPECT_TRUE(p->light_domain.is_plane());
+  EXPECT_EQ(p->layout, "grid");
   EXPECT_EQ(ParseBakeParamWords(BakeParams{}, BakeParamWords{})->bits, 0);  // auto
 }
 
 TEST(BakeParamWordsTest, ABadWordNamesItsField) {
-  using Word = std::string BakeParamWords::*;
-  const std::vector<std::tuple<Word, std::string, std::string>> cases = {
-      {&BakeParamWords::row_filter, "cdf97", "row_filter: "},
-      {&BakeParamWords::column_filter, "daub9", "column_filter: "},
-      {&BakeParamWords::column_mode, "fast", "column_mode: "},
-      {&BakeParamWords::bits, "12x", "bits: "},
-      {&BakeParamWords::bits, "0", "bits: "},
-      {&BakeParamWords::refine, "maybe", "refine: "},
-      {&BakeParamWords::transport, "glossy", "transport: "},
-      {&BakeParamWords::light_domain, "plane:1", "light_domain: "},
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"row_filter", "cdf97", "row_filter: "},
+      {"column_filter", "daub9", "column_filter: "},
+      {"column_mode", "fast", "column_mode: "},
+      {"bits", "12x", "bits: "},
+      {"bits", "0", "bits: "},
+      {"bits", "1", "bits: "},
+      {"refine", "maybe", "refine: "},
+      {"transport", "glossy", "transport: "},
+      {"light_domain", "plane:1", "light_domain: "},
+      {"layout", "spiral", "layout"},
+      {"light_res", "32", "light_res: "},  // a number, not a word
   };
   for (const auto& [word, value, field] : cases) {
     BakeParamWords w;
-    w.*word = value;
+    w.words[word] = value;
     const absl::Status s = ParseBakeParamWords(BakeParams{}, w).status();
     EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << field;
     EXPECT_THAT(std::string(s.message()), StartsWith(field));

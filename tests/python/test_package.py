@@ -161,7 +161,7 @@ def extension_parameters(f):
 def test_the_extension_names_its_parameters():
     """py::arg on every binding: no arg0, and the Python layer calls the
     extension by the same names."""
-    for name in ("relight", "eval"):
+    for name in ("relight", "eval", "export"):
         params = extension_parameters(getattr(_wavebake, name))
         assert params == list(inspect.signature(getattr(wavebake, name)).parameters), name
     assert extension_parameters(_wavebake.bake)[:3] == ["scene", "out", "workers"]

@@ -139,3 +139,33 @@ def test_equals_the_command_line_runtime(stores, tmp_path):
         mask = ~np.isnan(ours)
         assert mask.sum() > 100 and np.abs(ours[mask]).max() > 0
         np.testing.assert_array_equal(ours[mask], theirs[mask])
+
+
+def test_an_overflowing_numpy_environment_is_refused(stores):
+    """3e38 is a finite float32 above the 1e30 bound files get: it relit to
+    all NaN, and eval called that perfect."""
+    s = wavebake.Store(str(stores["furnace"]))
+    bright = np.ones((8, 16, 3), dtype=np.float32)
+    bright[4, 5, 2] = 3e38
+    with pytest.raises(wavebake.InvalidArgument, match=r"pixel \(5, 4\) channel B.*1e\+30"):
+        wavebake.relight(s, bright)
+    with pytest.raises(wavebake.InvalidArgument, match=r"pixel \(5, 4\)"):
+        wavebake.eval(s, bright, reference=False)
+    # At the bound every value stays finite.
+    at_bound = np.full((8, 16, 3), 1e30, dtype=np.float32)
+    image = wavebake.relight(s, at_bound)
+    assert np.isfinite(image[~np.isnan(image)]).all() and not np.isnan(image).all()
+
+
+def test_an_exposure_beyond_float_is_refused(stores):
+    """2**200 is no float32: the image came back inf (and NaN where it was
+    0); a finite exposure that overflows a bright value is named too."""
+    s = wavebake.Store(str(stores["furnace"]))
+    for stops in (200, -200, float("nan")):
+        with pytest.raises(wavebake.InvalidArgument, match="^exposure: "):
+            wavebake.relight(s, "builtin:constant", exposure=stops)
+    at_bound = np.full((8, 16, 3), 1e30, dtype=np.float32)
+    with pytest.raises(wavebake.InvalidArgument, match=r"^exposure: 100 stops overflow"):
+        wavebake.relight(s, at_bound, exposure=100)
+    image = wavebake.relight(s, "builtin:constant", exposure=126)
+    assert np.isfinite(image[~np.isnan(image)]).all()

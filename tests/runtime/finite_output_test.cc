@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "runtime/reference/eval.h"
@@ -58,6 +59,24 @@ TEST(CompareToReference, NonFiniteValuesAreNeverAPerfectScore) {
     std::vector<float> ref = reference;
     ref[0] = kInf;  // an overflowed reference
     EXPECT_THAT(CompareFinite(good, ref, "x").status().message(), HasSubstr("the reference"));
+  }
+}
+
+// 2^stops scales a relit image in float: FLT_MAX is just under 2^128 and the
+// smallest normal float 2^-126, so ±126 stops are the widest that stay a
+// finite, normal factor. A NaN exposure used to tone-map every pixel black
+// and 200 stops to give inf (and inf × 0 = NaN) with rc 0.
+TEST(CheckExposure, StopsWhoseFactorIsAFloatPassAnyOtherIsNamed) {
+  for (double ok : {0.0, -3.5, 126.0, -126.0}) {
+    EXPECT_TRUE(CheckExposure(ok).ok()) << ok;
+    const float factor = static_cast<float>(std::exp2(ok));
+    EXPECT_TRUE(std::isfinite(factor) && std::isnormal(factor)) << ok;
+  }
+  EXPECT_TRUE(std::isinf(static_cast<float>(std::exp2(128.0))));
+  for (double bad : {127.0, -127.0, 200.0, double(kInf), -double(kInf), double(kNaN)}) {
+    const absl::Status s = CheckExposure(bad);
+    EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument) << bad;
+    EXPECT_THAT(std::string(s.message()), ::testing::StartsWith("exposure: ")) << bad;
   }
 }
 

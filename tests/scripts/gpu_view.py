@@ -2,25 +2,40 @@
 
 Three tiny diffuse stores (camera, uv, hilbert; N = 8, 32x32 cells) are
 exported and served by `wavebake view`; headless Debian chromium with
-SwiftShader (WebGL2, EXT_color_buffer_float) draws each under a probe,
-rotation and term count, and window.wavebakeGpuFrame() is compared with
-/api/view/oracle, the C++ decoder's frame of the same exported bytes
-(runtime/wavelet_tree_reader.h, sharing no code with the shader).
+SwiftShader (WebGL2, EXT_color_buffer_float, EXT_float_blend) draws each
+under a probe, rotation and term count in both modes, and
+window.wavebakeGpuFrame() is compared with the server's CPU frame of the
+same lights.
 
-The bound: both sum the same float products of the same decoded
+mode=tree against /api/view/oracle, the C++ decoder's frame of the same
+exported bytes (runtime/gpu/wavelet_tree_reader.h, sharing no code with the
+shader). The bound: both sum the same float products of the same decoded
 coefficients and lighting weights; the shader in float32 over at most
 K = 6·N² terms per channel (the scaling coefficient and three wavelets per
 node, six faces), the oracle in double. Recursive float summation is off by
 at most K·u·Σ|terms| (u = 2^-24), the albedo product and the oracle's final
 rounding add 2·u·Σ|terms|: |gpu - cpu| <= (K + 2)·u·Σ|terms|, with Σ|terms|
 (× albedo) returned by the oracle per cell and channel.
+
+mode=4d against /api/view/oracle4d, the CPU relighter (Relighter::Relight,
+Eq. 8) of the same store and lights. Both evaluate
+B = Σ_i Σ_k w_i·C_ik·g_k(p) in float32, in different orders: a product
+w·C (one rounding), at most K additions into a coefficient's position
+(K = the lights, each column adding once per position), two additions per
+inverse Haar step (exact halvings) over D ≤ max_depth steps, the albedo
+product: n ≤ K + 2D + 2 roundings on any path. Each is within γ_n·M of
+the exact sum (Higham §3.1, §4.2), M = Σ |w·C|·|g| the oracle's second
+array (runtime/gpu/relight_magnitude.h): |gpu − cpu| ≤ 2·γ_n·M, γ_n =
+n·u/(1 − n·u), plus M's own float rounding (one more u).
 """
 import json
+import os
 import pathlib
 import subprocess
 import sys
 import tempfile
 import time
+import urllib.error
 import urllib.request
 
 import numpy as np
@@ -119,9 +134,15 @@ def main():
         p = run("export", str(vis), "--format", "wavelet-tree", "--out", str(tmp / "v"), ok=False)
         assert p.returncode != 0 and "transport" in p.stderr, p.stderr
 
+        # A LeGall column store: trees yes, mode=4d refused by name.
+        legall = tmp / "legall.wbk"
+        run("bake", "builtin:disk-over-plane", "--layout", "camera:16x16", "--light-res", "8",
+            "--column-filter", "legall53", "--quiet", "--out", str(legall))
         addr = tmp / "addr"
-        server = subprocess.Popen([WB, "view", *map(str, paths), "--http", "127.0.0.1:0",
-                                   "--http-address-file", str(addr)],
+        # The uv store's scene is found by name on WAVEBAKE_SCENE_PATH (its 3D mesh).
+        env = dict(os.environ, WAVEBAKE_SCENE_PATH=str(DATA / "models"))
+        server = subprocess.Popen([WB, "view", *map(str, paths), str(legall), "--http", "127.0.0.1:0",
+                                   "--http-address-file", str(addr)], env=env,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         driver = None
         try:
@@ -153,13 +174,39 @@ def main():
                 data = np.array([np.nan if v is None else v for v in f["data"]], dtype=np.float64)
                 return data.reshape(f["height"], f["width"], 3)
 
+            def oracle(endpoint, path, q):
+                raw = np.frombuffer(get(f"{base}/api/view/{endpoint}?{q}"), dtype="<f4").astype(np.float64)
+                grid = zarr.open(str(path), mode="r")["samples/grid"][:]
+                h, w = grid.shape
+                return grid, raw[: h * w * 3].reshape(h, w, 3), raw[h * w * 3:].reshape(h, w, 3)
+
+            max_depth = {}
+
+            def compare4d(index, path, probe, rotate, terms):
+                gpu = frame()
+                q = f"store={index}&probe={probe}&rotate={rotate}&terms={terms}"
+                grid, cpu, mag = oracle("oracle4d", path, q)
+                masked = grid < 0
+                assert gpu.shape == cpu.shape, (gpu.shape, cpu.shape)
+                assert np.array_equal(np.isnan(gpu).any(axis=2), masked), "GPU mask (4d)"
+                assert np.array_equal(np.isnan(cpu).any(axis=2), masked), "CPU mask (4d)"
+                if index not in max_depth:
+                    max_depth[index] = json.loads(get(f"{base}/api/view/columns/{index}/meta.json"))["max_depth"]
+                n = terms + 2 * max_depth[index] + 2
+                gamma = n * U / (1 - n * U)
+                bound = (2 * gamma + U) * mag[~masked]
+                err = np.abs(gpu[~masked] - cpu[~masked])
+                assert np.abs(cpu[~masked]).max() > 0, "an all-black frame proves nothing"
+                worst = (err - bound).max()
+                assert worst <= 0, f"4d store {index} {q}: |gpu-cpu| exceeds the bound by {worst}"
+                print(f"4d store {index} ({path.name}) {q}: max |gpu-cpu| {err.max():.3g}, "
+                      f"max bound {bound.max():.3g}, max |B| {np.abs(cpu[~masked]).max():.3g}")
+
             def compare(index, path, probe, rotate, terms):
                 gpu = frame()
                 q = f"store={index}&probe={probe}&rotate={rotate}&terms={terms}"
-                raw = np.frombuffer(get(f"{base}/api/view/oracle?{q}"), dtype="<f4").astype(np.float64)
-                grid = zarr.open(str(path), mode="r")["samples/grid"][:]
+                grid, cpu, mag = oracle("oracle", path, q)
                 h, w = grid.shape
-                cpu, mag = raw[: h * w * 3].reshape(h, w, 3), raw[h * w * 3:].reshape(h, w, 3)
                 assert gpu.shape == (h, w, 3), (gpu.shape, grid.shape)
                 masked = grid < 0
                 assert np.array_equal(np.isnan(gpu).any(axis=2), masked), "GPU mask"
@@ -180,27 +227,68 @@ def main():
                 "return !!gl && !!gl.getExtension('EXT_color_buffer_float');")
             for i, path in enumerate(paths):
                 for rotate, terms in ((0, 64), (45, 16), (200, 1000)):
-                    url = (f"{base}/view?store={i}&probe=builtin:sky&rotate={rotate}"
-                           f"&terms={terms}&mode=tree")
-                    status = load(url)
-                    assert status == "ready", (url, status)
-                    compare(i, path, "builtin:sky", rotate, terms)
+                    for mode, check in (("tree", compare), ("4d", compare4d)):
+                        url = (f"{base}/view?store={i}&probe=builtin:sky&rotate={rotate}"
+                               f"&terms={terms}&mode={mode}")
+                        status = load(url)
+                        assert status == "ready", (url, status)
+                        check(i, path, "builtin:sky", rotate, terms)
 
-            # The slider: the page redraws from new environment trees only
-            # (no pixels, no texture re-download) and still matches.
-            driver.execute_script("performance.clearResourceTimings();"
-                                  "const r = document.getElementById('rotate');"
-                                  "r.value = 90; r.dispatchEvent(new Event('input'));")
-            wait_for("the slider's frame", lambda: driver.execute_script(
-                "return document.body.dataset.gpuReady === '1' &&"
-                " performance.getEntriesByType('resource').length > 0"))
-            urls = driver.execute_script(
-                "return performance.getEntriesByType('resource').map(e => e.name)")
-            assert urls and all("/api/view/env?" in u for u in urls), urls
-            compare(len(paths) - 1, paths[-1], "builtin:sky", 90, 1000)
+            # The slider, in both modes: the page redraws from new lighting
+            # only (environment trees or kept lights; no pixels, no texture
+            # re-download) and still matches.
+            last = len(paths) - 1
+            for mode, lighting, check in (("tree", "/api/view/env?", compare),
+                                          ("4d", "/api/view/lights?", compare4d)):
+                status = load(f"{base}/view?store={last}&probe=builtin:sky&rotate=200"
+                              f"&terms=1000&mode={mode}")
+                assert status == "ready", status
+                driver.execute_script("performance.clearResourceTimings();"
+                                      "const r = document.getElementById('rotate');"
+                                      "r.value = 90; r.dispatchEvent(new Event('input'));")
+                wait_for("the slider's frame", lambda: driver.execute_script(
+                    "return document.body.dataset.gpuReady === '1' &&"
+                    " performance.getEntriesByType('resource').length > 0"))
+                urls = driver.execute_script(
+                    "return performance.getEntriesByType('resource').map(e => e.name)")
+                assert urls and all(lighting in u for u in urls), (mode, urls)
+                check(last, paths[-1], "builtin:sky", 90, 1000)
 
-            status = load(f"{base}/view?store=0&mode=4d")
-            assert status.startswith("error: mode 4d"), status
+            # The uv store in 3D: the lightmapped mesh drawn (a mesh only for
+            # uv), and turning the camera redraws with no request.
+            listed = json.loads(get(f"{base}/api/view/stores"))
+            assert [s["mesh"] for s in listed] == [False, True, False, False], listed
+            try:
+                get(f"{base}/api/view/columns/3/meta.json")
+                raise AssertionError("a LeGall store's columns were served")
+            except urllib.error.HTTPError as e:
+                body = e.read().decode()
+                assert e.code == 409 and "column_filter" in body, (e.code, body)
+            assert json.loads(get(f"{base}/api/view/trees/3/header.json"))["format"]
+            status = load(f"{base}/view?store=3&mode=4d")
+            assert status.startswith("error: ") and "column_filter" in status, status
+            status = load(f"{base}/view?store=1&probe=builtin:sky&terms=64&mode=4d")
+            assert status == "ready", status
+            assert driver.execute_script("return document.body.dataset.view3d;") == "1"
+            shown = ("const c = document.getElementById('view'); const gl = c.getContext('webgl2');"
+                     "const p = new Uint8Array(c.width * c.height * 4);"
+                     "gl.bindFramebuffer(gl.FRAMEBUFFER, null);"
+                     "gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, p);"
+                     "return Array.from(p);")
+            before = np.array(driver.execute_script(shown)).reshape(-1, 4)
+            background = np.all(np.abs(before[:, :3] - before[0, :3]) <= 2, axis=1)
+            assert 0.05 < 1 - background.mean() < 0.95, f"mesh covers {1 - background.mean():.2f} of the view"
+            driver.execute_script("performance.clearResourceTimings(); window.wavebakeOrbit(1.2, 0.3);")
+            after = np.array(driver.execute_script(shown)).reshape(-1, 4)
+            changed = np.any(np.abs(after.astype(int) - before) > 8, axis=1).mean()
+            assert changed > 0.05, f"the orbit changed {changed:.3f} of the pixels"
+            assert driver.execute_script("return performance.getEntriesByType('resource').length;") == 0
+            compare4d(1, paths[1], "builtin:sky", 0, 64)
+            print(f"uv store in 3D: mesh on {1 - background.mean():.2f} of the view, orbit changed "
+                  f"{changed:.2f}, no request")
+
+            status = load(f"{base}/view?store=0&mode=3d")
+            assert status.startswith("error: mode 3d"), status
         finally:
             if driver:
                 driver.quit()

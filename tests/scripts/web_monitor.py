@@ -4,7 +4,8 @@ Starts a coordinator (token, --http on a free port, --probes) and one worker
 thread, submits a bake slow enough to watch and a second one to cancel, then
 drives headless chromium: the login form, progress advancing on the jobs page
 without a reload, cancel, the job page's relight view answering the rotation
-slider with a different image, screenshots under the build directory. Checks
+slider with a different image (server frames: WebGL is off, the fallback),
+screenshots under the build directory. Checks
 401 without the token and that /metrics parses (prometheus_client's parser)
 with task counters equal to `wavebake status --json`, per-job series only
 for live jobs, and (when Debian's prometheus package is installed) that
@@ -95,7 +96,9 @@ def main():
 
         options = webdriver.ChromeOptions()
         options.binary_location = "/usr/bin/chromium"
-        for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        # No WebGL: the relight view falls back to the server's frames, which
+        # this test watches (tests/scripts/job_gpu.py drives the GPU path).
+        for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-webgl", "--disable-quic", "--no-first-run",
                      "--disable-background-networking", "--disable-component-update", "--disable-sync",
                      "--disable-dev-shm-usage", "--window-size=1280,760", f"--user-data-dir={tmp / 'chromium'}"):
             options.add_argument(flag)

@@ -1,6 +1,10 @@
 // One job: summary, timeline of its task leases per worker, and for a DONE
-// job its store statistics and the relight view (frames relit by the server
-// as the controls move; at most one request in flight, the latest wins).
+// job its store statistics and the relight view: on the browser's GPU when
+// it has WebGL2 with float targets and blending and the store is one the
+// GPU path draws (web/job_gpu.h: the 4D store decoded by view_4d.js, only
+// the kept lights fetched per change, no frame requests); otherwise frames
+// relit by the server as the controls move (at most one request in flight,
+// the latest wins).
 "use strict";
 
 const jobId = location.pathname.split("/").pop();
@@ -109,8 +113,8 @@ function renderStore(store) {
   hbarChart(document.getElementById("bytes-chart"), Object.entries(bytes.arrays || {}).sort((a, b) => b[1] - a[1]));
 }
 
-// The relight view's controls and its frame loop.
-function startRelight(store, probes) {
+// The relight view's controls; returns the query of their current values.
+function relightControls(store, probes) {
   document.getElementById("relight-section").hidden = false;
   document.getElementById("picture-kind").textContent = store.picture;
   const select = document.getElementById("probe");
@@ -123,6 +127,106 @@ function startRelight(store, probes) {
   const terms = document.getElementById("terms");
   terms.max = choices.length - 1;
   terms.value = Math.max(0, choices.indexOf(Math.min(256, maxTerms)));
+  return () => {
+    const q = new URLSearchParams({ probe: select.value, rotate: document.getElementById("rotate").value,
+                                    terms: termsOf(Number(terms.value)), exposure: document.getElementById("exposure").value });
+    document.getElementById("rotate-value").textContent = `${q.get("rotate")}°`;
+    document.getElementById("terms-value").textContent = `${q.get("terms")} of ${maxTerms}`;
+    document.getElementById("exposure-value").textContent = q.get("exposure");
+    return q.toString();
+  };
+}
+const RELIGHT_CONTROLS = ["probe", "rotate", "terms", "exposure"];
+
+// The relight view on the GPU; false (nothing shown) when this browser or
+// this store cannot have it, and the server's frames take over.
+async function startGpuRelight(store, probes) {
+  const G = window.WavebakeGL;
+  if (!G || !window.WavebakeColumnMode || store.picture === "vertex colours") return false;
+  const canvas = document.getElementById("relight-gpu");
+  const gl = canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
+  if (!gl || !gl.getExtension("EXT_color_buffer_float") || !gl.getExtension("EXT_float_blend")) return false;
+  const W = store.width, H = store.height, base = `/api/jobs/${jobId}/gpu/`;
+  let mode, display, ctx;
+  try {
+    const cells = await G.getBytes(base + "cells.bin");
+    ctx = { W, H, maxSize: gl.getParameter(gl.MAX_TEXTURE_SIZE), vao: gl.createVertexArray(),
+            cellTex: G.texture(gl, gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, new Float32Array(cells.buffer)),
+            columnsBase: base, lightsUrl: (q) => `${base}lights?${q}` };
+    ctx.frameTex = G.texture(gl, gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, null);
+    ctx.frameFbo = G.framebuffer(gl, ctx.frameTex);
+    const shown = await G.program(gl, "fullscreen.vert", "display.frag");
+    mode = await window.WavebakeColumnMode(gl, ctx);
+    display = (exposure) => {
+      gl.bindVertexArray(ctx.vao);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      gl.viewport(0, 0, W, H);
+      gl.disable(gl.BLEND);
+      gl.useProgram(shown);
+      G.bindTextures(gl, [ctx.frameTex]);
+      gl.uniform1i(gl.getUniformLocation(shown, "u_frame"), 0);
+      gl.uniform1f(gl.getUniformLocation(shown, "u_scale"), Math.pow(2, exposure));
+      gl.uniform1i(gl.getUniformLocation(shown, "u_height"), H);
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+    };
+  } catch (e) {
+    console.log(`relight on the GPU: ${e.message}; the server's frames instead`);
+    return false;
+  }
+  canvas.width = W;
+  canvas.height = H;
+  canvas.hidden = false;
+  document.getElementById("relight").hidden = true;
+  const query = relightControls(store, probes);
+  const stats = document.getElementById("relight-stats");
+  const device = () => {
+    const ext = gl.getExtension("WEBGL_debug_renderer_info");
+    return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+  };
+  // The lighting changes with probe, rotation and terms; exposure redraws only.
+  let inFlight = false, wanted = null, lit = null, frames = 0;
+  window.wavebakeFrames = 0;
+  const draw = async () => {
+    if (inFlight || wanted === null) return;
+    const q = new URLSearchParams(wanted);
+    const exposure = Number(q.get("exposure"));
+    q.delete("exposure");
+    const lighting = q.toString();
+    if (lighting === lit) {
+      display(exposure);
+      canvas.dataset.query = wanted;
+      return;
+    }
+    inFlight = true;
+    const shownQuery = wanted;
+    try {
+      const start = performance.now();
+      const what = await mode.relight(lighting);
+      display(exposure);
+      gl.finish();
+      lit = lighting;
+      canvas.dataset.query = shownQuery;
+      window.wavebakeFrames = ++frames;
+      stats.textContent = `GPU (${device()}) · ${what} · ${(performance.now() - start).toFixed(1)} ms a frame`;
+    } catch (e) {
+      stats.textContent = `relight on the GPU: ${e.message}`;
+      lit = lighting;  // do not retry a failing query in a loop
+    } finally {
+      inFlight = false;
+      if (wanted !== shownQuery) draw();
+    }
+  };
+  const changed = () => { wanted = query(); draw(); };
+  for (const id of RELIGHT_CONTROLS) {
+    for (const type of ["input", "change"]) document.getElementById(id).addEventListener(type, changed);
+  }
+  canvas.dataset.gpu = "1";
+  changed();
+  return true;
+}
+
+// The relight view's frame loop on the server.
+function startRelight(store, probes) {
   const canvas = document.getElementById("relight");
   const stats = document.getElementById("relight-stats");
   // While the controls move each frame skips the comparison with every
@@ -132,14 +236,7 @@ function startRelight(store, probes) {
   const recent = [];  // times of the last frames: the rate while the controls move
   window.wavebakeFrames = 0;
 
-  const query = () => {
-    const q = new URLSearchParams({ probe: select.value, rotate: document.getElementById("rotate").value,
-                                    terms: termsOf(Number(terms.value)), exposure: document.getElementById("exposure").value });
-    document.getElementById("rotate-value").textContent = `${q.get("rotate")}°`;
-    document.getElementById("terms-value").textContent = `${q.get("terms")} of ${maxTerms}`;
-    document.getElementById("exposure-value").textContent = q.get("exposure");
-    return q.toString();
-  };
+  const query = relightControls(store, probes);
   const request = async () => {
     if (inFlight || (wanted === drawn && wanted === compared)) return;
     inFlight = true;
@@ -171,7 +268,7 @@ function startRelight(store, probes) {
     }
   };
   const changed = () => { wanted = query(); request(); };
-  for (const id of ["probe", "rotate", "terms", "exposure"]) {
+  for (const id of RELIGHT_CONTROLS) {
     for (const type of ["input", "change"]) document.getElementById(id).addEventListener(type, changed);
   }
   changed();
@@ -193,7 +290,8 @@ async function refresh() {
   try {
     const store = await getJSON(`/api/jobs/${jobId}/store`);
     renderStore(store);
-    startRelight(store, (await getJSON("/api/probes")).probes);
+    const probes = (await getJSON("/api/probes")).probes;
+    if (!(await startGpuRelight(store, probes))) startRelight(store, probes);
   } catch (e) {
     document.getElementById("store-section").hidden = false;
     setSummary("store-summary", [["store", e.message]]);

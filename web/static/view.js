@@ -1,16 +1,24 @@
-// The GPU relight view (web/gpu_view.h): a store's wavelet-tree textures
-// (header.json documents them) uploaded once; per probe, rotation and term
-// count the server sends the environment trees (a few KB) and the fragment
-// shader wavelet_tree.frag computes B per texel (Boulton §4.5, Eq. 3) into
-// a float target; display.frag shows it. No pixels cross the network.
+// The GPU relight view (web/gpu_view.h) in two modes: mode=tree relights
+// from the wavelet-tree textures (view_tree.js, Boulton §4.5), mode=4d from
+// the 4D store's own arrays (view_4d.js, the 4D paper's Eq. 8). Both draw
+// into one W×H RGBA32F frame (alpha 0 on masked cells) that display.frag
+// shows and the contract reads back. No pixels cross the network: per
+// change of probe, rotation or term count only the lighting (environment
+// trees or kept lights, a few KB) does; exposure is a display uniform.
 //
 // Testability contract: once a frame is drawn, document.body.dataset.gpuReady
 // is "1" and window.wavebakeGpuFrame() returns {width, height, data}: data a
 // Float32Array of linear RGB, row 0 at the top, NaN where masked — the shape
 // of the Python module's wavebake.relight(Store, probe, terms, rotate).
+// window.wavebakeGpuBench(frames) redraws the current lighting `frames`
+// times and returns {mode, device, msPerFrame, bytesOnGpu, work}. For uv
+// stores the canvas shows the lightmapped mesh in 3D (view_mesh.js; &view=flat
+// or the checkbox for the flat lightmap); window.wavebakeOrbit(dyaw, dpitch,
+// zoom) turns its camera.
 "use strict";
 
 (async function () {
+  const G = window.WavebakeGL;
   const params = new URLSearchParams(location.search);
   const state = {
     store: Number(params.get("store") || 0),
@@ -34,165 +42,120 @@
   if (!gl) return fail("WebGL2 is not available in this browser");
   if (!gl.getExtension("EXT_color_buffer_float"))
     return fail("EXT_color_buffer_float is missing: no float render target");
-  if (state.mode !== "tree") return fail(`mode ${state.mode}: only mode=tree is available`);
-
-  const getJson = async (url) => {
-    const r = await fetch(url);
-    const body = await r.json();
-    if (!r.ok) throw new Error(body.error || `${url}: HTTP ${r.status}`);
-    return body;
-  };
-  const getText = async (url) => (await fetch(url)).text();
-  const getBytes = async (url) => {
-    const r = await fetch(url);
-    if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
-    return r.arrayBuffer();
-  };
-
-  function compile(type, source, name) {
-    const s = gl.createShader(type);
-    gl.shaderSource(s, source);
-    gl.compileShader(s);
-    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS))
-      throw new Error(`${name}: ${gl.getShaderInfoLog(s)}`);
-    return s;
-  }
-  function program(vs, fs, name) {
-    const p = gl.createProgram();
-    gl.attachShader(p, vs);
-    gl.attachShader(p, fs);
-    gl.linkProgram(p);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS))
-      throw new Error(`${name}: ${gl.getProgramInfoLog(p)}`);
-    return p;
-  }
-  // A texture of `width` texels a row holding `texels` RGBA texels of `data`
-  // (padded to whole rows, at least one).
-  function texture(internal, format, type, width, rows, data) {
-    const t = gl.createTexture();
-    gl.bindTexture(gl.TEXTURE_2D, t);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-    gl.texImage2D(gl.TEXTURE_2D, 0, internal, width, Math.max(rows, 1), 0, format, type, data);
-    return t;
-  }
+  const modes = { tree: window.WavebakeTreeMode, "4d": window.WavebakeColumnMode };
+  if (!modes[state.mode]) return fail(`mode ${state.mode}: not tree or 4d`);
 
   try {
-    const stores = await getJson("/api/view/stores");
-    const probes = await getJson("/api/probes");
+    const stores = await G.getJson("/api/view/stores");
+    const probes = await G.getJson("/api/probes");
     if (!(state.store >= 0 && state.store < stores.length))
       return fail(`store ${state.store}: no such store`);
     for (const s of stores) $("store").add(new Option(`${s.name} (${s.width}×${s.height})`, s.index));
     $("store").value = state.store;
     for (const p of probes) $("probe").add(new Option(p, p));
     $("probe").value = state.probe;
+    $("mode").value = state.mode;
     $("rotate").value = state.rotate;
     $("rotate-value").textContent = state.rotate;
     $("terms").value = state.terms;
     $("exposure").value = state.exposure;
 
-    const base = `/api/view/trees/${state.store}/`;
-    const header = await getJson(base + "header.json");
-    if (header.format !== "wavebake-wavelet-tree/1") return fail("unknown tree format");
-    const [line, blocks, cells] = await Promise.all(
-      [header.line.file, header.blocks.file, header.cells.file].map((f) => getBytes(base + f)));
-    const W = header.width, H = header.height, row = header.line.width;
-    if (header.blocks.width !== row) return fail("blocks and line rows differ");
-    const maxSize = gl.getParameter(gl.MAX_TEXTURE_SIZE);
-    if (row > maxSize || header.line.height > maxSize || header.blocks.height > maxSize)
-      return fail(`the trees need ${row}×${header.line.height} texels; this GPU allows ${maxSize}`);
-    $("store-name").textContent = `${stores[state.store].name}: ${W}×${H}, N = ${header.light_res}`;
+    const info = stores[state.store];
+    const W = info.width, H = info.height;
+    $("store-name").textContent = `${info.name}: ${W}×${H}, N = ${info.light_res}, mode ${state.mode}`;
     canvas.width = W;
     canvas.height = H;
+    // The cells (albedo, mask), the frame both modes draw into, and its display.
+    const cells = await G.getBytes(`/api/view/trees/${state.store}/cells.bin`);
+    const ctx = {
+      store: state.store, W, H, maxSize: gl.getParameter(gl.MAX_TEXTURE_SIZE),
+      cellTex: G.texture(gl, gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, new Float32Array(cells.buffer)),
+      vao: gl.createVertexArray(),
+    };
+    ctx.frameTex = G.texture(gl, gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, null);
+    ctx.frameFbo = G.framebuffer(gl, ctx.frameTex);
+    gl.bindVertexArray(ctx.vao);
+    const displayProgram = await G.program(gl, "fullscreen.vert", "display.frag");
+    const mode = await modes[state.mode](gl, ctx);
 
-    const [vsText, treeText, displayText] = await Promise.all(
-      ["fullscreen.vert", "wavelet_tree.frag", "display.frag"].map((f) => getText("/static/" + f)));
-    const vs = compile(gl.VERTEX_SHADER, vsText, "fullscreen.vert");
-    const treeProgram = program(vs, compile(gl.FRAGMENT_SHADER, treeText, "wavelet_tree.frag"),
-                                "wavelet_tree");
-    const displayProgram = program(vs, compile(gl.FRAGMENT_SHADER, displayText, "display.frag"),
-                                   "display");
-
-    const bits8 = header.bits === 8;
-    const lineTex = texture(bits8 ? gl.RGBA8UI : gl.RGBA16UI, gl.RGBA_INTEGER,
-                            bits8 ? gl.UNSIGNED_BYTE : gl.UNSIGNED_SHORT, row, header.line.height,
-                            bits8 ? new Uint8Array(line) : new Uint16Array(line));
-    const blockTex = texture(gl.RGBA32UI, gl.RGBA_INTEGER, gl.UNSIGNED_INT, row,
-                             header.blocks.height, new Uint32Array(blocks));
-    const cellTex = texture(gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, new Float32Array(cells));
-    let envTex = null;
-
-    // The float target the tree shader draws into: W×H, one texel a cell.
-    const frameTex = texture(gl.RGBA32F, gl.RGBA, gl.FLOAT, W, H, null);
-    const fbo = gl.createFramebuffer();
-    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
-    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, frameTex, 0);
-    if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE)
-      return fail("a float framebuffer is not renderable here");
-    const vao = gl.createVertexArray();
-
-    const u = (p, name) => gl.getUniformLocation(p, name);
-    gl.useProgram(treeProgram);
-    gl.uniform1i(u(treeProgram, "u_line"), 0);
-    gl.uniform1i(u(treeProgram, "u_blocks"), 1);
-    gl.uniform1i(u(treeProgram, "u_cells"), 2);
-    gl.uniform1i(u(treeProgram, "u_env"), 3);
-    gl.uniform1i(u(treeProgram, "u_width"), W);
-    gl.uniform1i(u(treeProgram, "u_row"), row);
-    gl.uniform1i(u(treeProgram, "u_bits"), header.bits);
-    gl.uniform1f(u(treeProgram, "u_bias"), header.bias);
-
-    function uploadEnv(env) {
-      const texels = env.records.length / 4;
-      const rows = Math.max(1, Math.ceil(texels / row));
-      const data = new Float32Array(rows * row * 4);
-      data.set(env.records);
-      if (envTex) gl.deleteTexture(envTex);
-      envTex = texture(gl.RGBA32F, gl.RGBA, gl.FLOAT, row, rows, data);
-      gl.useProgram(treeProgram);
-      gl.uniform1iv(u(treeProgram, "u_env_offset[0]"), env.faces.map((f) => f.offset));
-      gl.uniform1iv(u(treeProgram, "u_env_count[0]"), env.faces.map((f) => f.count));
-      gl.uniform3fv(u(treeProgram, "u_env_scaling[0]"), env.faces.flatMap((f) => f.scaling));
+    // uv stores: the lightmapped mesh under an orbit camera (view_mesh.js),
+    // unless unticked; the flat frame otherwise. Display only.
+    let mesh = null;
+    if (info.mesh && window.WavebakeMeshView) {
+      try {
+        mesh = await window.WavebakeMeshView(gl, ctx, canvas);
+      } catch (e) {
+        console.log(`3D view: ${e.message}; the lightmap is shown flat`);
+      }
     }
-
-    function drawFrame() {
-      gl.bindVertexArray(vao);
-      gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
-      gl.viewport(0, 0, W, H);
-      gl.useProgram(treeProgram);
-      [lineTex, blockTex, cellTex, envTex].forEach((t, i) => {
-        gl.activeTexture(gl.TEXTURE0 + i);
-        gl.bindTexture(gl.TEXTURE_2D, t);
-      });
-      gl.drawArrays(gl.TRIANGLES, 0, 3);
-      display();
+    if (mesh) {
+      $("view3d-label").hidden = false;
+      if (params.get("view") === "flat") $("view3d").checked = false;
+      window.wavebakeOrbit = (dyaw, dpitch, zoom) => mesh.turn(dyaw, dpitch, zoom);
     }
     function display() {
+      if (mesh && $("view3d").checked) {
+        if (canvas.width !== 512) canvas.width = canvas.height = 512;
+        mesh.draw(state.exposure);
+        document.body.dataset.view3d = "1";
+        return;
+      }
+      if (canvas.width !== W || canvas.height !== H) {
+        canvas.width = W;
+        canvas.height = H;
+      }
+      document.body.dataset.view3d = "0";
+      gl.bindVertexArray(ctx.vao);
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
       gl.viewport(0, 0, W, H);
+      gl.disable(gl.BLEND);
       gl.useProgram(displayProgram);
-      gl.activeTexture(gl.TEXTURE0);
-      gl.bindTexture(gl.TEXTURE_2D, frameTex);
-      gl.uniform1i(u(displayProgram, "u_frame"), 0);
-      gl.uniform1f(u(displayProgram, "u_scale"), Math.pow(2, state.exposure));
-      gl.uniform1i(u(displayProgram, "u_height"), H);
+      G.bindTextures(gl, [ctx.frameTex]);
+      gl.uniform1i(gl.getUniformLocation(displayProgram, "u_frame"), 0);
+      gl.uniform1f(gl.getUniformLocation(displayProgram, "u_scale"), Math.pow(2, state.exposure));
+      gl.uniform1i(gl.getUniformLocation(displayProgram, "u_height"), H);
       gl.drawArrays(gl.TRIANGLES, 0, 3);
     }
-
-    window.wavebakeGpuFrame = function () {
-      gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+    function readFrame() {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, ctx.frameFbo);
       const rgba = new Float32Array(W * H * 4);
       gl.readPixels(0, 0, W, H, gl.RGBA, gl.FLOAT, rgba);
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      return rgba;
+    }
+    window.wavebakeGpuFrame = function () {
+      const rgba = readFrame();
       const data = new Float32Array(W * H * 3);
       for (let i = 0; i < W * H; ++i) {
         const masked = rgba[4 * i + 3] === 0;
         for (let c = 0; c < 3; ++c) data[3 * i + c] = masked ? NaN : rgba[4 * i + c];
       }
       return { width: W, height: H, data };
+    };
+    const device = () => {
+      const ext = gl.getExtension("WEBGL_debug_renderer_info");
+      return ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+    };
+    // Frames of the current lighting, each waited for (a one-texel read
+    // stalls until the GPU is done), the lighting's transfer excluded.
+    window.wavebakeGpuBench = function (frames) {
+      const one = new Float32Array(4);
+      const sync = () => {
+        gl.bindFramebuffer(gl.FRAMEBUFFER, ctx.frameFbo);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, one);
+      };
+      mode.redraw();
+      sync();
+      const start = performance.now();
+      for (let k = 0; k < frames; ++k) {
+        mode.redraw();
+        sync();
+      }
+      const ms = (performance.now() - start) / frames;
+      display();
+      const frameBytes = 2 * W * H * 16;  // the cells and the frame
+      return { mode: mode.name, device: device(), msPerFrame: ms, terms: mode.terms(),
+               bytesOnGpu: mode.bytesOnGpu() + frameBytes, work: mode.work(readFrame()) };
     };
 
     // One lighting request at a time; the latest settings win.
@@ -205,14 +168,11 @@
         const q = new URLSearchParams({ store: state.store, probe: state.probe,
                                         rotate: state.rotate, terms: state.terms });
         const start = performance.now();
-        const env = await getJson(`/api/view/env?${q}`);
-        uploadEnv(env);
-        drawFrame();
+        const what = await mode.relight(q);
+        display();
         gl.finish();
         const ms = performance.now() - start;
-        status.textContent = `${env.terms} wavelet lights; environment trees ` +
-            `${(env.records.length * 4 / 1024).toFixed(1)} KB; frame ${ms.toFixed(1)} ms ` +
-            `(${gl.getParameter(gl.RENDERER)})`;
+        status.textContent = `${what}; frame ${ms.toFixed(1)} ms (${device()})`;
         document.body.dataset.gpuFrames = String(Number(document.body.dataset.gpuFrames) + 1);
         document.body.dataset.gpuReady = "1";
       } catch (e) {
@@ -239,15 +199,18 @@
       state.probe = $("probe").value;
       relight();
     });
+    $("view3d").addEventListener("change", display);
     $("exposure").addEventListener("input", () => {
       state.exposure = Number($("exposure").value);
       display();
     });
-    $("store").addEventListener("change", () => {
+    const reload = () => {
       const q = new URLSearchParams({ store: $("store").value, probe: state.probe,
-                                      rotate: state.rotate, terms: state.terms, mode: "tree" });
+                                      rotate: state.rotate, terms: state.terms, mode: $("mode").value });
       location.search = q.toString();
-    });
+    };
+    $("store").addEventListener("change", reload);
+    $("mode").addEventListener("change", reload);
     await relight();
   } catch (e) {
     fail(String(e.message || e));

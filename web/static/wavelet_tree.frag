@@ -8,7 +8,8 @@
 // where the other has none, its jump record skips the whole branch: the
 // sibling rule of §4.4 (four children go together) makes both walks land on
 // the same node. I = S_A·S_B + Σ_{i ∈ A∩B} C_A^i · C_B^i per channel, then
-// × albedo. Masked cells come out with alpha 0.
+// × albedo. Masked cells come out with alpha 0, sampled ones with alpha
+// 1 + the nodes visited (the per-pixel work the page reports).
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -34,7 +35,7 @@ const int kMaxSteps = 21845;
 uvec4 lineAt(int k) { return texelFetch(u_line, ivec2(k % u_row, k / u_row), 0); }
 vec4 envAt(int k) { return texelFetch(u_env, ivec2(k % u_row, k / u_row), 0); }
 
-vec3 faceProduct(int face, uvec4 block) {
+vec3 faceProduct(int face, uvec4 block, inout int visited) {
   vec3 sum = uintBitsToFloat(block.z) * u_env_scaling[face];
   if (block.y == 0u || u_env_count[face] == 0) return sum;
   float step = uintBitsToFloat(block.w);
@@ -48,6 +49,7 @@ vec3 faceProduct(int face, uvec4 block) {
     vec4 e1 = envAt(3 * b + 1);
     vec4 e2 = envAt(3 * b + 2);
     sum += ca.x * e0.rgb + ca.y * e1.rgb + ca.z * e2.rgb;
+    ++visited;
     int na = int(ta.a) - 1;          // level of the next node, −1: end
     int nb = int(e0.a + 0.5) - 1;
     bool childA = na > level;
@@ -87,9 +89,10 @@ void main() {
   }
   int c = p.y * u_width + p.x;
   vec3 sum = vec3(0.0);
+  int visited = 0;
   for (int face = 0; face < 6; ++face) {
     int k = c * 6 + face;
-    sum += faceProduct(face, texelFetch(u_blocks, ivec2(k % u_row, k / u_row), 0));
+    sum += faceProduct(face, texelFetch(u_blocks, ivec2(k % u_row, k / u_row), 0), visited);
   }
-  o_color = vec4(sum * cell.rgb, 1.0);
+  o_color = vec4(sum * cell.rgb, 1.0 + float(visited));
 }

@@ -1,0 +1,266 @@
+#pragma once
+// The one table of bake parameters (DESIGN.md §5): each row gives a
+// parameter's name — the BakeParams field, the BakeRequest field, the key of
+// the store's .zattrs "params" and the field that errors name — its
+// command-line flag and help, its range or words, and when the store records
+// it. The command-line flags (cli/bake_flags.cc), the request's conversion
+// (proto/bake_request.cc), the .zattrs writer and reader
+// (storage/params_json.cc), the staging's trace record (worker/recode.cc) and
+// the validation (core/bake/bake_params_io.cc) are loops over these rows, so
+// a new parameter is a BakeParams field, one row here and, if clients may set
+// it over gRPC, a BakeRequest field of the same name.
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "absl/status/statusor.h"
+#include "core/bake/bake_params.h"
+
+namespace wavebake::params {
+
+// What a parameter changes.
+enum class Stage {
+  kTrace,    // the traced rows or their staging: a staging is reused only when these match
+  kColumns,  // the column coding and quantization
+  kOutput,   // how the store is written, not the matrix (never recorded with it)
+};
+
+// How the store's .zattrs "params" hold a parameter.
+enum class Record {
+  kAlways,        // always written; a store without it is refused
+  kUnlessAbsent,  // written unless it has its `absent` value, which a store without it
+                  // means: parameters added after stores existed, whose older stores and
+                  // every store at the old behaviour keep their bytes
+  kNever,
+};
+
+struct Info {
+  std::string_view name;
+  std::string_view flag;  // "" = none
+  std::string_view help;
+  Stage stage;
+  Record record = Record::kAlways;
+  bool in_request = true;  // a BakeRequest field of the same name
+};
+
+// A number in [lo, hi] (a power of two if asked). `zero` names what 0 means
+// when 0 is allowed outside the range ("auto" for bits; the words of a flag
+// that takes "auto"); `unset_is_default`: a request's 0 (proto3's unset)
+// takes the default.
+template <class T>
+struct Number {
+  Info info;
+  T BakeParams::*field;
+  double lo, hi;
+  bool power_of_two = false;
+  std::string_view zero = {};
+  bool zero_is_word =
+      false;  // 0 is spelled `zero` (bits: "auto"), on the command line and in .zattrs
+  bool unset_is_default = false;
+};
+
+template <class E>
+using WordList = std::span<const std::pair<std::string_view, E>>;
+
+// An enum spelled in words (the first is not necessarily the default).
+template <class E>
+struct Words {
+  Info info;
+  E BakeParams::*field;
+  WordList<E> words;
+};
+
+// A bool spelled as two words (`yes`, `no`), or a flag when both are empty.
+// `effective` is what is recorded and sent (refine: whether rows are refined).
+struct Switch {
+  Info info;
+  bool BakeParams::*field;
+  std::string_view yes = {}, no = {};
+  bool absent = false;  // Record::kUnlessAbsent: what a store without it means
+  bool (*effective)(const BakeParams&) = nullptr;
+};
+
+// A value with its own grammar (the layout, the light domain).
+template <class T>
+struct Spelled {
+  Info info;
+  T BakeParams::*field;
+  absl::StatusOr<T> (*parse)(std::string_view);
+  std::string (*print)(const T&);
+};
+
+inline constexpr std::pair<std::string_view, WaveletFilter> kRowFilters[] = {
+    {"haar", WaveletFilter::kHaar}, {"daub4", WaveletFilter::kDaub4}};
+inline constexpr std::pair<std::string_view, WaveletFilter> kColumnFilters[] = {
+    {"haar", WaveletFilter::kHaar},
+    {"legall53", WaveletFilter::kLeGall53},
+    {"cdf97", WaveletFilter::kCdf97}};
+inline constexpr std::pair<std::string_view, ColumnMode> kColumnModes[] = {
+    {"adaptive", ColumnMode::kAdaptive}, {"full", ColumnMode::kFull}, {"2d", ColumnMode::k2d}};
+inline constexpr std::pair<std::string_view, ErrorScope> kErrorScopes[] = {
+    {"matrix", ErrorScope::kMatrix}, {"column", ErrorScope::kColumn}};
+inline constexpr std::pair<std::string_view, LevelScaling> kLevelScalings[] = {
+    {"uniform", LevelScaling::kUniform}, {"paper", LevelScaling::kPaper}};
+inline constexpr std::pair<std::string_view, Transport> kTransports[] = {
+    {"diffuse", Transport::kDiffuse}, {"visibility", Transport::kVisibility}};
+
+absl::StatusOr<std::string> ParseLayoutSpelling(std::string_view s);
+std::string PrintLayout(const std::string& s);
+absl::StatusOr<LightDomain> ParseDomainSpelling(std::string_view s);
+std::string PrintDomain(const LightDomain& d);
+inline bool Refines(const BakeParams& p) { return p.refines(); }
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The table: `visit(row)` for every parameter, in the order of --help.
+template <class Visit>
+void ForEach(Visit&& visit) {
+  using S = Stage;
+  visit(Number<int>{{"light_res", "--light-res",
+                     "cubemap texels per face edge N (power of two, 8..256)", S::kTrace},
+                    &BakeParams::light_res,
+                    8,
+                    256,
+                    true,
+                    {},
+                    false,
+                    true});
+  visit(Spelled<LightDomain>{
+      {"light_domain", "--light-domain",
+       "cube | plane:S[:AXIS]: one face of size S (3..10) aligned with a light plane normal to "
+       "AXIS (default +Y), for --area-light",
+       S::kTrace, Record::kUnlessAbsent},
+      &BakeParams::light_domain,
+      ParseDomainSpelling,
+      PrintDomain});
+  visit(Spelled<std::string>{
+      {"layout", "--layout",
+       "spatial layout: camera[:WxH] | grid | hilbert:WxH | uv[:WxH] | uv1[:WxH] (lightmap "
+       "texels of UV channel 0 or 1, default 256x256); uv options after commas: "
+       ",fill=zero|push-pull|dilate (texels no chart covers), ,allow-overlap (as "
+       "--allow-uv-overlap)",
+       S::kTrace},
+      &BakeParams::layout,
+      ParseLayoutSpelling,
+      PrintLayout});
+  visit(Number<int>{{"supersample", "--supersample", "jittered directions per texel K", S::kTrace},
+                    &BakeParams::supersample,
+                    1,
+                    256,
+                    false,
+                    {},
+                    false,
+                    true});
+  visit(
+      Words<WaveletFilter>{{"row_filter", "--row-filter", "row transform: haar | daub4", S::kTrace},
+                           &BakeParams::row_filter,
+                           kRowFilters});
+  visit(Words<ColumnMode>{
+      {"column_mode", "--column-mode", "column transform depth: adaptive | full | 2d", S::kColumns},
+      &BakeParams::column_mode,
+      kColumnModes});
+  visit(Words<WaveletFilter>{
+      {"column_filter", "--column-filter", "column filter: haar | legall53 | cdf97", S::kColumns},
+      &BakeParams::column_filter,
+      kColumnFilters});
+  visit(Number<double>{
+      {"target_error", "--target-error",
+       "relative RMS error budget of the stored columns (DESIGN.md §1, see --error-scope)",
+       S::kColumns},
+      &BakeParams::target_error,
+      0,
+      1,
+      false,
+      {},
+      false,
+      true});
+  visit(Words<ErrorScope>{
+      {"error_scope", "--error-scope",
+       "matrix: budget relative to the mean column energy; column: to each column's own",
+       S::kColumns},
+      &BakeParams::error_scope,
+      kErrorScopes});
+  visit(
+      Number<int>{{"column_terms", "--column-terms",
+                   "keep exactly K coefficients per column instead of --target-error", S::kColumns},
+                  &BakeParams::column_terms,
+                  0,
+                  std::numeric_limits<int>::max()});
+  visit(Number<int>{{"bits", "--bits",
+                     "quantization bits 2..16 (each column's max to the largest code), or auto "
+                     "(the error budget's quantization half)",
+                     S::kColumns},
+                    &BakeParams::bits,
+                    2,
+                    16,
+                    false,
+                    "auto",
+                    true});
+  visit(Words<LevelScaling>{{"level_scaling", "--level-scaling",
+                             "uniform: one step per column (auto: one matrix-wide step); paper: "
+                             "values of level l times 2^l first (4D paper §4.3)",
+                             S::kColumns},
+                            &BakeParams::level_scaling,
+                            kLevelScalings});
+  visit(Words<Transport>{{"transport", "--transport",
+                          "what a row holds: diffuse (T = V cos/π) or visibility (V alone, for "
+                          "glossy relighting by the triple product; needs --row-filter haar)",
+                          S::kTrace, Record::kUnlessAbsent},
+                         &BakeParams::transport,
+                         kTransports});
+  visit(Number<uint64_t>{{"seed", "--seed", "job seed (jitter and dither)", S::kTrace},
+                         &BakeParams::seed,
+                         0,
+                         18446744073709551615.0});
+  visit(Switch{{"refine", "--refine",
+                "on: trace only where visibility changes (coarse probes, refined along "
+                "silhouettes; fully visible texels get their exact integral; cube light domain "
+                "only); off: brute force, K rays in every texel",
+                S::kTrace, Record::kUnlessAbsent},
+               &BakeParams::refine,
+               "on",
+               "off",
+               /*absent=*/false,
+               Refines});
+  visit(Switch{{"keep_staging", "--keep-staging",
+                "leave the staging arrays (row-transformed T, transposed) in the store", S::kOutput,
+                Record::kNever},
+               &BakeParams::keep_staging});
+  visit(Number<int>{{"tile_size", "--tile-size",
+                     "spatial tile edge of one BAKE_TILE task (power of two)", S::kTrace},
+                    &BakeParams::tile_size,
+                    4,
+                    256,
+                    true,
+                    {},
+                    false,
+                    true});
+  visit(Number<int>{{"column_group", "--column-group",
+                     "columns per TRANSFORM_COLUMNS task (0: up to 1024, as many as fit 256 MiB "
+                     "of column images)",
+                     S::kTrace},
+                    &BakeParams::column_group,
+                    1,
+                    65536,
+                    false,
+                    "the plan's"});
+  visit(Number<float>{{"ray_epsilon", "", "ray offset; 0: 1e-4 × the scene's bounding-box diagonal",
+                       S::kTrace, Record::kAlways, /*in_request=*/false},
+                      &BakeParams::ray_epsilon,
+                      0,
+                      kInf,
+                      false,
+                      "the scene's"});
+}
+
+// The word a value of `words` is spelled as ("?" if none: a value outside the list).
+template <class E>
+std::string_view WordOf(WordList<E> words, E value) {
+  for (const auto& [w, v] : words)
+    if (v == value) return w;
+  return "?";
+}
+
+}  // namespace wavebake::params
