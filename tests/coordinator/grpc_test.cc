@@ -202,22 +202,36 @@ TEST_F(GrpcTest, MissingOrWrongTokenIsUnauthenticated) {
   EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::UNAUTHENTICATED);
 }
 
-// grpc.health.v1.Health/Check of the whole server, without a token: the
-// HealthCheckResponse's bytes ("" when the call failed).
-std::string HealthBytes(const std::shared_ptr<grpc::Channel>& channel) {
+// grpc.health.v1.Health/Check of `service` on a channel, by hand (the
+// project generates no health stubs): the response's bytes, or the error.
+absl::StatusOr<std::string> HealthCheck(const std::shared_ptr<grpc::Channel>& channel,
+                                        const std::string& service) {
   grpc::GenericStub stub(channel);
-  grpc::Slice empty(std::string{});
-  grpc::ByteBuffer request(&empty, 1), response;
+  // HealthCheckRequest{service: 1}, a length-delimited field.
+  const std::string body =
+      service.empty()
+          ? std::string{}
+          : absl::StrCat("\x0a", std::string(1, static_cast<char>(service.size())), service);
+  grpc::Slice slice(body);
+  grpc::ByteBuffer request(&slice, 1), response;
   std::promise<grpc::Status> done;
   auto ctx = CallContext("");
   stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
                  &response, [&](grpc::Status s) { done.set_value(s); });
-  if (!done.get_future().get().ok()) return "";
+  const grpc::Status s = done.get_future().get();
+  if (!s.ok())
+    return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
   std::vector<grpc::Slice> slices;
-  if (!response.Dump(&slices).ok()) return "";
+  if (!response.Dump(&slices).ok()) return absl::DataLossError("response");
   std::string bytes;
-  for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  for (const auto& sl : slices) bytes.append(reinterpret_cast<const char*>(sl.begin()), sl.size());
   return bytes;
+}
+
+// grpc.health.v1.Health/Check of the whole server, without a token: the
+// HealthCheckResponse's bytes ("" when the call failed).
+std::string HealthBytes(const std::shared_ptr<grpc::Channel>& channel) {
+  return HealthCheck(channel, "").value_or("");
 }
 const std::string kServing("\x08\x01", 2), kNotServing("\x08\x02", 2);  // status: 1, 2
 
@@ -581,33 +595,6 @@ TEST_F(GrpcTest, ServesTlsWhenGivenCertAndKey) {
                                  nullptr);
   EXPECT_EQ(half.status().code(), absl::StatusCode::kInvalidArgument);
 }
-
-// grpc.health.v1.Health/Check of `service` on a channel, by hand (the
-// project generates no health stubs): the response's bytes, or the error.
-absl::StatusOr<std::string> HealthCheck(const std::shared_ptr<grpc::Channel>& channel,
-                                        const std::string& service) {
-  grpc::GenericStub stub(channel);
-  // HealthCheckRequest{service: 1}, a length-delimited field.
-  const std::string body =
-      service.empty()
-          ? std::string{}
-          : absl::StrCat("\x0a", std::string(1, static_cast<char>(service.size())), service);
-  grpc::Slice slice(body);
-  grpc::ByteBuffer request(&slice, 1), response;
-  std::promise<grpc::Status> done;
-  auto ctx = CallContext("");
-  stub.UnaryCall(ctx.get(), "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request,
-                 &response, [&](grpc::Status s) { done.set_value(s); });
-  const grpc::Status s = done.get_future().get();
-  if (!s.ok())
-    return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
-  std::vector<grpc::Slice> slices;
-  if (!response.Dump(&slices).ok()) return absl::DataLossError("response");
-  std::string bytes;
-  for (const auto& sl : slices) bytes.append(reinterpret_cast<const char*>(sl.begin()), sl.size());
-  return bytes;
-}
-const std::string kServing("\x08\x01", 2), kNotServing("\x08\x02", 2);
 
 // health_address: Kubernetes' grpc probe speaks plain text only, so a TLS
 // coordinator offers the health service alone on a plain port; the job and
