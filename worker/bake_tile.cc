@@ -120,11 +120,20 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
 }
 
 // Every group's chunk of the tile, each transposed just before it is
-// compressed, then the tile's energy.
-absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int tile,
-                       std::span<const float> rows, double energy, TileStats& stats) {
-  std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
+// compressed (or straight into its slot of an in-memory staging), then the
+// tile's energy.
+absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
+                       const JobPlan& plan, int tile, std::span<const float> rows, double energy,
+                       TileStats& stats) {
+  std::vector<float> chunk(memory ? 0 : static_cast<size_t>(plan.group_size) * plan.tile_cells());
   for (int g = 0; g < plan.groups; ++g) {
+    if (memory) {
+      const std::span<float> slot = memory->BeginWrite(g, tile);
+      if (slot.empty()) continue;  // written by an earlier attempt: the same values
+      TransposeGroup(rows, plan, g, slot);
+      memory->Publish(g, tile);
+      continue;
+    }
     TransposeGroup(rows, plan, g, chunk);
     const int64_t index[] = {g, tile};
     if (absl::Status s = WriteChunkCounted(staging.transport, index, chunk, stats); !s.ok())
@@ -138,7 +147,7 @@ absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int ti
 }  // namespace
 
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats, const TaskSignals& signals) {
+                      TileStats* stats, const TaskSignals& signals, MemoryStaging* memory) {
   const JobPlan& plan = ctx.plan;
   if (tile < 0 || tile >= plan.tiles()) {
     return absl::InvalidArgumentError(
@@ -159,7 +168,9 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
   }
-  absl::Status written = WriteTile(*staging, plan, tile, rows, energy, local);
+  const std::shared_ptr<MemoryStaging::Job> held =
+      memory != nullptr && !ctx.params.keep_staging ? memory->Admit(store, plan) : nullptr;
+  absl::Status written = WriteTile(*staging, held.get(), plan, tile, rows, energy, local);
   if (stats) {
     stats->rays_traced += local.rays_traced;
     stats->bytes_written += local.bytes_written;

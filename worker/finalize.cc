@@ -274,6 +274,7 @@ absl::Status DropStaging(const std::filesystem::path& store) {
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
                       const FinalizeOptions& options) {
   if (!std::filesystem::exists(store::Path(store, store::kStaging))) {
+    if (options.memory) options.memory->Drop(store);
     if (AlreadyFinalized(store)) return DropStaging(store);
     return absl::FailedPreconditionError(absl::StrCat(store.string(), ": no staging to finalize"));
   }
@@ -308,6 +309,7 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
       !s.ok()) {
     return s;
   }
+  if (options.memory) options.memory->Drop(store);
   return options.keep_staging ? absl::OkStatus() : DropStaging(store);
 }
 

@@ -15,6 +15,7 @@
 
 #include "absl/status/status.h"
 #include "worker/bake_context.h"
+#include "worker/memory_staging.h"
 
 namespace wavebake {
 
@@ -26,6 +27,9 @@ struct FinalizeOptions {
   // Threads reading and quantizing groups (0: one per hardware thread).
   // FINALIZE runs alone at the end of a job; the stores do not depend on it.
   int threads = 0;
+  // The job's in-memory staging chunks (worker/memory_staging.h), if any,
+  // are dropped with staging.
+  MemoryStaging* memory = nullptr;
 };
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,

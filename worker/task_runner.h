@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "wavebake.pb.h"
 #include "worker/context_cache.h"
+#include "worker/memory_staging.h"
 #include "worker/scene_cache.h"
 
 namespace wavebake {
@@ -22,6 +23,9 @@ struct TaskEnv {
   SceneCache* scenes = nullptr;
   ContextCache* contexts = nullptr;
   SceneCache::FetchFn fetch;  // FetchScene from the coordinator
+  // Staging chunks held in memory (worker/memory_staging.h): only where
+  // every task of a job runs in this process (the embedded bake). Not owned.
+  MemoryStaging* memory_staging = nullptr;
 };
 
 // Shared between the running task and the heartbeat thread.

@@ -87,12 +87,13 @@ WorkerLoop::WorkerLoop(std::shared_ptr<grpc::ChannelInterface> channel, WorkerOp
   contexts_ = options_.contexts ? options_.contexts : std::make_shared<ContextCache>();
   scenes_ =
       options_.scenes ? options_.scenes : std::make_shared<SceneCache>(options_.scene_cache_dir);
-  env_ = TaskEnv{.store_root = options_.store_root,
-                 .scenes = scenes_.get(),
-                 .contexts = contexts_.get(),
-                 .fetch = [this](const v1::SceneRef& ref, const std::filesystem::path& dest) {
-                   return FetchScene(ref, dest);
-                 }};
+  env_ =
+      TaskEnv{.store_root = options_.store_root,
+              .scenes = scenes_.get(),
+              .contexts = contexts_.get(),
+              .fetch = [this](const v1::SceneRef& ref,
+                              const std::filesystem::path& dest) { return FetchScene(ref, dest); },
+              .memory_staging = options_.memory_staging.get()};
 }
 
 WorkerLoop::~WorkerLoop() { Drain(); }
