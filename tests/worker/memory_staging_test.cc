@@ -100,6 +100,45 @@ TEST(MemoryStagingTest, StoreIsTheStoreStagedOneWhateverWentToMemory) {
   EXPECT_TRUE(ReadTree(mixed) == expected);
 }
 
+// The bunny's 2503 vertices along a Hilbert curve of 64×64 cells leave its
+// last 32×32 tile without a sample: in memory that tile is never traced and
+// its chunks are pages never written, which read as the zeros the store
+// holds for it.
+TEST(MemoryStagingTest, ATileWithoutSamplesStagesTheSameZeros) {
+  BakeParams p;
+  p.light_res = 8;
+  p.layout = "hilbert:64x64";
+  p.tile_size = 32;
+  absl::StatusOr<std::unique_ptr<BakeContext>> made =
+      MakeBakeContext(std::string(WB_SHARED_DATA) + "/models/bunny.obj", p);
+  ASSERT_TRUE(made.ok()) << made.status();
+  const BakeContext& ctx = **made;
+  const JobPlan& plan = ctx.plan;
+  ASSERT_EQ(plan.tiles(), 4);
+  int empty_tiles = 0;
+  for (int t = 0; t < plan.tiles(); ++t) {
+    const TileRect r = plan.Tile(t);
+    bool any = false;
+    for (int y = r.y0; y < r.y0 + r.height; ++y)
+      for (int x = r.x0; x < r.x0 + r.width; ++x) any |= ctx.samples.grid[y * 64 + x] >= 0;
+    empty_tiles += !any;
+  }
+  ASSERT_EQ(empty_tiles, 1);
+  ScratchDir dir;
+  std::vector<int> tiles(plan.tiles()), groups(plan.groups);
+  std::iota(tiles.begin(), tiles.end(), 0);
+  std::iota(groups.begin(), groups.end(), 0);
+  const auto disk = dir.path() / "disk.wbk", held = dir.path() / "memory.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(ctx, disk, nullptr, tiles,
+                                   std::vector<bool>(plan.tiles(), false), groups)
+                  .ok());
+  MemoryStaging memory(RawStagingBytes(plan));
+  ASSERT_TRUE(
+      BakeByHandWithMemory(ctx, held, &memory, tiles, std::vector<bool>(plan.tiles(), true), groups)
+          .ok());
+  EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+}
+
 TEST(MemoryStagingTest, MemoryChunksAreNotInTheStoreAndAJobOverBudgetUsesTheStore) {
   const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
   ASSERT_NE(ctx, nullptr);
