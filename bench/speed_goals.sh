@@ -88,6 +88,7 @@ if [[ -z $quick ]]; then
     read -r name scene layout <<<"$sc"
     for mode in adaptive 2d full; do
       echo "== $name --column-mode $mode (N = 64)" >&2
+      mkdir -p "$work/modes"
       out="$work/modes/$name-$mode.wbk"
       rm -rf "$out"
       "$build/wavebake" bake "$scene" --layout "$layout" --light-res 64 --column-mode $mode \
