@@ -8,16 +8,33 @@
 #     (bench_column_stage BM_ColumnStage, x_trace_cpu; target <= 0.25) on the
 #     bunny (hilbert 64x64, N=32) and cubes-wall (camera 256x256, N=64);
 #   * refinement against brute force, whole bakes (bench_refine_bake: rays,
-#     wall and CPU time, eval --reference error under grace and pisa).
+#     wall and CPU time, the column stage + FINALIZE CPU as x_cols, eval
+#     --reference error under grace and pisa), at N = 64 (whole bake <= 0.35x,
+#     x_cols <= 0.15x on spot and the bunny) and with --n128 at N = 128
+#     (whole bake <= 0.25x);
+#   * adaptive <= min(2d, full) in transport bytes on the same three scenes at
+#     N = 64 (one CLI bake per column mode);
+#   * with --big, the big bake (cubes-wall camera 512x512, N = 128): peak RSS
+#     under 2 GiB and wall time <= 0.6x of docs/RESULTS.md's 299.9 s.
 #
-#   bench/speed_goals.sh BUILD_DIR WORK_DIR [--quick]
+#   bench/speed_goals.sh BUILD_DIR WORK_DIR [--quick] [--n128] [--big]
 #
-# --quick: column stage on the bunny only, bench_refine_bake --quick. The
-# machine's load inflates wall times; the CPU ratios are the steadier ones.
+# --quick: column stage on the bunny only, bench_refine_bake --quick, no
+# column-mode bakes. The machine's load inflates wall times; the CPU ratios
+# are the steadier ones. The last lines list every ratio with its target.
 set -euo pipefail
 build=${1:?usage: speed_goals.sh BUILD_DIR WORK_DIR [--quick]}
 work=${2:?usage: speed_goals.sh BUILD_DIR WORK_DIR [--quick]}
-quick=${3:-}
+shift 2
+quick='' n128='' big=''
+for a in "$@"; do
+  case $a in
+    --quick) quick=--quick ;;
+    --n128) n128=1 ;;
+    --big) big=1 ;;
+    *) echo "speed_goals.sh: unknown option $a" >&2; exit 2 ;;
+  esac
+done
 mkdir -p "$work"
 py=/usr/bin/python3
 reps=(--benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_format=json)
@@ -55,6 +72,40 @@ done
 
 echo "== refinement against brute force (bench_refine_bake)" >&2
 "$build/bench_refine_bake" "$work/bakes" ${quick:+--quick} | tee "$work/refine_bake.txt" | head -n -1
+if [[ -n $n128 ]]; then
+  echo "== refinement against brute force at N = 128 (bench_refine_bake --bake-res 128)" >&2
+  "$build/bench_refine_bake" "$work/bakes" --bake-res 128 | tee "$work/refine_bake_128.txt" \
+    | head -n -1
+fi
+
+# transport/ bytes of one CLI bake per column mode
+declare -A mode_bytes
+if [[ -z $quick ]]; then
+  models=$(cd "$(dirname "$0")/.." && pwd)/../shared/data/models
+  scenes=("cubes-wall builtin:cubes-wall camera:256x256" "spot $models/spot.obj hilbert:64x64"
+          "bunny $models/bunny.obj hilbert:64x64")
+  for sc in "${scenes[@]}"; do
+    read -r name scene layout <<<"$sc"
+    for mode in adaptive 2d full; do
+      echo "== $name --column-mode $mode (N = 64)" >&2
+      mkdir -p "$work/modes"
+      out="$work/modes/$name-$mode.wbk"
+      rm -rf "$out"
+      "$build/wavebake" bake "$scene" --layout "$layout" --light-res 64 --column-mode $mode \
+        --out "$out" >/dev/null
+      mode_bytes[$name-$mode]=$(du -sb "$out/transport" | cut -f1)
+      rm -rf "$out"
+    done
+  done
+fi
+
+if [[ -n $big ]]; then
+  echo "== the big bake (bench_bake_phases cubes-wall camera 512x512, N = 128)" >&2
+  "$build/bench_bake_phases" builtin:cubes-wall --layout camera:512x512 --light-res 128 \
+    --out "$work/big" | tail -n 1 > "$work/big.json"
+  big_wall=$("$py" -c "import json; print(f'{json.load(open(\"$work/big.json\"))[\"wall_s\"]:.1f}')")
+  big_rss=$("$py" -c "import json; print(f'{json.load(open(\"$work/big.json\"))[\"peak_rss_mib\"]:.0f}')")
+fi
 
 echo
 echo "row loop: TransportRow / fastest raw kernel = $row x (target >= 0.85: $(mark "$row >= 0.85"))"
@@ -62,3 +113,17 @@ for c in "${cases[@]}"; do
   echo "column stage / brute-force trace, $c: CPU ${col[$c]} x, wall ${col_wall[$c]} x" \
     "(target <= 0.25: $(mark "${col[$c]} <= 0.25"))"
 done
+if [[ -z $quick ]]; then
+  for sc in cubes-wall spot bunny; do
+    a=${mode_bytes[$sc-adaptive]} d=${mode_bytes[$sc-2d]} f=${mode_bytes[$sc-full]}
+    echo "transport bytes, $sc N=64: adaptive $a, 2d $d, full $f" \
+      "(target adaptive <= min(2d, full): $(mark "$a <= min($d, $f)"))"
+  done
+fi
+if [[ -n $big ]]; then
+  echo "big bake: wall $big_wall s = $("$py" -c "print(f'{$big_wall / 299.9:.3f}')") x of 299.9 s" \
+    "(target <= 0.6: $(mark "$big_wall <= 0.6 * 299.9")), peak RSS $big_rss MiB" \
+    "(target < 2048: $(mark "$big_rss < 2048"))"
+fi
+echo "whole bakes, x_cols (column stage + FINALIZE / brute-force CPU) and errors: the table above" \
+  "(bench_refine_bake; marks in the order of its targets line)"

@@ -30,12 +30,15 @@ constexpr char kStoreName[] = "bake.wbk";
 class Workers {
  public:
   Workers(const Coordinator& coordinator, std::shared_ptr<grpc::Channel> channel, int count,
-          const std::map<std::string, std::string>& local_scenes) {
+          const std::map<std::string, std::string>& local_scenes, uint64_t memory_staging_bytes) {
     const std::filesystem::path store_root = coordinator.options().store_root;
     // One context and scene cache for the process: a job's BakeContext (scene,
     // samples, Embree scene) is built once, whatever the number of loops.
     auto contexts = std::make_shared<ContextCache>(2);
     auto scenes = std::make_shared<SceneCache>(store_root / ".scene-cache", local_scenes);
+    // Every task runs in one of these loops: staging may stay in memory.
+    auto memory =
+        memory_staging_bytes > 0 ? std::make_shared<MemoryStaging>(memory_staging_bytes) : nullptr;
     for (int i = 0; i < count; ++i) {
       WorkerOptions options;
       options.store_root = store_root;
@@ -43,6 +46,7 @@ class Workers {
       options.name = absl::StrCat("bake-", i);
       options.contexts = contexts;
       options.scenes = scenes;
+      options.memory_staging = memory;
       loops_.push_back(std::make_unique<WorkerLoop>(channel, std::move(options)));
     }
     for (auto& loop : loops_) {
@@ -162,7 +166,8 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   absl::StatusOr<v1::Job> job;
   {
-    Workers loops(**coordinator, (*coordinator)->InProcessChannel(), workers, local_scenes);
+    Workers loops(**coordinator, (*coordinator)->InProcessChannel(), workers, local_scenes,
+                  options.memory_staging_bytes);
     v1::BakeRequest request = ToBakeRequest(params);
     request.set_output_name(kStoreName);
     absl::StatusOr<v1::Job> submitted = SubmitScene(client, request, scene, /*with_files=*/false);

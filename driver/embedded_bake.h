@@ -33,6 +33,12 @@ struct EmbeddedBakeOptions {
   // job was never submitted.
   std::function<void(Coordinator&, const PlannerOptions&)> on_started = {};
   std::function<void(Coordinator&, const std::string& job_id)> on_ending = {};
+  // Staging chunks of a job whose whole staging fits this many bytes stay
+  // in memory (worker/memory_staging.h) instead of going through the store;
+  // 0: always the store. The peak memory of such a bake is this much more
+  // than a store-staged one's (docs/RESULTS.md).
+  uint64_t memory_staging_bytes = kDefaultMemoryStagingBytes;
+  static constexpr uint64_t kDefaultMemoryStagingBytes = uint64_t{1} << 30;
 };
 
 // The job as it ended: DONE (the store is at `out`; an older store there is

@@ -119,26 +119,47 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
   return absl::OkStatus();
 }
 
-// Every group's chunk of the tile, each transposed just before it is
-// compressed, then the tile's energy.
-absl::Status WriteTile(const StagingArrays& staging, const JobPlan& plan, int tile,
-                       std::span<const float> rows, double energy, TileStats& stats) {
-  std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
-  for (int g = 0; g < plan.groups; ++g) {
-    TransposeGroup(rows, plan, g, chunk);
-    const int64_t index[] = {g, tile};
-    if (absl::Status s = WriteChunkCounted(staging.transport, index, chunk, stats); !s.ok())
-      return s;
-  }
+absl::Status WriteTileEnergy(const StagingArrays& staging, int tile, double energy,
+                             TileStats& stats) {
   const float tile_energy[] = {static_cast<float>(energy)};
   const int64_t index[] = {tile};
   return WriteChunkCounted(staging.tile_energy, index, tile_energy, stats);
 }
 
+bool HasSamples(const BakeContext& ctx, const TileRect& r) {
+  for (int y = r.y0; y < r.y0 + r.height; ++y)
+    for (int x = r.x0; x < r.x0 + r.width; ++x)
+      if (ctx.samples.grid[size_t(y) * ctx.samples.width + x] >= 0) return true;
+  return false;
+}
+
+// Every group's chunk of the tile, each transposed just before it is
+// compressed (or straight into its slot of an in-memory staging), then the
+// tile's energy.
+absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
+                       const JobPlan& plan, int tile, std::span<const float> rows, double energy,
+                       TileStats& stats) {
+  std::vector<float> chunk(memory ? 0 : static_cast<size_t>(plan.group_size) * plan.tile_cells());
+  for (int g = 0; g < plan.groups; ++g) {
+    if (memory) {
+      const std::span<float> slot = memory->BeginWrite(g, tile);
+      if (slot.empty()) continue;  // written by an earlier attempt: the same values
+      TransposeGroup(rows, plan, g, slot);
+      memory->Publish(g, tile);
+      continue;
+    }
+    TransposeGroup(rows, plan, g, chunk);
+    const int64_t index[] = {g, tile};
+    if (absl::Status s = WriteChunkCounted(staging.transport, index, chunk, stats); !s.ok())
+      return s;
+  }
+  return WriteTileEnergy(staging, tile, energy, stats);
+}
+
 }  // namespace
 
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats, const TaskSignals& signals) {
+                      TileStats* stats, const TaskSignals& signals, MemoryStaging* memory) {
   const JobPlan& plan = ctx.plan;
   if (tile < 0 || tile >= plan.tiles()) {
     return absl::InvalidArgumentError(
@@ -148,8 +169,20 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   if (!staging.ok()) return staging.status();
 
   const TileRect rect = plan.Tile(tile);
-  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
+  const std::shared_ptr<MemoryStaging::Job> held =
+      memory != nullptr && !ctx.params.keep_staging ? memory->Admit(store, plan) : nullptr;
   TileStats local;
+  if (held != nullptr && !HasSamples(ctx, rect)) {
+    // Every chunk of a tile without samples is zeros: in memory, pages never
+    // written read as zeros, and none is touched (the bunny at hilbert 64²
+    // covers 3 of its 4 tiles).
+    for (int g = 0; g < plan.groups; ++g)
+      if (!held->BeginWrite(g, tile).empty()) held->Publish(g, tile);
+    const absl::Status written = WriteTileEnergy(*staging, tile, 0.0, local);
+    if (stats) stats->bytes_written += local.bytes_written;
+    return written;
+  }
+  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
   double energy = 0;
   RefineScratch scratch;
   for (int cy = 0; cy < rect.height; ++cy) {
@@ -159,7 +192,7 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
   }
-  absl::Status written = WriteTile(*staging, plan, tile, rows, energy, local);
+  absl::Status written = WriteTile(*staging, held.get(), plan, tile, rows, energy, local);
   if (stats) {
     stats->rays_traced += local.rays_traced;
     stats->bytes_written += local.bytes_written;

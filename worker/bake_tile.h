@@ -8,6 +8,7 @@
 
 #include "absl/status/status.h"
 #include "worker/bake_context.h"
+#include "worker/memory_staging.h"
 #include "worker/task_signals.h"
 
 namespace wavebake {
@@ -34,7 +35,13 @@ struct TileStats {
 // checks signals.cancel (once it is true it returns Cancelled without
 // writing: a worker whose lease was withdrawn stops promptly, DESIGN.md §4)
 // and publishes its rays so far to signals.rays_traced.
+//
+// With `memory` (not null) and no kept staging, the staging/transport chunks
+// go to the job's in-memory staging if it admits the job
+// (worker/memory_staging.h); the tile's energy is written to the store
+// either way.
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
-                      TileStats* stats, const TaskSignals& signals = {});
+                      TileStats* stats, const TaskSignals& signals = {},
+                      MemoryStaging* memory = nullptr);
 
 }  // namespace wavebake

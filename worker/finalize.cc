@@ -169,7 +169,7 @@ absl::Status WriteStore(const BakeContext& ctx, const std::filesystem::path& sto
       !s.ok()) {
     return s;
   }
-  return options.keep_staging ? absl::OkStatus() : DropStaging(store);
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -208,10 +208,15 @@ absl::Status FinalizeStore(const BakeContext& ctx, const std::filesystem::path& 
                            const FinalizeOptions& options) {
   bool done = false;
   if (absl::Status s = CheckStaging(store, &done); !s.ok()) return s;
-  if (done) return DropStaging(store);
-  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
-  if (!scan.ok()) return scan.status();
-  return WriteStore(ctx, store, *scan, PlanFinalizeSteps(*scan, ctx.params), options);
+  if (!done) {
+    absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
+    if (!scan.ok()) return scan.status();
+    const StepPlan steps = PlanFinalizeSteps(*scan, ctx.params);
+    if (absl::Status s = WriteStore(ctx, store, *scan, steps, options); !s.ok()) return s;
+  }
+  // The job's staging chunks held in memory go with its staging/.
+  if (options.memory) options.memory->Drop(store);
+  return options.keep_staging && !done ? absl::OkStatus() : DropStaging(store);
 }
 
 absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store,
@@ -225,7 +230,9 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   for (int k = 0; k < FinalizeShards(ctx.plan.groups); ++k) {
     if (absl::Status s = WriteShard(ctx, store, *scan, steps, k, options); !s.ok()) return s;
   }
-  return WriteStore(ctx, store, *scan, steps, options);
+  if (absl::Status s = WriteStore(ctx, store, *scan, steps, options); !s.ok()) return s;
+  if (options.memory) options.memory->Drop(store);
+  return options.keep_staging ? absl::OkStatus() : DropStaging(store);
 }
 
 }  // namespace wavebake

@@ -17,6 +17,7 @@
 
 #include "absl/status/status.h"
 #include "worker/bake_context.h"
+#include "worker/memory_staging.h"
 
 namespace wavebake {
 
@@ -30,6 +31,9 @@ struct FinalizeOptions {
   // host's count would oversubscribe them); 0, for local callers such as
   // `wavebake recode`, is one per hardware thread.
   int threads = 0;
+  // The job's in-memory staging chunks (worker/memory_staging.h), if any,
+  // are dropped with staging.
+  MemoryStaging* memory = nullptr;
 };
 
 // The whole of FINALIZE in one call: every shard, then the last task

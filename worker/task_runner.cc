@@ -64,11 +64,11 @@ absl::Status CheckPartial(const std::filesystem::path& partial) {
 
 absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext& ctx,
                                          const std::filesystem::path& partial,
-                                         TaskProgress& progress) {
+                                         TaskProgress& progress, MemoryStaging* memory) {
   if (absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx)); !s.ok()) return s;
   TileStats stats;
-  absl::Status s =
-      BakeTile(ctx, partial, task.index(), &stats, {&progress.cancel, &progress.rays_traced});
+  absl::Status s = BakeTile(ctx, partial, task.index(), &stats,
+                            {&progress.cancel, &progress.rays_traced}, memory);
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = static_cast<int64_t>(stats.rays_traced),
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -79,9 +79,9 @@ absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext
 // large N takes as long as a tile.
 absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContext& ctx,
                                           const std::filesystem::path& partial,
-                                          TaskProgress& progress) {
+                                          TaskProgress& progress, const MemoryStaging* memory) {
   GroupStats stats;
-  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel});
+  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel}, memory);
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = 0,
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -114,7 +114,7 @@ absl::StatusOr<TaskOutcome> FinalizeShardTask(const v1::Task& task, const BakeCo
 absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext& ctx,
                                          const std::filesystem::path& partial,
                                          const std::filesystem::path& out, int threads,
-                                         TaskProgress& progress) {
+                                         TaskProgress& progress, MemoryStaging* memory) {
   std::error_code ec;
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
@@ -122,7 +122,8 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
     if (absl::Status s = FinalizeStore(ctx, partial,
                                        {.keep_staging = ctx.params.keep_staging,
                                         .cancel = &progress.cancel,
-                                        .threads = threads});
+                                        .threads = threads,
+                                        .memory = memory});
         !s.ok())
       return s;
     if (progress.cancel.load()) return Cancelled(task);
@@ -152,16 +153,17 @@ absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
   switch (task.kind()) {
     case v1::BAKE_TILE:
       if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-      outcome = BakeTileTask(task, **ctx, partial, progress);
+      outcome = BakeTileTask(task, **ctx, partial, progress, env.memory_staging);
       break;
     case v1::TRANSFORM_COLUMNS:
       if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-      outcome = TransformTask(task, **ctx, partial, progress);
+      outcome = TransformTask(task, **ctx, partial, progress, env.memory_staging);
       break;
     case v1::FINALIZE:
-      outcome = task.index() < FinalizeShards(task.groups())
-                    ? FinalizeShardTask(task, **ctx, partial, out, env.threads, progress)
-                    : FinalizeTask(task, **ctx, partial, out, env.threads, progress);
+      outcome =
+          task.index() < FinalizeShards(task.groups())
+              ? FinalizeShardTask(task, **ctx, partial, out, env.threads, progress)
+              : FinalizeTask(task, **ctx, partial, out, env.threads, progress, env.memory_staging);
       break;
     default:
       return absl::InvalidArgumentError(

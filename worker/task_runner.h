@@ -14,6 +14,7 @@
 #include "absl/status/statusor.h"
 #include "wavebake.pb.h"
 #include "worker/context_cache.h"
+#include "worker/memory_staging.h"
 #include "worker/scene_cache.h"
 
 namespace wavebake {
@@ -26,6 +27,9 @@ struct TaskEnv {
   // Threads a task may run on: the worker's --threads (the CPUs its Slurm
   // step or pod was given), never the host's hardware_concurrency().
   int threads = 1;
+  // Staging chunks held in memory (worker/memory_staging.h): only where
+  // every task of a job runs in this process (the embedded bake). Not owned.
+  MemoryStaging* memory_staging = nullptr;
 };
 
 // Shared between the running task and the heartbeat thread.

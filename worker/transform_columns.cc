@@ -47,18 +47,29 @@ absl::Status Cancelled(int group) {
 // Reads chunk (group, t) of every tile and scatters it into `images`: column
 // c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H). The
 // tiles cover the image, so every element is written.
-absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging, int group,
-                             std::span<float> images, GroupStats* stats,
-                             const TaskSignals& signals) {
+// A chunk the job's in-memory staging holds is read from there; any other
+// from the store, which must then hold it (a tile whose energy is written
+// has written its chunks somewhere).
+absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
+                             const MemoryStaging::Job* memory, int group, std::span<float> images,
+                             GroupStats* stats, const TaskSignals& signals) {
   const int count = plan.GroupCount(group);
   const size_t cells = size_t(plan.width) * plan.height;
-  std::vector<float> chunk(size_t(plan.group_size) * plan.tile_cells());
+  std::vector<float> buffer;
   for (int t = 0; t < plan.tiles(); ++t) {
     if (Stopped(signals)) return Cancelled(group);
-    const int64_t index[2] = {group, t};
-    if (absl::Status s = staging.ReadChunkInto(index, std::as_writable_bytes(std::span(chunk)));
-        !s.ok()) {
-      return s;
+    std::span<const float> chunk = memory ? memory->Chunk(group, t) : std::span<const float>();
+    if (chunk.empty()) {
+      const int64_t index[2] = {group, t};
+      if (memory != nullptr && !std::filesystem::exists(staging.ChunkPath(index)))
+        return absl::FailedPreconditionError(absl::StrCat(
+            staging.dir().string(), ": chunk ", group, ".", t, " is neither in memory nor staged"));
+      buffer.resize(size_t(plan.group_size) * plan.tile_cells());
+      if (absl::Status s = staging.ReadChunkInto(index, std::as_writable_bytes(std::span(buffer)));
+          !s.ok()) {
+        return s;
+      }
+      chunk = buffer;
     }
     stats->staging_bytes += chunk.size() * sizeof(float);
     const TileRect r = plan.Tile(t);
@@ -109,7 +120,8 @@ absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesyst
 }
 
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                              GroupStats* stats, const TaskSignals& signals) {
+                              GroupStats* stats, const TaskSignals& signals,
+                              const MemoryStaging* memory) {
   const JobPlan& plan = ctx.plan;
   if (group < 0 || group >= plan.groups)
     return absl::InvalidArgumentError(
@@ -122,7 +134,9 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   GroupStats local;
   const std::span<float> images =
       TaskBuffer(size_t(plan.GroupCount(group)) * plan.width * plan.height);
-  if (absl::Status s = AssembleColumns(plan, *staging, group, images, &local, signals); !s.ok())
+  const std::shared_ptr<MemoryStaging::Job> held = memory ? memory->Find(store) : nullptr;
+  if (absl::Status s = AssembleColumns(plan, *staging, held.get(), group, images, &local, signals);
+      !s.ok())
     return s;
 
   ColumnCodingParams params =

@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "core/bake/job_plan.h"
 #include "worker/bake_context.h"
+#include "worker/memory_staging.h"
 #include "worker/task_signals.h"
 
 namespace wavebake {
@@ -30,8 +31,11 @@ struct GroupStats {
 // naming "group"); staging missing or of another plan (FailedPrecondition);
 // Cancelled once signals.cancel is seen (checked between staging chunks and
 // between columns; nothing is written then).
+// With `memory`, the chunks the job's in-memory staging holds
+// (worker/memory_staging.h) are read from there, the rest from the store.
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                              GroupStats* stats, const TaskSignals& signals = {});
+                              GroupStats* stats, const TaskSignals& signals = {},
+                              const MemoryStaging* memory = nullptr);
 
 // E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
 // order in double (the same number on every worker).

@@ -93,7 +93,8 @@ WorkerLoop::WorkerLoop(std::shared_ptr<grpc::ChannelInterface> channel, WorkerOp
               .contexts = contexts_.get(),
               .fetch = [this](const v1::SceneRef& ref,
                               const std::filesystem::path& dest) { return FetchScene(ref, dest); },
-              .threads = std::max(1, options_.threads)};
+              .threads = std::max(1, options_.threads),
+              .memory_staging = options_.memory_staging.get()};
 }
 
 WorkerLoop::~WorkerLoop() { Drain(); }

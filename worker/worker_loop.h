@@ -54,6 +54,10 @@ struct WorkerOptions {
   // Shared caches (the embedded bake); null = the worker's own.
   std::shared_ptr<ContextCache> contexts{};
   std::shared_ptr<SceneCache> scenes{};
+  // Staging held in memory (worker/memory_staging.h); only for loops that
+  // share a process with every other worker of their jobs (the embedded
+  // bake). Null: the store alone.
+  std::shared_ptr<MemoryStaging> memory_staging{};
 };
 
 struct WorkerCounters {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "core/columns/depth_search.h"
@@ -45,6 +46,18 @@ void Select(const ColumnCodingParams& p, std::span<const float> coeffs, std::spa
     dropped += m * m;
   }
   out->dropped_energy = dropped;
+}
+
+// Σ v² in index order (what the selection at depth 0 drops when it keeps
+// nothing, to the bit) if it is ≤ `budget`. `energy` is the same sum in four
+// interleaved partial sums, within n·2⁻⁵³ relative of it: far above the
+// budget, the ordered sum is not needed.
+std::optional<double> EnergyIfWithin(std::span<const float> image, double energy, double budget) {
+  if (energy > budget * (1 + 1e-9)) return std::nullopt;
+  double total = 0;
+  for (float v : image) total += double{v} * v;
+  if (total > budget) return std::nullopt;
+  return total;
 }
 
 // What FINALIZE needs to pick this column's step (core/columns/quantizer.h):
@@ -105,6 +118,16 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     return;
   }
   const double budget = p.target_error * p.target_error * out->reference_energy;
+  if (p.column_terms == 0) {
+    if (const std::optional<double> dropped = EnergyIfWithin(image, out->energy, budget)) {
+      // The whole column fits its share of the budget: nothing is kept at
+      // any depth, so no depth is tried (ties: the shallower; `full` records
+      // its one depth).
+      out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
+      out->dropped_energy = *dropped;
+      return;
+    }
+  }
   const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   out->depth = choice.depth;
   const std::span<const float> w = RankingWeights(p, out->depth);

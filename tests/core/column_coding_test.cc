@@ -1,0 +1,87 @@
+// CodeColumn on columns whose whole energy fits their share of the error
+// budget (DESIGN.md §1 "Coefficient selection": dropped energy ≤
+// target²·E_ref): keeping nothing meets the budget at depth 0, and no depth
+// can keep fewer than nothing, so the adaptive rule (fewest kept, ties: the
+// shallower) picks depth 0. The reference is the definition itself, counted
+// at every depth with core/columns/nla.h.
+#include "core/columns/column_coding.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/columns/nla.h"
+#include "core/wavelets/wavelet2d.h"
+
+namespace wavebake {
+namespace {
+
+constexpr int kW = 16, kH = 8;
+
+std::vector<float> RandomColumn(std::mt19937& rng) {
+  std::normal_distribution<float> normal(0, 1);
+  std::vector<float> v(kW * kH);
+  for (float& x : v) x = normal(rng);
+  return v;
+}
+
+double OrderedEnergy(const std::vector<float>& v) {
+  double e = 0;
+  for (float x : v) e += double{x} * x;
+  return e;
+}
+
+ColumnCodingParams Params(ColumnMode mode, WaveletFilter filter, double matrix_energy) {
+  return {.width = kW,
+          .height = kH,
+          .filter = filter,
+          .mode = mode,
+          .target_error = 0.1,
+          .matrix_energy = matrix_energy};
+}
+
+TEST(ColumnCodingTest, AColumnInsideItsBudgetKeepsNothingAtTheShallowestDepth) {
+  std::mt19937 rng(7);
+  for (const WaveletFilter filter : {WaveletFilter::kHaar, WaveletFilter::kLeGall53}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      const std::vector<float> v = RandomColumn(rng);
+      const double energy = OrderedEnergy(v);
+      // E_ref such that the budget target²·E_ref is the column's energy
+      // times a factor just above 1: everything fits.
+      const double matrix_energy = energy * (1 + 1e-6) / (0.1 * 0.1);
+      const ColumnCodingParams p = Params(ColumnMode::kAdaptive, filter, matrix_energy);
+      const double budget = 0.01 * matrix_energy;
+      // The definition: at depth 0 nothing is kept, so depth 0 is a best depth.
+      ASSERT_EQ(CountForBudget(v, {}, budget), 0);
+      CodedColumn c;
+      CodeColumn(p, v, &c);
+      EXPECT_EQ(c.depth, 0);
+      EXPECT_TRUE(c.positions.empty());
+      EXPECT_EQ(c.dropped_energy, energy);  // the ordered sum, to the bit
+      EXPECT_LE(c.dropped_energy, budget);
+
+      CodeColumn(Params(ColumnMode::kFull, filter, matrix_energy), v, &c);
+      EXPECT_EQ(c.depth, MaxDepth(kW, kH));
+      EXPECT_TRUE(c.positions.empty());
+      EXPECT_LE(c.dropped_energy, budget);
+    }
+  }
+}
+
+TEST(ColumnCodingTest, AColumnJustOverItsBudgetKeepsSomething) {
+  std::mt19937 rng(8);
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::vector<float> v = RandomColumn(rng);
+    const double energy = OrderedEnergy(v);
+    const double matrix_energy = energy * (1 - 1e-6) / (0.1 * 0.1);
+    CodedColumn c;
+    CodeColumn(Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, matrix_energy), v, &c);
+    EXPECT_FALSE(c.positions.empty()) << "trial " << trial;
+    EXPECT_LE(c.dropped_energy, 0.01 * matrix_energy);
+  }
+}
+
+}  // namespace
+}  // namespace wavebake

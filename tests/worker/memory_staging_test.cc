@@ -1,0 +1,186 @@
+// Staging held in memory (worker/memory_staging.h) is the transpose of
+// DESIGN.md §2 without the store's round trip: the store it produces is
+// byte for byte the store-staged one's, whichever tiles went to memory, in
+// any order and with retries; a job that does not fit the budget goes
+// through the store; a chunk found in neither place fails the group instead
+// of reading as zeros; FINALIZE lets the memory go.
+#include "worker/memory_staging.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
+
+#include "storage/store_layout.h"
+#include "tests/testing/file_tree.h"
+#include "tests/testing/scratch_dir.h"
+#include "worker/bake_context.h"
+#include "worker/bake_tile.h"
+#include "worker/finalize.h"
+#include "worker/staging.h"
+#include "worker/transform_columns.h"
+
+namespace wavebake {
+namespace {
+
+using test_support::ReadTree;
+using test_support::ScratchDir;
+
+constexpr char kMemoryScene[] = "builtin:cylinder-bump";
+
+// 16×16 camera samples in 4 tiles, N = 8: 384 columns in 4 groups.
+BakeParams MemoryJob() {
+  BakeParams p;
+  p.light_res = 8;
+  p.layout = "camera:16x16";
+  p.tile_size = 8;
+  p.column_group = 100;
+  return p;
+}
+
+std::unique_ptr<BakeContext> MemoryJobContext() {
+  absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(kMemoryScene, MemoryJob());
+  EXPECT_TRUE(ctx.ok()) << ctx.status();
+  return ctx.ok() ? *std::move(ctx) : nullptr;
+}
+
+uint64_t RawStagingBytes(const JobPlan& plan) {
+  return uint64_t(plan.groups) * plan.tiles() * plan.group_size * plan.tile_cells() * 4;
+}
+
+// The tasks by hand; tiles listed in `in_memory` stage through `memory`.
+absl::Status BakeByHandWithMemory(const BakeContext& ctx, const std::filesystem::path& store,
+                                  MemoryStaging* memory, const std::vector<int>& tiles,
+                                  const std::vector<bool>& in_memory,
+                                  const std::vector<int>& groups) {
+  if (absl::Status s = CreateStaging(ctx.plan, store); !s.ok()) return s;
+  for (size_t i = 0; i < tiles.size(); ++i)
+    if (absl::Status s =
+            BakeTile(ctx, store, tiles[i], nullptr, {}, in_memory[tiles[i]] ? memory : nullptr);
+        !s.ok())
+      return s;
+  for (int g : groups)
+    if (absl::Status s = TransformColumns(ctx, store, g, nullptr, {}, memory); !s.ok()) return s;
+  return Finalize(ctx, store, {.memory = memory});
+}
+
+TEST(MemoryStagingTest, StoreIsTheStoreStagedOneWhateverWentToMemory) {
+  const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
+  ASSERT_NE(ctx, nullptr);
+  const JobPlan& plan = ctx->plan;
+  ASSERT_EQ(plan.tiles(), 4);
+  ASSERT_EQ(plan.groups, 4);
+  ScratchDir dir;
+  std::vector<int> tiles(plan.tiles()), groups(plan.groups);
+  std::iota(tiles.begin(), tiles.end(), 0);
+  std::iota(groups.begin(), groups.end(), 0);
+  const std::vector<bool> none(plan.tiles(), false);
+  ASSERT_TRUE(
+      BakeByHandWithMemory(*ctx, dir.path() / "disk.wbk", nullptr, tiles, none, groups).ok());
+  const auto expected = ReadTree(dir.path() / "disk.wbk");
+  ASSERT_TRUE(expected.contains("transport/indptr/0"));
+
+  // Every tile in memory, shuffled, a tile and a group retried.
+  std::mt19937 rng(11);
+  std::shuffle(tiles.begin(), tiles.end(), rng);
+  std::shuffle(groups.begin(), groups.end(), rng);
+  tiles.push_back(tiles.front());
+  groups.push_back(groups.front());
+  MemoryStaging memory(RawStagingBytes(plan));
+  const std::vector<bool> all(plan.tiles(), true);
+  const auto held = dir.path() / "memory.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(*ctx, held, &memory, tiles, all, groups).ok());
+  EXPECT_TRUE(ReadTree(held) == expected);
+  EXPECT_EQ(memory.held_bytes(), 0u);  // FINALIZE dropped the job
+
+  // Half the tiles in memory, half in the store.
+  const std::vector<bool> half = {true, false, true, false};
+  const auto mixed = dir.path() / "mixed.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(*ctx, mixed, &memory, tiles, half, groups).ok());
+  EXPECT_TRUE(ReadTree(mixed) == expected);
+}
+
+// The bunny's 2503 vertices along a Hilbert curve of 64×64 cells leave its
+// last 32×32 tile without a sample: in memory that tile is never traced and
+// its chunks are pages never written, which read as the zeros the store
+// holds for it.
+TEST(MemoryStagingTest, ATileWithoutSamplesStagesTheSameZeros) {
+  BakeParams p;
+  p.light_res = 8;
+  p.layout = "hilbert:64x64";
+  p.tile_size = 32;
+  absl::StatusOr<std::unique_ptr<BakeContext>> made =
+      MakeBakeContext(std::string(WB_SHARED_DATA) + "/models/bunny.obj", p);
+  ASSERT_TRUE(made.ok()) << made.status();
+  const BakeContext& ctx = **made;
+  const JobPlan& plan = ctx.plan;
+  ASSERT_EQ(plan.tiles(), 4);
+  int empty_tiles = 0;
+  for (int t = 0; t < plan.tiles(); ++t) {
+    const TileRect r = plan.Tile(t);
+    bool any = false;
+    for (int y = r.y0; y < r.y0 + r.height; ++y)
+      for (int x = r.x0; x < r.x0 + r.width; ++x) any |= ctx.samples.grid[y * 64 + x] >= 0;
+    empty_tiles += !any;
+  }
+  ASSERT_EQ(empty_tiles, 1);
+  ScratchDir dir;
+  std::vector<int> tiles(plan.tiles()), groups(plan.groups);
+  std::iota(tiles.begin(), tiles.end(), 0);
+  std::iota(groups.begin(), groups.end(), 0);
+  const auto disk = dir.path() / "disk.wbk", held = dir.path() / "memory.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(ctx, disk, nullptr, tiles,
+                                   std::vector<bool>(plan.tiles(), false), groups)
+                  .ok());
+  MemoryStaging memory(RawStagingBytes(plan));
+  ASSERT_TRUE(
+      BakeByHandWithMemory(ctx, held, &memory, tiles, std::vector<bool>(plan.tiles(), true), groups)
+          .ok());
+  EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+}
+
+TEST(MemoryStagingTest, MemoryChunksAreNotInTheStoreAndAJobOverBudgetUsesTheStore) {
+  const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
+  ASSERT_NE(ctx, nullptr);
+  const JobPlan& plan = ctx->plan;
+  ScratchDir dir;
+  const auto fits = dir.path() / "fits.wbk", over = dir.path() / "over.wbk";
+  MemoryStaging memory(RawStagingBytes(plan));
+  for (const auto& store : {fits, over}) {
+    ASSERT_TRUE(CreateStaging(plan, store).ok());
+    ASSERT_TRUE(BakeTile(*ctx, store, 0, nullptr, {}, &memory).ok());
+  }
+  // The first job took the whole budget: the second is staged in the store.
+  EXPECT_NE(memory.Find(fits), nullptr);
+  EXPECT_EQ(memory.Find(over), nullptr);
+  EXPECT_EQ(memory.held_bytes(), RawStagingBytes(plan));
+  const std::filesystem::path chunk = std::filesystem::path(store::kStagingTransport) / "0.0";
+  EXPECT_FALSE(std::filesystem::exists(fits / chunk));
+  EXPECT_TRUE(std::filesystem::exists(over / chunk));
+  EXPECT_TRUE(std::filesystem::exists(fits / store::kStagingTileEnergy / "0"));
+  memory.Drop(fits);
+  EXPECT_EQ(memory.held_bytes(), 0u);
+}
+
+TEST(MemoryStagingTest, AChunkInNeitherPlaceFailsTheGroupInsteadOfReadingZeros) {
+  const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
+  ASSERT_NE(ctx, nullptr);
+  const JobPlan& plan = ctx->plan;
+  ScratchDir dir;
+  const auto store = dir.path() / "lost.wbk";
+  ASSERT_TRUE(CreateStaging(plan, store).ok());
+  {
+    // Staged in a memory that is gone (another process's, say).
+    MemoryStaging gone(RawStagingBytes(plan));
+    for (int t = 0; t < plan.tiles(); ++t)
+      ASSERT_TRUE(BakeTile(*ctx, store, t, nullptr, {}, &gone).ok());
+  }
+  MemoryStaging memory(RawStagingBytes(plan));
+  ASSERT_TRUE(BakeTile(*ctx, store, 0, nullptr, {}, &memory).ok());  // a retried tile
+  const absl::Status s = TransformColumns(*ctx, store, 0, nullptr, {}, &memory);
+  EXPECT_EQ(s.code(), absl::StatusCode::kFailedPrecondition) << s;
+  EXPECT_NE(s.message().find("neither in memory nor staged"), std::string::npos) << s;
+}
+
+}  // namespace
+}  // namespace wavebake

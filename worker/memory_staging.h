@@ -1,0 +1,94 @@
+#pragma once
+// The blocked transpose without the store's round trip (DESIGN.md §2): when
+// every task of a job runs in one process (the embedded bake) and the job's
+// staging fits a stated memory budget, BAKE_TILE leaves its staging chunks
+// here, raw float32, and TRANSFORM_COLUMNS reads them from here, instead of
+// both compressing, writing, reading and decompressing every chunk of
+// staging/transport (on the bunny at N = 64: 402 MB of rows through zstd and
+// the page cache, a fifth of a refined bake's CPU). Everything else of
+// staging (the arrays' metadata, staging/tile_energy, the group results)
+// stays in the store, so a job whose staging does not fit, a kept staging
+// (--keep-staging, recodes) and remote workers use the chunked store as
+// before, and a store's bytes do not depend on where its staging was.
+//
+// A chunk is written once: a retried tile finds its chunks there (the same
+// values: they depend only on the context and the tile) and skips them.
+// Memory: at most `budget_bytes` of chunks over all jobs held, in one
+// mapping per job.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/bake/job_plan.h"
+
+namespace wavebake {
+
+class MemoryStaging {
+ public:
+  // What one job holds: chunk (g, t) of staging/transport at slot g·tiles + t.
+  class Job;
+
+  explicit MemoryStaging(uint64_t budget_bytes) : budget_(budget_bytes) {}
+
+  // The job staged at `store` (its partial store directory), admitted on the
+  // first call if its whole staging fits what is left of the budget; null
+  // if it does not (then it is never admitted later: every tile of a job
+  // goes the same way, unless memory for it cannot be mapped).
+  std::shared_ptr<Job> Admit(const std::filesystem::path& store, const JobPlan& plan);
+  // The job if it was admitted, else null.
+  std::shared_ptr<Job> Find(const std::filesystem::path& store) const;
+  // Forgets the job (FINALIZE drops staging); its memory goes when the last
+  // task still reading it lets go.
+  void Drop(const std::filesystem::path& store);
+
+  uint64_t held_bytes() const;
+
+ private:
+  mutable std::mutex mu_;
+  uint64_t budget_;
+  uint64_t held_ = 0;
+  std::map<std::string, std::shared_ptr<Job>> jobs_;
+  std::map<std::string, bool> refused_;  // jobs that did not fit
+};
+
+class MemoryStaging::Job {
+ public:
+  // One anonymous mapping for the job's chunks; null if it cannot be mapped.
+  static std::shared_ptr<Job> Map(const JobPlan& plan);
+  struct Mapping {
+    float* data = nullptr;
+    size_t bytes = 0;
+  };
+  Job(const JobPlan& plan, Mapping mapping);
+  ~Job();
+  Job(const Job&) = delete;
+  Job& operator=(const Job&) = delete;
+
+  // Chunk (g, t) to write if nobody wrote or is writing it, else empty
+  // (a retried or duplicated tile: the chunk is, or will be, the same).
+  // Publish (or Abandon, if the write failed) after filling it.
+  std::span<float> BeginWrite(int g, int t);
+  void Publish(int g, int t);
+  void Abandon(int g, int t);
+  // Chunk (g, t) once published, else empty. Never written again.
+  std::span<const float> Chunk(int g, int t) const;
+
+  uint64_t bytes() const { return slots_ * chunk_floats_ * sizeof(float); }
+
+ private:
+  enum class State : uint8_t { kEmpty, kWriting, kPublished };
+  size_t Slot(int g, int t) const { return size_t(g) * tiles_ + t; }
+
+  mutable std::mutex mu_;
+  int tiles_;
+  size_t slots_, chunk_floats_;
+  Mapping mapping_;
+  std::vector<State> state_;
+};
+
+}  // namespace wavebake
