@@ -141,8 +141,7 @@ absl::Status WriteColumns(const BakeContext& ctx, const std::filesystem::path& s
 }
 
 absl::Status WriteStore(const BakeContext& ctx, const std::filesystem::path& store,
-                        const FinalizeScan& scan, const StepPlan& steps,
-                        const FinalizeOptions& options) {
+                        const FinalizeScan& scan, const StepPlan& steps) {
   const JobPlan& plan = ctx.plan;
   StoreStats stats(plan.light_res, MaxDepth(plan.width, plan.height));
   if (absl::Status s = WriteColumns(ctx, store, scan, steps, &stats); !s.ok()) return s;
@@ -212,7 +211,7 @@ absl::Status FinalizeStore(const BakeContext& ctx, const std::filesystem::path& 
     absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
     if (!scan.ok()) return scan.status();
     const StepPlan steps = PlanFinalizeSteps(*scan, ctx.params);
-    if (absl::Status s = WriteStore(ctx, store, *scan, steps, options); !s.ok()) return s;
+    if (absl::Status s = WriteStore(ctx, store, *scan, steps); !s.ok()) return s;
   }
   // The job's staging chunks held in memory go with its staging/.
   if (options.memory) options.memory->Drop(store);
@@ -230,7 +229,7 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   for (int k = 0; k < FinalizeShards(ctx.plan.groups); ++k) {
     if (absl::Status s = WriteShard(ctx, store, *scan, steps, k, options); !s.ok()) return s;
   }
-  if (absl::Status s = WriteStore(ctx, store, *scan, steps, options); !s.ok()) return s;
+  if (absl::Status s = WriteStore(ctx, store, *scan, steps); !s.ok()) return s;
   if (options.memory) options.memory->Drop(store);
   return options.keep_staging ? absl::OkStatus() : DropStaging(store);
 }
