@@ -50,6 +50,15 @@ void AddBakeFlags(CLI::App& cmd, BakeFlags& flags) {
                  "what a row holds: diffuse (T = V cos/π) or visibility (V alone, for glossy "
                  "relighting by the triple product; needs --row-filter haar)")
       ->capture_default_str();
+  cmd.add_option("--bounces", f.bounces,
+                 "diffuse interreflection: light bounced B times off the scene's surfaces, 0..8, "
+                 "or auto (until the next bounce adds less than half of --target-error); 0: "
+                 "direct light only. Vertex layouts (hilbert, grid), diffuse transport")
+      ->capture_default_str();
+  cmd.add_option("--gather-rays", p.gather_rays,
+                 "stratified directions per sample that gather each bounce (rounded up to a "
+                 "square)")
+      ->capture_default_str();
   cmd.add_option("--seed", p.seed, "job seed (jitter and dither)")->capture_default_str();
   cmd.add_option("--refine", f.refine,
                  "on: trace only where visibility changes (coarse probes, refined along "

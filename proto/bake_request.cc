@@ -106,6 +106,14 @@ absl::Status CheckNumbers(v1::BakeRequest& r) {
     return Bad("column_group",
                absl::StrCat(r.column_group(), " is not in 1..65536 (or 0: the plan's)"));
   }
+  if ((r.bounces() < 0 && r.bounces() != kAutoBounces) || r.bounces() > kMaxBounces) {
+    return Bad("bounces",
+               absl::StrCat(r.bounces(), " is not in 0..", kMaxBounces, " (or -1: auto)"));
+  }
+  if (r.gather_rays() == 0) r.set_gather_rays(defaults.gather_rays);
+  if (r.gather_rays() < 1 || r.gather_rays() > 4096) {
+    return Bad("gather_rays", absl::StrCat(r.gather_rays(), " is not in 1..4096"));
+  }
   if (r.max_attempts() == 0) r.set_max_attempts(kDefaultMaxAttempts);
   if (r.max_attempts() < 1 || r.max_attempts() > 100) {
     return Bad("max_attempts", absl::StrCat(r.max_attempts(), " is not in 1..100"));
@@ -138,6 +146,8 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.column_group = r.column_group();
   p.keep_staging = r.keep_staging();
   p.refine = r.refine() != "off";
+  p.bounces = r.bounces();
+  p.gather_rays = r.gather_rays();
   return p;
 }
 
@@ -208,6 +218,8 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_column_group(p.column_group);
   r.set_keep_staging(p.keep_staging);
   r.set_refine(p.refines() ? "on" : "off");
+  r.set_bounces(p.bounces);
+  r.set_gather_rays(p.gather_rays);
   return r;
 }
 

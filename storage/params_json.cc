@@ -75,6 +75,11 @@ nlohmann::json ToJson(const BakeParams& p) {
   // the fields existed.
   if (p.transport != Transport::kDiffuse) j["transport"] = std::string(ToString(p.transport));
   if (p.light_domain.is_plane()) j["light_domain"] = ToString(p.light_domain);
+  // Absent means direct light only, so 0-bounce stores keep their bytes.
+  if (p.bounces != 0) {
+    j["bounces"] = p.bounces == kAutoBounces ? nlohmann::json("auto") : nlohmann::json(p.bounces);
+    j["gather_rays"] = p.gather_rays;
+  }
   return j;
 }
 
@@ -114,6 +119,12 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j) {
   if (j.contains("light_domain")) {  // absent: the cube (stores before the field)
     if (absl::Status s = GetEnum(j, "light_domain", ParseLightDomain, &p.light_domain); !s.ok())
       return s;
+  }
+  if (j.contains("bounces")) {  // absent: 0 (stores before the field)
+    absl::Status b = j["bounces"].is_string() ? GetEnum(j, "bounces", ParseBounces, &p.bounces)
+                                              : GetInt(j, "bounces", &p.bounces);
+    if (b.ok()) b = GetInt(j, "gather_rays", &p.gather_rays);
+    if (!b.ok()) return b;
   }
   p.target_error = target;
   p.ray_epsilon = static_cast<float>(epsilon);

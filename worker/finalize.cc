@@ -16,6 +16,7 @@
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_array.h"
+#include "worker/bounce_record.h"
 #include "worker/group_result.h"
 #include "worker/ordered_parallel.h"
 #include "worker/store_manifest.h"
@@ -304,10 +305,9 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
                                 {"budget", steps.budget}};
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
-  if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));
-      !s.ok()) {
-    return s;
-  }
+  nlohmann::json manifest = StoreManifest(ctx, bits, std::move(stats_json));
+  if (absl::Status s = AddBounceRecord(ctx, store, manifest); !s.ok()) return s;
+  if (absl::Status s = WriteAttrs(store, manifest); !s.ok()) return s;
   return options.keep_staging ? absl::OkStatus() : DropStaging(store);
 }
 

@@ -39,14 +39,14 @@ absl::StatusOr<BakeParams> ParseBakeParamWords(BakeParams p, const BakeParamWord
   if (w.refine != "on" && w.refine != "off")
     return absl::InvalidArgumentError(absl::StrCat("refine: '", w.refine, "' is not on or off"));
   p.refine = w.refine == "on";
-  for (absl::Status s :
-       {Set(ParseWaveletFilter(w.row_filter), p.row_filter, "row_"),
-        Set(ParseColumnMode(w.column_mode), p.column_mode),
-        Set(ParseWaveletFilter(w.column_filter), p.column_filter, "column_"),
-        Set(ParseErrorScope(w.error_scope), p.error_scope),
-        Set(ParseLevelScaling(w.level_scaling), p.level_scaling),
-        Set(ParseTransport(w.transport), p.transport),
-        Set(ParseLightDomain(w.light_domain), p.light_domain), ParseBits(w.bits, p.bits)})
+  for (absl::Status s : {Set(ParseWaveletFilter(w.row_filter), p.row_filter, "row_"),
+                         Set(ParseColumnMode(w.column_mode), p.column_mode),
+                         Set(ParseWaveletFilter(w.column_filter), p.column_filter, "column_"),
+                         Set(ParseErrorScope(w.error_scope), p.error_scope),
+                         Set(ParseLevelScaling(w.level_scaling), p.level_scaling),
+                         Set(ParseTransport(w.transport), p.transport),
+                         Set(ParseLightDomain(w.light_domain), p.light_domain),
+                         ParseBits(w.bits, p.bits), Set(ParseBounces(w.bounces), p.bounces)})
     if (!s.ok()) return s;
   if (absl::Status s = ValidateBakeParams(p); !s.ok()) return s;
   return p;

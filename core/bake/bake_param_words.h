@@ -12,7 +12,7 @@ namespace wavebake {
 struct BakeParamWords {
   std::string row_filter = "haar", column_mode = "adaptive", column_filter = "haar",
               error_scope = "matrix", bits = "auto", level_scaling = "uniform",
-              transport = "diffuse", light_domain = "cube", refine = "on";
+              transport = "diffuse", light_domain = "cube", refine = "on", bounces = "0";
   bool allow_uv_overlap = false;  // uv layouts: the layout's ",allow-overlap"
 };
 

@@ -1,5 +1,8 @@
 #include "core/bake/bake_params_io.h"
 
+#include <charconv>
+#include <string>
+
 #include "absl/strings/str_cat.h"
 #include "core/util/power_of_two.h"
 
@@ -77,6 +80,20 @@ absl::StatusOr<LevelScaling> ParseLevelScaling(std::string_view s) {
       absl::StrCat("level_scaling: unknown scaling '", std::string(s), "' (uniform|paper)"));
 }
 
+absl::StatusOr<int> ParseBounces(std::string_view s) {
+  if (s == "auto") return kAutoBounces;
+  int b = -1;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), b);
+  if (ec != std::errc() || ptr != s.data() + s.size() || b < 0 || b > kMaxBounces)
+    return absl::InvalidArgumentError(
+        absl::StrCat("bounces: '", std::string(s), "' is not 0..", kMaxBounces, " or auto"));
+  return b;
+}
+
+std::string BouncesToString(int bounces) {
+  return bounces == kAutoBounces ? "auto" : std::to_string(bounces);
+}
+
 absl::Status ValidateBakeParams(const BakeParams& p) {
   // Debian's Abseil has its own string_view, so views are passed as strings.
   auto bad = [](const char* field, const auto&... msg) {
@@ -112,6 +129,18 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   if (p.column_group < 0 || p.column_group > 65536)
     return bad("column_group", p.column_group, " is outside 1..65536 (or 0: the plan's)");
   if (!(p.ray_epsilon >= 0)) return bad("ray_epsilon", p.ray_epsilon, " is negative");
+  if ((p.bounces < 0 && p.bounces != kAutoBounces) || p.bounces > kMaxBounces)
+    return bad("bounces", p.bounces, " is outside 0..", kMaxBounces, " (or auto)");
+  if (p.gather_rays < 1 || p.gather_rays > 4096)
+    return bad("gather_rays", p.gather_rays, " is outside 1..4096");
+  // The triple product keeps V and ρ apart (vollick-lessig-haar-triple-product.md
+  // §1 Eq. 16 against Eq. 10): light that bounces off other surfaces depends on
+  // their BRDF, so it cannot be folded into a visibility row.
+  if (p.bounces != 0 && p.transport == Transport::kVisibility)
+    return bad("bounces",
+               "a visibility transport cannot hold interreflection: the triple product keeps "
+               "visibility and the BRDF apart, and bounced light depends on both (bake "
+               "--transport diffuse for bounces)");
   return absl::OkStatus();
 }
 

@@ -22,6 +22,10 @@ absl::StatusOr<ErrorScope> ParseErrorScope(std::string_view s);        // matrix
 absl::StatusOr<LevelScaling> ParseLevelScaling(std::string_view s);    // uniform|paper
 absl::StatusOr<Transport> ParseTransport(std::string_view s);          // diffuse|visibility
 
+// 0..kMaxBounces or "auto" (kAutoBounces), and back.
+absl::StatusOr<int> ParseBounces(std::string_view s);
+std::string BouncesToString(int bounces);
+
 // Checks every field; the message names the bad field (e.g. "light_res: 33 is
 // not a power of two in 8..256"). The layout string is checked by ParseLayout.
 absl::Status ValidateBakeParams(const BakeParams& p);
