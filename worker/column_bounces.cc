@@ -60,48 +60,80 @@ bool BounceStopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
 }
 
-// Mesh and lightmap layouts: T_b = G T_{b−1} over the layout's own cells.
+// Columns first..first+n of `images` (each `cells` long) into `block`,
+// interleaved (block[cell·n + k] = column first+k), and back, added.
+void Interleave(std::span<const float> images, size_t cells, int first, int n,
+                std::span<float> block) {
+  for (int k = 0; k < n; ++k) {
+    const float* src = images.data() + size_t(first + k) * cells;
+    for (size_t i = 0; i < cells; ++i) block[i * n + k] = src[i];
+  }
+}
+
+// energy[b] += Σ v² of each interleaved vector in column order; the image
+// columns += the block (the per-column sums of the unblocked loop, same bits).
+void AddBlock(std::span<const float> block, size_t cells, int first, int n, std::span<float> images,
+              double& energy) {
+  for (int k = 0; k < n; ++k) {
+    double sum = 0;
+    float* dst = images.data() + size_t(first + k) * cells;
+    for (size_t i = 0; i < cells; ++i) {
+      const float v = block[i * n + k];
+      sum += double(v) * v;
+      dst[i] += v;
+    }
+    energy += sum;
+  }
+}
+
+// Mesh and lightmap layouts: T_b = G T_{b−1} over the layout's own cells,
+// BounceGather::kMaxBlock columns at a time (one pass over G's entries per
+// block; the values of the columns side by side).
 absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int group,
                            std::span<float> images, std::vector<double>& energy,
                            const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height;
-  std::vector<float> previous(cells), next(cells);
-  for (int c = 0; c < plan.GroupCount(group); ++c) {
+  const int count = plan.GroupCount(group);
+  std::vector<float> previous(cells * BounceGather::kMaxBlock), next(previous.size());
+  for (int first = 0; first < count; first += BounceGather::kMaxBlock) {
     if (BounceStopped(signals))
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
-    const std::span<float> image = images.subspan(c * cells, cells);
-    energy[0] += BounceSumOfSquares(image);
-    std::copy(image.begin(), image.end(), previous.begin());
+    const int n = std::min(BounceGather::kMaxBlock, count - first);
+    for (int k = 0; k < n; ++k)
+      energy[0] += BounceSumOfSquares(images.subspan(size_t(first + k) * cells, cells));
+    Interleave(images, cells, first, n, previous);
     for (int b = 1; b <= plan.bounces; ++b) {
-      gather.Apply(previous, next);
-      energy[b] += BounceSumOfSquares(next);
-      for (size_t i = 0; i < cells; ++i) image[i] += next[i];
+      gather.ApplyBlock(previous, next, n);
+      AddBlock(next, cells, first, n, images, energy[b]);
       previous.swap(next);
     }
   }
   return absl::OkStatus();
 }
 
-// A camera layout: T_b = G_ca G_aa^{b−1} A₀ (core/bake/bake_gather.h).
+// A camera layout: T_b = G_ca G_aa^{b−1} A₀ (core/bake/bake_gather.h), in
+// blocks of columns as above.
 absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
                            const std::filesystem::path& store, int group, std::span<float> images,
                            std::vector<double>& energy, const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height, samples = plan.aux_samples;
-  std::vector<float> aux(size_t(plan.GroupCount(group)) * samples);
+  const int count = plan.GroupCount(group);
+  std::vector<float> aux(size_t(count) * samples);
   if (absl::Status s = AssembleAuxColumns(plan, store, group, aux); !s.ok()) return s;
-  std::vector<float> previous(samples), next(samples), bounce(cells);
-  for (int c = 0; c < plan.GroupCount(group); ++c) {
+  constexpr int kBlock = BounceGather::kMaxBlock;
+  std::vector<float> previous(samples * kBlock), next(previous.size()), bounce(cells * kBlock);
+  for (int first = 0; first < count; first += kBlock) {
     if (BounceStopped(signals))
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
-    const std::span<float> image = images.subspan(c * cells, cells);
-    energy[0] += BounceSumOfSquares(image);
-    std::copy_n(aux.begin() + c * samples, samples, previous.begin());
+    const int n = std::min(kBlock, count - first);
+    for (int k = 0; k < n; ++k)
+      energy[0] += BounceSumOfSquares(images.subspan(size_t(first + k) * cells, cells));
+    Interleave(aux, samples, first, n, previous);
     for (int b = 1; b <= plan.bounces; ++b) {
-      gathers.gather.Apply(previous, bounce);
-      energy[b] += BounceSumOfSquares(bounce);
-      for (size_t i = 0; i < cells; ++i) image[i] += bounce[i];
+      gathers.gather.ApplyBlock(previous, bounce, n);
+      AddBlock(bounce, cells, first, n, images, energy[b]);
       if (b == plan.bounces) break;
-      gathers.aux_gather->Apply(previous, next);
+      gathers.aux_gather->ApplyBlock(previous, next, n);
       previous.swap(next);
     }
   }

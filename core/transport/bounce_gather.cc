@@ -104,6 +104,20 @@ void BounceGather::Apply(std::span<const float> in, std::span<float> out) const 
   }
 }
 
+void BounceGather::ApplyBlock(std::span<const float> in, std::span<float> out, int n) const {
+  double acc[kMaxBlock];
+  for (int c = 0; c < cells; ++c) {
+    std::fill_n(acc, n, 0.0);
+    for (int64_t e = offsets[c]; e < offsets[c + 1]; ++e) {
+      const double w = weight[e];
+      const float* src = in.data() + size_t(source[e]) * n;
+      for (int k = 0; k < n; ++k) acc[k] += w * src[k];
+    }
+    float* dst = out.data() + size_t(c) * n;
+    for (int k = 0; k < n; ++k) dst[k] = static_cast<float>(acc[k]);
+  }
+}
+
 namespace {
 
 // Where the previous bounce is read at a hit point: the sample cells around

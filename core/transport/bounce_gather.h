@@ -65,6 +65,12 @@ struct BounceGather {
   // out[c] = Σ_j G[c, j] in[j], summed in double in entry order (deterministic).
   // in has `sources` entries, out `cells`; they must not overlap.
   void Apply(std::span<const float> in, std::span<float> out) const;
+  // Apply to n ≤ kMaxBlock vectors at once, interleaved: in[j·n + k] is
+  // element j of vector k, out[c·n + k] likewise. Each output is summed as
+  // Apply sums it (the same bits); one pass over the entries serves n
+  // vectors, their n values contiguous.
+  static constexpr int kMaxBlock = 32;
+  void ApplyBlock(std::span<const float> in, std::span<float> out, int n) const;
   int64_t entries() const { return static_cast<int64_t>(source.size()); }
 };
 

@@ -110,6 +110,28 @@ TEST(BounceGatherTest, OpenPlaneHasNoBounce) {
   EXPECT_EQ(g->hits, 0u);
 }
 
+// The blocked product (TRANSFORM_COLUMNS applies G to 32 columns at once)
+// gives every vector the bits of the one-vector product.
+TEST(BounceGatherTest, BlockedProductIsTheProductOfEachVector) {
+  const Scene scene = SceneOf({Bowl(6, 12, {0.5f, 0.7f, 0.9f})});
+  const RayCaster caster = BuildOrDie(scene);
+  const SampleSet s = VertexSamples(scene, 16, 8);
+  absl::StatusOr<BounceGather> g = MakeBounceGather(scene, caster, s, {.rays = 16});
+  ASSERT_TRUE(g.ok()) << g.status();
+  for (int n : {1, 5, BounceGather::kMaxBlock}) {
+    std::vector<float> block(size_t(s.cells()) * n), out(block.size());
+    for (size_t i = 0; i < block.size(); ++i) block[i] = std::sin(0.37f * i) + 1.5f;
+    g->ApplyBlock(block, out, n);
+    std::vector<float> one(s.cells()), expected(s.cells());
+    for (int k = 0; k < n; ++k) {
+      for (int c = 0; c < s.cells(); ++c) one[c] = block[size_t(c) * n + k];
+      g->Apply(one, expected);
+      for (int c = 0; c < s.cells(); ++c)
+        ASSERT_EQ(out[size_t(c) * n + k], expected[c]) << "n " << n << " vector " << k;
+    }
+  }
+}
+
 // The operator depends on (scene, samples, seed, rays) only: not on threads.
 TEST(BounceGatherTest, SameOperatorOnAnyNumberOfThreads) {
   const Scene scene = SceneOf({Bowl(6, 12, {0.5f, 0.7f, 0.9f})});
