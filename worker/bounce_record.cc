@@ -59,8 +59,8 @@ absl::Status AddBounceRecord(const BakeContext& ctx, const std::filesystem::path
         {"gather_entries", ctx.bounce->aux_gather->entries()},
         {"convention",
          "the camera's pixels gather bounced light from every vertex of the scene's meshes, in "
-         "mesh order, whose direct rows were baked beside theirs: T = T_0 + G_ca sum_{b<B} "
-         "G_aa^b A_0"}};
+         "mesh order, whose direct rows A_0 were baked beside theirs: T = T_0 + G_ca sum_{b<B} "
+         "G_aa^b A_0; bounces.energy[b] is then the vertices' sum of (G_aa^b A_0)^2, b = 0..B"}};
   }
   if (ctx.auto_bounces) {
     manifest["bounces"]["auto"] = {

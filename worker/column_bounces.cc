@@ -11,9 +11,9 @@
 namespace wavebake {
 namespace {
 
-double BounceSumOfSquares(std::span<const float> v) {
+double BounceSumOfSquares(const float* v, size_t n) {
   double sum = 0;
-  for (float x : v) sum += double(x) * x;
+  for (size_t i = 0; i < n; ++i) sum += double(v[i]) * v[i];
   return sum;
 }
 
@@ -100,7 +100,7 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
     const int n = std::min(BounceGather::kMaxBlock, count - first);
     for (int k = 0; k < n; ++k)
-      energy[0] += BounceSumOfSquares(images.subspan(size_t(first + k) * cells, cells));
+      energy[0] += BounceSumOfSquares(images.data() + size_t(first + k) * cells, cells);
     Interleave(images, cells, first, n, previous);
     for (int b = 1; b <= plan.bounces; ++b) {
       gather.ApplyBlock(previous, next, n);
@@ -111,8 +111,11 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
   return absl::OkStatus();
 }
 
-// A camera layout: T_b = G_ca G_aa^{b−1} A₀ (core/bake/bake_gather.h), in
-// blocks of columns as above.
+// A camera layout: Σ_{b=1..B} T_b = G_ca Σ_{b<B} G_aa^b A₀ (core/bake/
+// bake_gather.h): the bounces run over the auxiliary set, and the pixels
+// gather their sum once, so a bounce costs one product with G_aa. energy[b]
+// is then that of the auxiliary set's bounce b, Σ (G_aa^b A₀)² (the record
+// says so), in blocks of columns as above.
 absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
                            const std::filesystem::path& store, int group, std::span<float> images,
                            std::vector<double>& energy, const TaskSignals& signals) {
@@ -121,21 +124,30 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
   std::vector<float> aux(size_t(count) * samples);
   if (absl::Status s = AssembleAuxColumns(plan, store, group, aux); !s.ok()) return s;
   constexpr int kBlock = BounceGather::kMaxBlock;
-  std::vector<float> previous(samples * kBlock), next(previous.size()), bounce(cells * kBlock);
+  std::vector<float> previous(samples * kBlock), next(previous.size()), sum(previous.size()),
+      bounce(cells * kBlock);
   for (int first = 0; first < count; first += kBlock) {
     if (BounceStopped(signals))
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
     const int n = std::min(kBlock, count - first);
     for (int k = 0; k < n; ++k)
-      energy[0] += BounceSumOfSquares(images.subspan(size_t(first + k) * cells, cells));
+      energy[0] += BounceSumOfSquares(aux.data() + size_t(first + k) * samples, samples);
     Interleave(aux, samples, first, n, previous);
+    std::copy_n(previous.begin(), samples * n, sum.begin());
     for (int b = 1; b <= plan.bounces; ++b) {
-      gathers.gather.ApplyBlock(previous, bounce, n);
-      AddBlock(bounce, cells, first, n, images, energy[b]);
-      if (b == plan.bounces) break;
       gathers.aux_gather->ApplyBlock(previous, next, n);
+      for (int k = 0; k < n; ++k) {
+        double e = 0;
+        for (size_t i = 0; i < samples; ++i) e += double(next[i * n + k]) * next[i * n + k];
+        energy[b] += e;
+      }
+      if (b < plan.bounces)
+        for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
       previous.swap(next);
     }
+    gathers.gather.ApplyBlock(sum, bounce, n);
+    double pixels = 0;  // the pixels' bounced light: added, not recorded
+    AddBlock(bounce, cells, first, n, images, pixels);
   }
   return absl::OkStatus();
 }
