@@ -1,7 +1,8 @@
 #!/bin/bash
 # The charts of docs/RESULTS.md in one command: builds
-# bench_charts_data, bench_charts_runtime, bench_charts_uv, bench_charts_glossy
-# and bench_charts_near (the near-field charts, bench/charts_near.py), runs the sweeps into
+# bench_charts_data, bench_charts_runtime, bench_charts_uv, bench_charts_glossy,
+# bench_charts_near (the near-field charts, bench/charts_near.py) and
+# bench_charts_bounces (chart 12, bench/charts_bounces.py), runs the sweeps into
 # docs/charts/*.csv, then plots
 # docs/charts/*.png with /usr/bin/python3 + matplotlib (Agg).
 #
@@ -23,7 +24,7 @@ done
 out="$here/docs/charts"
 [[ -n "$quick" ]] && out="$build/charts-quick"
 cmake --build "$build" -j2 --target bench_charts_data bench_charts_runtime bench_charts_uv \
-  bench_charts_glossy bench_charts_near
+  bench_charts_glossy bench_charts_near bench_charts_bounces
 start=$(date +%s)
 "$build/bench_charts_data" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 "$build/bench_charts_runtime" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
@@ -33,7 +34,10 @@ start=$(date +%s)
 "$build/bench_charts_glossy" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 # Charts 9, 10 and the grazing loss (near-field area lights).
 "$build/bench_charts_near" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
+# Chart 12 (diffuse bounces; its path-traced references take most of the time).
+"$build/bench_charts_bounces" "$out" $quick --threads "${WB_CHART_THREADS:-2}"
 rm -rf "$out/work"  # the near-field charts' store
 /usr/bin/python3 "$here/bench/charts.py" "$out" "$out"
 /usr/bin/python3 "$here/bench/charts_near.py" "$out" "$out"
+/usr/bin/python3 "$here/bench/charts_bounces.py" "$out" "$out"
 echo "charts: $out ($(( $(date +%s) - start )) s)"

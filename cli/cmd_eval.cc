@@ -149,6 +149,9 @@ void AddEvalCommand(CLI::App& app) {
   cmd->add_option("--reference-se", flags->options.reference.target_rel_se,
                   "target relative standard error of the reference")
       ->capture_default_str();
+  cmd->add_option("--bounces", flags->options.bounces,
+                  "diffuse bounces of the reference, 0..8 (default: the store's; above 0 a "
+                  "path-traced reference with next-event estimation)");
   AddGlossyFlags(*cmd, flags->glossy);
   cmd->add_flag("--no-dense", flags->no_dense,
                 "skip retracing the uncompressed rows (T, or V for a visibility store)");

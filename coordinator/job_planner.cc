@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "coordinator/scene_store.h"
+#include "core/bake/bake_gather.h"
 #include "core/bake/job_plan.h"
 #include "core/layouts/layout.h"
 #include "core/layouts/sample_layout.h"
@@ -155,7 +156,10 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     absl::StatusOr<std::pair<int, int>> grid = LayoutGridSize(*scene, *layout);
     if (!grid.ok()) return grid.status();
     const auto [width, height] = *grid;
-    const JobPlan plan = MakeJobPlan(*params, width, height);
+    JobPlan plan = MakeJobPlan(*params, width, height);
+    // A camera's bounces gather from the meshes' vertices, baked as tiles of
+    // their own (core/bake/bake_gather.h).
+    plan.aux_samples = AuxSampleCount(*scene, *params, *layout);
     // Samples that will trace: every vertex for hilbert (the rest of its grid
     // is masked); the covered texels for uv, whose rasterization also refuses
     // an atlas that is no lightmap before any worker starts; every cell
@@ -171,11 +175,11 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     }
     if (absl::Status s = ReservePartialStore(options.store_root, request.output_name()); !s.ok())
       return s;
-    return PlannedJob{
-        .tiles = plan.tiles(),
-        .groups = plan.groups,
-        .total_rays_estimate = EstimateRays(samples, plan.columns, params->supersample),
-        .store_path = {}};  // the request's output_name
+    return PlannedJob{.tiles = plan.all_tiles(),
+                      .groups = plan.groups,
+                      .total_rays_estimate = EstimateRays(samples + plan.aux_samples, plan.columns,
+                                                          params->supersample),
+                      .store_path = {}};  // the request's output_name
   };
 }
 

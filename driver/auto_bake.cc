@@ -95,7 +95,7 @@ absl::Status TraceResolution(const std::string& scene, BakeParams params, int li
   absl::StatusOr<std::unique_ptr<BakeContext>> ctx = MakeBakeContext(scene, params);
   if (!ctx.ok()) return ctx.status();
   trace = {light_res, *std::move(ctx), dir / absl::StrCat("trace-N", light_res)};
-  const int tiles = trace.ctx->plan.tiles();
+  const int tiles = trace.ctx->plan.all_tiles();
   int reported = 0;  // quarters
   absl::StatusOr<uint64_t> rays = TraceStaging(
       *trace.ctx, trace.dir,

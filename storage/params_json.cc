@@ -22,7 +22,7 @@ absl::Status Bad(std::string_view field, std::string_view why) {
 template <class T>
 json ValueOf(const params::Number<T>& row, const BakeParams& p) {
   const T v = p.*row.field;
-  return v == 0 && row.zero_is_word ? json(std::string(row.zero)) : json(v);
+  return v == row.special_value && row.special_is_word ? json(std::string(row.special)) : json(v);
 }
 inline json ValueOf(const params::Switch& row, const BakeParams& p) {
   return params::InWords(row) ? json(params::Spell(row, p)) : json(p.*row.field);
@@ -43,8 +43,8 @@ inline json AbsentOf(const params::Switch& row) {
 
 template <class T>
 absl::Status Read(const params::Number<T>& row, const json& v, BakeParams& p) {
-  if (row.zero_is_word && v == row.zero) {
-    p.*row.field = 0;
+  if (row.special_is_word && v == row.special) {
+    p.*row.field = row.special_value;
     return absl::OkStatus();
   }
   if constexpr (std::is_same_v<T, uint64_t>) {
@@ -75,7 +75,9 @@ json ToJson(const BakeParams& p) {
   params::ForEach([&](const auto& row) {
     if (row.info.record == params::Record::kNever) return;
     json v = ValueOf(row, p);
-    if (row.info.record == params::Record::kUnlessAbsent && v == AbsentOf(row)) return;
+    if (row.info.record == params::Record::kUnlessAbsent &&
+        (row.info.recorded_if ? !row.info.recorded_if(p) : v == AbsentOf(row)))
+      return;
     j[std::string(row.info.name)] = std::move(v);
   });
   return j;

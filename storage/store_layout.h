@@ -36,6 +36,13 @@ inline constexpr char kStagingTransport[] = "staging/transport";
 // float32 [tiles] chunked [1]: Σ of squared staged values of each tile (the
 // matrix energy is needed by the "matrix" error scope before any group runs).
 inline constexpr char kStagingTileEnergy[] = "staging/tile_energy";
+// float32 [groups, bounces+1] chunked [1, bounces+1] (bounces > 0 only): Σ T_b²
+// over each group's columns for b = 0..bounces (worker/transform_columns.h).
+inline constexpr char kStagingBounceEnergy[] = "staging/bounce_energy";
+// float32 [M, aux_tiles·tile_cells] chunked [group_size, tile_cells] (camera
+// layouts with bounces only): the direct rows of the auxiliary samples the
+// bounces gather from (worker/staging.h).
+inline constexpr char kStagingAuxTransport[] = "staging/aux_transport";
 // Not Zarr: one <g>.wbg file per TRANSFORM_COLUMNS group (worker/group_result.h).
 inline constexpr char kStagingGroups[] = "staging/groups";
 // Not Zarr: one <k>.wbq file per FINALIZE shard, its columns' quantization

@@ -1,5 +1,6 @@
 #include "worker/bake_context.h"
 
+#include "core/bake/bake_gather.h"
 #include "core/bake/bake_params_io.h"
 #include "core/layouts/sample_layout.h"
 #include "core/scene/scene_hash.h"
@@ -43,6 +44,18 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
   if (params.refines()) ctx->refine.emplace(ctx->cubemap, ctx->jitter, RefineOptions{});
   ctx->plan = MakeJobPlan(params, ctx->samples.width, ctx->samples.height);
   ctx->epsilon = params.ray_epsilon > 0 ? params.ray_epsilon : ctx->caster.DefaultEpsilon();
+  if (params.bounces != 0) {
+    // A few rays per sample (S·R against the direct bake's S·M·K), traced
+    // once per context: every task that needs them shares them.
+    absl::StatusOr<BakeGathers> gathers =
+        MakeBakeGathers(ctx->scene, ctx->caster, ctx->samples, params, *layout, ctx->epsilon);
+    if (!gathers.ok()) return gathers.status();
+    if (params.bounces == kAutoBounces)
+      ctx->auto_bounces = ResolveBounces(params, *gathers, ctx->samples);
+    ctx->plan.bounces = ctx->auto_bounces ? ctx->auto_bounces->bounces : params.bounces;
+    ctx->plan.aux_samples = gathers->aux.size();
+    ctx->bounce = *std::move(gathers);
+  }
   return ctx;
 }
 

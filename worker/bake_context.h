@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
+#include "core/bake/bake_gather.h"
 #include "core/bake/bake_params.h"
 #include "core/bake/job_plan.h"
 #include "core/directions/cubemap.h"
@@ -39,6 +40,12 @@ struct BakeContext {
   JitterPattern jitter;
   std::optional<RefinePlan> refine;  // params.refine: the rows are traced by refinement
   float epsilon = 0;                 // ray offset along the normal (DESIGN.md §1)
+  // params.bounces != 0: the gather operators (core/bake/bake_gather.h), the
+  // same for every bounce and on every worker; a camera layout's include its
+  // auxiliary set (plan.aux_samples of them).
+  std::optional<BakeGathers> bounce;
+  // params.bounces auto: the choice (plan.bounces holds the count).
+  std::optional<AutoBounceChoice> auto_bounces;
   RayCaster caster;
 };
 

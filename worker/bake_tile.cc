@@ -51,6 +51,21 @@ absl::StatusOr<StagingArrays> OpenStaging(const JobPlan& plan, const std::filesy
 // transpose: 21–31 ms unpadded, 6–8 ms padded).
 size_t RowStride(const JobPlan& plan) { return static_cast<size_t>(plan.columns) + 16; }
 
+// One sample's direct row, traced as the parameters say.
+void TraceRow(const BakeContext& ctx, Vec3 position, Vec3 normal, std::span<float> row,
+              TransportStats* traced, RefineScratch& scratch) {
+  if (ctx.params.transport == Transport::kVisibility) {
+    VisibilityRow(ctx.caster, ctx.cubemap, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  } else if (ctx.refine) {
+    RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine, position, normal,
+                        ctx.epsilon, row, traced, scratch);
+  } else if (ctx.params.light_domain.is_plane()) {
+    TransportRow(ctx.caster, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  } else {  // the cube's faces in Z order
+    TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  }
+}
+
 // Row-transformed rows of the cells of tile row `cy`, cell c of the tile at
 // c*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
 // row is still in cache; the fixed order (cell, then m) makes the sum the
@@ -68,20 +83,7 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
       std::fill(row.begin(), row.end(), 0.0f);
       continue;
     }
-    if (ctx.params.transport == Transport::kVisibility) {
-      VisibilityRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
-                    ctx.samples.normal[id], ctx.epsilon, row, &traced);
-    } else if (ctx.refine) {
-      RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine,
-                          ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, row,
-                          &traced, scratch);
-    } else if (ctx.params.light_domain.is_plane()) {
-      TransportRow(ctx.caster, ctx.jitter, ctx.samples.position[id], ctx.samples.normal[id],
-                   ctx.epsilon, row, &traced);
-    } else {  // the cube's faces in Z order
-      TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, ctx.samples.position[id],
-                   ctx.samples.normal[id], ctx.epsilon, row, &traced);
-    }
+    TraceRow(ctx, ctx.samples.position[id], ctx.samples.normal[id], row, &traced, scratch);
     RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
     energy += SumOfSquares(row.data(), row.size());
     ++stats.samples;
@@ -119,6 +121,19 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
   return absl::OkStatus();
 }
 
+// Every group's chunk of the tile into `transport`, each transposed just
+// before it is compressed.
+absl::Status WriteTileChunks(const ZarrArray& transport, const JobPlan& plan, int tile,
+                             std::span<const float> rows, TileStats& stats) {
+  std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
+  for (int g = 0; g < plan.groups; ++g) {
+    TransposeGroup(rows, plan, g, chunk);
+    const int64_t index[] = {g, tile};
+    if (absl::Status s = WriteChunkCounted(transport, index, chunk, stats); !s.ok()) return s;
+  }
+  return absl::OkStatus();
+}
+
 absl::Status WriteTileEnergy(const StagingArrays& staging, int tile, double energy,
                              TileStats& stats) {
   const float tile_energy[] = {static_cast<float>(energy)};
@@ -133,27 +148,57 @@ bool HasSamples(const BakeContext& ctx, const TileRect& r) {
   return false;
 }
 
-// Every group's chunk of the tile, each transposed just before it is
-// compressed (or straight into its slot of an in-memory staging), then the
-// tile's energy.
+// Every group's chunk of the tile (or straight into its slot of an in-memory
+// staging), then the tile's energy.
 absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
                        const JobPlan& plan, int tile, std::span<const float> rows, double energy,
                        TileStats& stats) {
-  std::vector<float> chunk(memory ? 0 : static_cast<size_t>(plan.group_size) * plan.tile_cells());
-  for (int g = 0; g < plan.groups; ++g) {
-    if (memory) {
-      const std::span<float> slot = memory->BeginWrite(g, tile);
-      if (slot.empty()) continue;  // written by an earlier attempt: the same values
-      TransposeGroup(rows, plan, g, slot);
-      memory->Publish(g, tile);
-      continue;
-    }
-    TransposeGroup(rows, plan, g, chunk);
-    const int64_t index[] = {g, tile};
-    if (absl::Status s = WriteChunkCounted(staging.transport, index, chunk, stats); !s.ok())
+  if (!memory) {
+    if (absl::Status s = WriteTileChunks(staging.transport, plan, tile, rows, stats); !s.ok())
       return s;
+    return WriteTileEnergy(staging, tile, energy, stats);
+  }
+  for (int g = 0; g < plan.groups; ++g) {
+    const std::span<float> slot = memory->BeginWrite(g, tile);
+    if (slot.empty()) continue;  // written by an earlier attempt: the same values
+    TransposeGroup(rows, plan, g, slot);
+    memory->Publish(g, tile);
   }
   return WriteTileEnergy(staging, tile, energy, stats);
+}
+
+// Auxiliary tile `a` (core/bake/bake_gather.h): the direct rows of auxiliary
+// samples a·tile_cells.., the padding past the last one 0, into
+// staging/aux_transport. Not part of the matrix, so no tile energy.
+absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& store, int a,
+                         TileStats& local, const TaskSignals& signals) {
+  const JobPlan& plan = ctx.plan;
+  if (!ctx.bounce || ctx.bounce->aux.size() != plan.aux_samples)
+    return absl::FailedPreconditionError("bounces: the context has no auxiliary samples");
+  absl::StatusOr<ZarrArray> transport =
+      OpenChecked(store, store::kStagingAuxTransport, AuxTransportSpec(plan));
+  if (!transport.ok()) return transport.status();
+  const SampleSet& aux = ctx.bounce->aux;
+  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
+  RefineScratch scratch;
+  TransportStats traced;
+  for (int cell = 0; cell < plan.tile_cells(); ++cell) {
+    if (cell % 64 == 0 && signals.cancel && signals.cancel->load(std::memory_order_relaxed))
+      return absl::CancelledError(absl::StrCat("tile: ", plan.tiles() + a, " cancelled"));
+    const std::span<float> row = rows.subspan(cell * RowStride(plan), plan.columns);
+    const int id = a * plan.tile_cells() + cell;
+    if (id >= aux.size()) {
+      std::fill(row.begin(), row.end(), 0.0f);
+      continue;
+    }
+    TraceRow(ctx, aux.position[id], aux.normal[id], row, &traced, scratch);
+    RowTransform(ctx.params.row_filter, plan.light_res, row);
+    ++local.samples;
+    if (signals.rays_traced)
+      signals.rays_traced->store(traced.rays_traced, std::memory_order_relaxed);
+  }
+  local.rays_traced += traced.rays_traced;
+  return WriteTileChunks(*transport, plan, a, rows, local);
 }
 
 }  // namespace
@@ -161,9 +206,19 @@ absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
                       TileStats* stats, const TaskSignals& signals, MemoryStaging* memory) {
   const JobPlan& plan = ctx.plan;
-  if (tile < 0 || tile >= plan.tiles()) {
+  if (tile < 0 || tile >= plan.all_tiles()) {
     return absl::InvalidArgumentError(
-        absl::StrCat("tile: ", tile, " is outside 0..", plan.tiles() - 1));
+        absl::StrCat("tile: ", tile, " is outside 0..", plan.all_tiles() - 1));
+  }
+  if (tile >= plan.tiles()) {
+    TileStats local;
+    absl::Status s = BakeAuxTile(ctx, store, tile - plan.tiles(), local, signals);
+    if (stats) {
+      stats->rays_traced += local.rays_traced;
+      stats->bytes_written += local.bytes_written;
+      stats->samples += local.samples;
+    }
+    return s;
   }
   absl::StatusOr<StagingArrays> staging = OpenStaging(plan, store);
   if (!staging.ok()) return staging.status();

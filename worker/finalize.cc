@@ -12,6 +12,7 @@
 #include "storage/store_layout.h"
 #include "storage/store_samples.h"
 #include "storage/zarr_group.h"
+#include "worker/bounce_record.h"
 #include "worker/finalize_parts.h"
 #include "worker/ordered_parallel.h"
 #include "worker/store_manifest.h"
@@ -164,11 +165,9 @@ absl::Status WriteStore(const BakeContext& ctx, const std::filesystem::path& sto
                                 {"budget", steps.budget}};
   // The manifest is written last: its presence marks a complete store.
   if (absl::Status s = WriteGroup(store); !s.ok()) return s;
-  if (absl::Status s = WriteAttrs(store, StoreManifest(ctx, bits, std::move(stats_json)));
-      !s.ok()) {
-    return s;
-  }
-  return absl::OkStatus();
+  nlohmann::json manifest = StoreManifest(ctx, bits, std::move(stats_json));
+  if (absl::Status s = AddBounceRecord(ctx, store, manifest); !s.ok()) return s;
+  return WriteAttrs(store, manifest);
 }
 
 }  // namespace

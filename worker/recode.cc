@@ -84,7 +84,7 @@ absl::StatusOr<uint64_t> TraceStaging(const BakeContext& ctx, const std::filesys
   std::mutex progress;
   absl::Status s = CreateStaging(ctx.plan, partial, TraceRecord(ctx));
   if (s.ok()) {
-    s = ParallelTasks(ctx.plan.tiles(), options.threads, [&](int t) {
+    s = ParallelTasks(ctx.plan.all_tiles(), options.threads, [&](int t) {
       TileStats stats;
       if (absl::Status b = BakeTile(ctx, partial, t, &stats, {.cancel = options.cancel}); !b.ok())
         return b;

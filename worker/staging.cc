@@ -25,6 +25,21 @@ ArraySpec TileEnergySpec(const JobPlan& plan) {
   return spec;
 }
 
+ArraySpec AuxTransportSpec(const JobPlan& plan) {
+  ArraySpec spec = StagingTransportSpec(plan);
+  spec.shape = {plan.columns, int64_t{plan.aux_tiles()} * plan.tile_cells()};
+  return spec;
+}
+
+ArraySpec BounceEnergySpec(const JobPlan& plan) {
+  ArraySpec spec;
+  spec.shape = {plan.groups, plan.bounces + 1};
+  spec.chunks = {1, plan.bounces + 1};
+  spec.dtype = DType::kFloat32;
+  spec.fill_value = 0;
+  return spec;
+}
+
 absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& store,
                            const nlohmann::json& trace) {
   // Groups first, so a Zarr reader sees the hierarchy (DESIGN.md §3).
@@ -38,6 +53,16 @@ absl::Status CreateStaging(const JobPlan& plan, const std::filesystem::path& sto
   absl::StatusOr<ZarrArray> transport =
       ZarrArray::Create(store::Path(store, store::kStagingTransport), StagingTransportSpec(plan));
   if (!transport.ok()) return transport.status();
+  if (plan.bounces > 0) {
+    absl::StatusOr<ZarrArray> bounce =
+        ZarrArray::Create(store::Path(store, store::kStagingBounceEnergy), BounceEnergySpec(plan));
+    if (!bounce.ok()) return bounce.status();
+  }
+  if (plan.aux_samples > 0) {
+    absl::StatusOr<ZarrArray> aux =
+        ZarrArray::Create(store::Path(store, store::kStagingAuxTransport), AuxTransportSpec(plan));
+    if (!aux.ok()) return aux.status();
+  }
   return ZarrArray::Create(store::Path(store, store::kStagingTileEnergy), TileEnergySpec(plan))
       .status();
 }

@@ -20,6 +20,16 @@ ArraySpec StagingTransportSpec(const JobPlan& plan);
 // staged values of each tile.
 ArraySpec TileEnergySpec(const JobPlan& plan);
 
+// staging/aux_transport (plan.aux_samples > 0): as staging/transport over
+// the auxiliary samples (core/bake/bake_gather.h), aux tile a holding samples
+// a·tile_cells.. (the last one padded with zero rows): [M, aux_tiles·tile_cells].
+ArraySpec AuxTransportSpec(const JobPlan& plan);
+
+// staging/bounce_energy (plan.bounces > 0): float32 [groups, bounces+1]
+// chunked [1, bounces+1], fill 0: row g holds Σ T_b² over group g's columns
+// for b = 0..bounces, written by TRANSFORM_COLUMNS, summed by FINALIZE.
+ArraySpec BounceEnergySpec(const JobPlan& plan);
+
 // Creates the store's root group, the staging group and both arrays, and,
 // given one, writes `trace` (worker/recode.h TraceRecord: what the staged
 // values depend on) as the staging group's attributes, so that a kept

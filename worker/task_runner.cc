@@ -47,10 +47,10 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
 // Both sides cut the job with core/bake/job_plan.h; a mismatch means they disagree
 // about the scene or the parameters, and nothing this worker writes would fit.
 absl::Status CheckPlan(const v1::Task& task, const JobPlan& plan) {
-  if (task.tiles() == plan.tiles() && task.groups() == plan.groups) return absl::OkStatus();
+  if (task.tiles() == plan.all_tiles() && task.groups() == plan.groups) return absl::OkStatus();
   return absl::FailedPreconditionError(
       absl::StrCat("plan: the coordinator planned ", task.tiles(), " tiles and ", task.groups(),
-                   " groups, this worker ", plan.tiles(), " and ", plan.groups));
+                   " groups, this worker ", plan.all_tiles(), " and ", plan.groups));
 }
 
 // Tasks run only in a partial directory the planner reserved (see

@@ -9,6 +9,7 @@
 #include "core/columns/column_coding.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
+#include "worker/column_bounces.h"
 #include "worker/group_result.h"
 #include "worker/task_buffer.h"
 
@@ -138,6 +139,8 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   if (absl::Status s = AssembleColumns(plan, *staging, held.get(), group, images, &local, signals);
       !s.ok())
     return s;
+  // Diffuse interreflection, added to the column images before they are coded.
+  if (absl::Status s = AddGroupBounces(ctx, store, group, images, signals); !s.ok()) return s;
 
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);

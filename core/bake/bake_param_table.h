@@ -43,21 +43,26 @@ struct Info {
   Stage stage;
   Record record = Record::kAlways;
   bool in_request = true;  // a BakeRequest field of the same name
+  // Record::kUnlessAbsent: written where this holds, instead of where the
+  // value differs from `absent` (a parameter that means something only with
+  // another: gather_rays with bounces).
+  bool (*recorded_if)(const BakeParams&) = nullptr;
 };
 
-// A number in [lo, hi] (a power of two if asked). `zero` names what 0 means
-// when 0 is allowed outside the range ("auto" for bits; the words of a flag
-// that takes "auto"); `unset_is_default`: a request's 0 (proto3's unset)
-// takes the default.
+// A number in [lo, hi] (a power of two if asked). `special` names the one
+// value allowed outside the range and what it means (bits' 0 "auto",
+// column_group's 0 "the plan's", bounces' −1 "auto"); `special_is_word`: it is
+// spelled so on the command line and in .zattrs, never as its number.
+// `unset_is_default`: a request's 0 (proto3's unset) takes the default.
 template <class T>
 struct Number {
   Info info;
   T BakeParams::*field;
   double lo, hi;
   bool power_of_two = false;
-  std::string_view zero = {};
-  bool zero_is_word =
-      false;  // 0 is spelled `zero` (bits: "auto"), on the command line and in .zattrs
+  std::string_view special = {};
+  T special_value = 0;
+  bool special_is_word = false;
   bool unset_is_default = false;
 };
 
@@ -111,6 +116,7 @@ std::string PrintLayout(const std::string& s);
 absl::StatusOr<LightDomain> ParseDomainSpelling(std::string_view s);
 std::string PrintDomain(const LightDomain& d);
 inline bool Refines(const BakeParams& p) { return p.refines(); }
+inline bool HasBounces(const BakeParams& p) { return p.bounces != 0; }
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -118,15 +124,13 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 template <class Visit>
 void ForEach(Visit&& visit) {
   using S = Stage;
-  visit(Number<int>{{"light_res", "--light-res",
-                     "cubemap texels per face edge N (power of two, 8..256)", S::kTrace},
-                    &BakeParams::light_res,
-                    8,
-                    256,
-                    true,
-                    {},
-                    false,
-                    true});
+  visit(Number<int>{.info = {"light_res", "--light-res",
+                             "cubemap texels per face edge N (power of two, 8..256)", S::kTrace},
+                    .field = &BakeParams::light_res,
+                    .lo = 8,
+                    .hi = 256,
+                    .power_of_two = true,
+                    .unset_is_default = true});
   visit(Spelled<LightDomain>{
       {"light_domain", "--light-domain",
        "cube | plane:S[:AXIS]: one face of size S (3..10) aligned with a light plane normal to "
@@ -145,14 +149,12 @@ void ForEach(Visit&& visit) {
       &BakeParams::layout,
       ParseLayoutSpelling,
       PrintLayout});
-  visit(Number<int>{{"supersample", "--supersample", "jittered directions per texel K", S::kTrace},
-                    &BakeParams::supersample,
-                    1,
-                    256,
-                    false,
-                    {},
-                    false,
-                    true});
+  visit(Number<int>{
+      .info = {"supersample", "--supersample", "jittered directions per texel K", S::kTrace},
+      .field = &BakeParams::supersample,
+      .lo = 1,
+      .hi = 256,
+      .unset_is_default = true});
   visit(
       Words<WaveletFilter>{{"row_filter", "--row-filter", "row transform: haar | daub4", S::kTrace},
                            &BakeParams::row_filter,
@@ -165,39 +167,36 @@ void ForEach(Visit&& visit) {
       {"column_filter", "--column-filter", "column filter: haar | legall53 | cdf97", S::kColumns},
       &BakeParams::column_filter,
       kColumnFilters});
-  visit(Number<double>{
-      {"target_error", "--target-error",
-       "relative RMS error budget of the stored columns (DESIGN.md §1, see --error-scope)",
-       S::kColumns},
-      &BakeParams::target_error,
-      0,
-      1,
-      false,
-      {},
-      false,
-      true});
+  visit(
+      Number<double>{.info = {"target_error", "--target-error",
+                              "relative RMS error budget of the stored columns (DESIGN.md §1, see "
+                              "--error-scope)",
+                              S::kColumns},
+                     .field = &BakeParams::target_error,
+                     .lo = 0,
+                     .hi = 1,
+                     .unset_is_default = true});
   visit(Words<ErrorScope>{
       {"error_scope", "--error-scope",
        "matrix: budget relative to the mean column energy; column: to each column's own",
        S::kColumns},
       &BakeParams::error_scope,
       kErrorScopes});
-  visit(
-      Number<int>{{"column_terms", "--column-terms",
-                   "keep exactly K coefficients per column instead of --target-error", S::kColumns},
-                  &BakeParams::column_terms,
-                  0,
-                  std::numeric_limits<int>::max()});
-  visit(Number<int>{{"bits", "--bits",
-                     "quantization bits 2..16 (each column's max to the largest code), or auto "
-                     "(the error budget's quantization half)",
-                     S::kColumns},
-                    &BakeParams::bits,
-                    2,
-                    16,
-                    false,
-                    "auto",
-                    true});
+  visit(Number<int>{
+      .info = {"column_terms", "--column-terms",
+               "keep exactly K coefficients per column instead of --target-error", S::kColumns},
+      .field = &BakeParams::column_terms,
+      .lo = 0,
+      .hi = std::numeric_limits<int>::max()});
+  visit(Number<int>{.info = {"bits", "--bits",
+                             "quantization bits 2..16 (each column's max to the largest code), "
+                             "or auto (the error budget's quantization half)",
+                             S::kColumns},
+                    .field = &BakeParams::bits,
+                    .lo = 2,
+                    .hi = 16,
+                    .special = "auto",
+                    .special_is_word = true});
   visit(Words<LevelScaling>{{"level_scaling", "--level-scaling",
                              "uniform: one step per column (auto: one matrix-wide step); paper: "
                              "values of level l times 2^l first (4D paper §4.3)",
@@ -210,10 +209,10 @@ void ForEach(Visit&& visit) {
                           S::kTrace, Record::kUnlessAbsent},
                          &BakeParams::transport,
                          kTransports});
-  visit(Number<uint64_t>{{"seed", "--seed", "job seed (jitter and dither)", S::kTrace},
-                         &BakeParams::seed,
-                         0,
-                         18446744073709551615.0});
+  visit(Number<uint64_t>{.info = {"seed", "--seed", "job seed (jitter and dither)", S::kTrace},
+                         .field = &BakeParams::seed,
+                         .lo = 0,
+                         .hi = 18446744073709551615.0});
   visit(Switch{{"refine", "--refine",
                 "on: trace only where visibility changes (coarse probes, refined along "
                 "silhouettes; fully visible texels get their exact integral; cube light domain "
@@ -224,35 +223,51 @@ void ForEach(Visit&& visit) {
                "off",
                /*absent=*/false,
                Refines});
+  visit(Number<int>{
+      .info = {"bounces", "--bounces",
+               "diffuse interreflection: light bounced B times off the scene's surfaces, 0..8, "
+               "or auto (until the next bounce adds less than half of --target-error); 0: "
+               "direct light only. Diffuse transport",
+               S::kTrace, Record::kUnlessAbsent},
+      .field = &BakeParams::bounces,
+      .lo = 0,
+      .hi = kMaxBounces,
+      .special = "auto",
+      .special_value = kAutoBounces,
+      .special_is_word = true});
+  visit(Number<int>{.info = {"gather_rays", "--gather-rays",
+                             "stratified directions per sample that gather each bounce (rounded "
+                             "up to a square)",
+                             S::kTrace, Record::kUnlessAbsent, true, HasBounces},
+                    .field = &BakeParams::gather_rays,
+                    .lo = 1,
+                    .hi = 4096,
+                    .unset_is_default = true});
   visit(Switch{{"keep_staging", "--keep-staging",
                 "leave the staging arrays (row-transformed T, transposed) in the store", S::kOutput,
                 Record::kNever},
                &BakeParams::keep_staging});
-  visit(Number<int>{{"tile_size", "--tile-size",
-                     "spatial tile edge of one BAKE_TILE task (power of two)", S::kTrace},
-                    &BakeParams::tile_size,
-                    4,
-                    256,
-                    true,
-                    {},
-                    false,
-                    true});
-  visit(Number<int>{{"column_group", "--column-group",
-                     "columns per TRANSFORM_COLUMNS task (0: up to 1024, as many as fit 256 MiB "
-                     "of column images)",
-                     S::kTrace},
-                    &BakeParams::column_group,
-                    1,
-                    65536,
-                    false,
-                    "the plan's"});
-  visit(Number<float>{{"ray_epsilon", "", "ray offset; 0: 1e-4 × the scene's bounding-box diagonal",
-                       S::kTrace, Record::kAlways, /*in_request=*/false},
-                      &BakeParams::ray_epsilon,
-                      0,
-                      kInf,
-                      false,
-                      "the scene's"});
+  visit(Number<int>{.info = {"tile_size", "--tile-size",
+                             "spatial tile edge of one BAKE_TILE task (power of two)", S::kTrace},
+                    .field = &BakeParams::tile_size,
+                    .lo = 4,
+                    .hi = 256,
+                    .power_of_two = true,
+                    .unset_is_default = true});
+  visit(Number<int>{.info = {"column_group", "--column-group",
+                             "columns per TRANSFORM_COLUMNS task (0: up to 1024, as many as fit "
+                             "256 MiB of column images)",
+                             S::kTrace},
+                    .field = &BakeParams::column_group,
+                    .lo = 1,
+                    .hi = 65536,
+                    .special = "the plan's"});
+  visit(Number<float>{
+      .info = {"ray_epsilon", "", "ray offset; 0: 1e-4 × the scene's bounding-box diagonal",
+               S::kTrace, Record::kAlways, /*in_request=*/false},
+      .field = &BakeParams::ray_epsilon,
+      .lo = 0,
+      .hi = kInf});
 }
 
 // The word a value of `words` is spelled as ("?" if none: a value outside the list).

@@ -33,7 +33,7 @@ namespace params {
 // Whether a row is spelled in words (else it is a plain number or a flag).
 template <class T>
 bool InWords(const Number<T>& r) {
-  return r.zero_is_word;
+  return r.special_is_word;
 }
 template <class E>
 bool InWords(const Words<E>&) {
@@ -49,7 +49,7 @@ bool InWords(const Spelled<T>&) {
 template <class T>
 std::string Spell(const Number<T>& r, const BakeParams& p) {
   const T v = p.*r.field;
-  return v == 0 && r.zero_is_word ? std::string(r.zero) : absl::StrCat(v);
+  return v == r.special_value && r.special_is_word ? std::string(r.special) : absl::StrCat(v);
 }
 template <class E>
 std::string Spell(const Words<E>& r, const BakeParams& p) {
@@ -72,17 +72,19 @@ inline absl::Status BadWords(const Info& info, std::string_view s, std::string_v
 // `s` parsed into the row's field of `p`; the error names the field.
 template <class T>
 absl::Status ParseInto(const Number<T>& r, std::string_view s, BakeParams& p) {
-  if (r.zero_is_word && s == r.zero) {
-    p.*r.field = 0;
+  if (r.special_is_word && s == r.special) {
+    p.*r.field = r.special_value;
     return absl::OkStatus();
   }
   T v{};
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  // 0 is spelled by its word, so a written 0 is refused.
-  if (ec != std::errc() || ptr != s.data() + s.size() || (r.zero_is_word && v == 0))
-    return BadWords(r.info, s,
-                    absl::StrCat(static_cast<long long>(r.lo), "..", static_cast<long long>(r.hi),
-                                 r.zero_is_word ? absl::StrCat(" or ", std::string(r.zero)) : ""));
+  // The special value is spelled by its word, so its number is refused.
+  if (ec != std::errc() || ptr != s.data() + s.size() ||
+      (r.special_is_word && v == r.special_value))
+    return BadWords(
+        r.info, s,
+        absl::StrCat(static_cast<long long>(r.lo), "..", static_cast<long long>(r.hi),
+                     r.special_is_word ? absl::StrCat(" or ", std::string(r.special)) : ""));
   p.*r.field = v;
   return absl::OkStatus();
 }

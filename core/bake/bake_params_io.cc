@@ -34,9 +34,10 @@ std::string RangeText(const Number<T>& r) {
     text = absl::StrCat(static_cast<long long>(r.lo), "..", static_cast<long long>(r.hi));
   else
     text = absl::StrCat("[", r.lo, ", ", r.hi, "]");
-  if (!r.zero.empty())
-    absl::StrAppend(&text, r.zero_is_word ? absl::StrCat(" (or ", std::string(r.zero), ")")
-                                          : absl::StrCat(" (or 0: ", std::string(r.zero), ")"));
+  if (!r.special.empty())
+    absl::StrAppend(&text, r.special_is_word ? absl::StrCat(" (or ", std::string(r.special), ")")
+                                             : absl::StrCat(" (or ", r.special_value, ": ",
+                                                            std::string(r.special), ")"));
   return text;
 }
 
@@ -49,7 +50,7 @@ struct CheckRow {
   template <class T>
   void operator()(const Number<T>& r) {
     const T v = p.*r.field;
-    if (!status.ok() || (v == 0 && !r.zero.empty())) return;
+    if (!status.ok() || (v == r.special_value && !r.special.empty())) return;
     const double d = static_cast<double>(v);
     const bool unbounded = r.hi == kInf || r.hi >= double(std::numeric_limits<int>::max());
     if (r.power_of_two && !(d >= r.lo && d <= r.hi && IsPowerOfTwo(static_cast<int>(v))))
@@ -125,6 +126,14 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
     return bad("light_domain",
                "a visibility transport needs the cube (the triple product is over the whole "
                "sphere of directions)");
+  // The triple product keeps V and ρ apart (vollick-lessig-haar-triple-product.md
+  // §1 Eq. 16 against Eq. 10): light that bounces off other surfaces depends on
+  // their BRDF, so it cannot be folded into a visibility row.
+  if (p.bounces != 0 && p.transport == Transport::kVisibility)
+    return bad("bounces",
+               "a visibility transport cannot hold interreflection: the triple product keeps "
+               "visibility and the BRDF apart, and bounced light depends on both (bake "
+               "--transport diffuse for bounces)");
   if (p.column_terms == 0 && p.target_error == 0)
     return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
   return absl::OkStatus();

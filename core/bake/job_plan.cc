@@ -24,6 +24,7 @@ JobPlan MakeJobPlan(const BakeParams& p, int width, int height) {
   plan.group_size = p.column_group > 0 ? std::min(p.column_group, plan.columns)
                                        : AutoGroupSize(plan.columns, width * height);
   plan.groups = (plan.columns + plan.group_size - 1) / plan.group_size;
+  plan.bounces = p.bounces;
   return plan;
 }
 

@@ -36,8 +36,16 @@ struct JobPlan {
   int columns = 0;     // M = 6 N² (cube) or N² (plane light domain)
   int group_size = 0;  // columns per TRANSFORM_COLUMNS task
   int groups = 0;
+  // Diffuse bounces TRANSFORM_COLUMNS adds (BakeParams::bounces, `auto`
+  // resolved; core/bake/bake_gather.h), and the auxiliary samples a camera
+  // layout's bounces gather from: BAKE_TILE tasks tiles()..all_tiles()−1
+  // trace their rows, tile_cells() at a time, into staging/aux_transport.
+  int bounces = 0;
+  int aux_samples = 0;
 
   int tiles() const { return tiles_x * tiles_y; }
+  int aux_tiles() const { return (aux_samples + tile_cells() - 1) / tile_cells(); }
+  int all_tiles() const { return tiles() + aux_tiles(); }
   int tile_cells() const { return tile_w * tile_h; }
   TileRect Tile(int t) const {
     return {(t % tiles_x) * tile_w, (t / tiles_x) * tile_h, tile_w, tile_h};

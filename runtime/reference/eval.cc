@@ -12,6 +12,7 @@
 #include "core/directions/cubemap.h"
 #include "core/scene/scene_hash.h"
 #include "runtime/env/env_resample.h"
+#include "runtime/reference/bounce_eval.h"
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/glossy_eval.h"
 #include "runtime/relight/store_relight.h"
@@ -83,7 +84,7 @@ absl::StatusOr<ErrorStats> CompareFinite(std::span<const float> image,
   return CompareToReference(image, reference);
 }
 
-absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+absl::StatusOr<Scene> LoadBakedScene(const StoreInfo& info) {
   // Checked by content hash: a scene file edited since the bake would make
   // every comparison meaningless.
   absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
@@ -94,6 +95,12 @@ absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
                                                       " no longer matches the baked scene (hash ",
                                                       hash, " vs ", info.scene_hash, ")"));
   }
+  return scene;
+}
+
+absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info) {
+  absl::StatusOr<Scene> scene = LoadBakedScene(info);
+  if (!scene.ok()) return scene.status();
   return RayCaster::Build(*scene);
 }
 
@@ -105,10 +112,16 @@ absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const S
                                                 const EnvMap& env,
                                                 const ReferenceOptions& ref_options, int terms,
                                                 const ImageFn& compressed, const DenseFn& dense) {
-  EvalReport report;
-  report.terms = terms;
   absl::StatusOr<ReferenceResult> reference = ComputeReference(caster, samples, env, ref_options);
   if (!reference.ok()) return reference.status();
+  return CompareWithReference(*reference, terms, compressed, dense);
+}
+
+absl::StatusOr<EvalReport> CompareWithReference(const ReferenceResult& result, int terms,
+                                                const ImageFn& compressed, const DenseFn& dense) {
+  EvalReport report;
+  report.terms = terms;
+  const ReferenceResult* reference = &result;
   report.reference_rel_se = reference->rel_se;
   report.reference_rays = reference->rays;
   report.reference_seconds = reference->seconds;
@@ -152,8 +165,13 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, const En
         absl::StrCat("rotate: ", options.rotate_degrees, " is not finite"));
   absl::StatusOr<StoreInfo> store_info = ReadStoreInfo(store);
   if (!store_info.ok()) return store_info.status();
-  if (store_info->params.transport == Transport::kVisibility)
+  if (store_info->params.transport == Transport::kVisibility) {
+    if (options.bounces > 0)
+      return absl::InvalidArgumentError(
+          "bounces: a visibility store's glossy reference is direct light only (the triple "
+          "product keeps visibility and the BRDF apart, so bounced light is not in the store)");
     return EvaluateGlossy(store, env_map, terms, options);
+  }
   // A diffuse store is Lambertian by construction.
   absl::StatusOr<std::unique_ptr<Brdf>> brdf = ParseBrdf(options.glossy.brdf);
   if (!brdf.ok()) return brdf.status();
@@ -166,6 +184,8 @@ absl::StatusOr<EvalReport> Evaluate(const std::filesystem::path& store, const En
   const EnvMap& env = turned ? *turned : env_map;
 
   const StoreInfo& info = opened->info;
+  if (info.params.bounces != 0 || options.bounces > 0)
+    return EvaluateBounces(*opened, env, terms, options);
   absl::StatusOr<RayCaster> caster = BuildBakedScene(info);
   if (!caster.ok()) return caster.status();
   const float eps = BakedEpsilon(info, *caster);
@@ -193,7 +213,10 @@ nlohmann::json EvalReportJson(const EvalReport& r) {
   j["reference"] = {{"rel_se", r.reference_rel_se},
                     {"rays", r.reference_rays},
                     {"seconds", r.reference_seconds},
-                    {"converged", r.reference_converged}};
+                    {"converged", r.reference_converged},
+                    {"bounces", r.bounces}};
+  j["store_bounces"] = r.store_bounces;
+  j["direct"] = r.has_direct ? StatsJson(r.direct) : nlohmann::json(nullptr);
   return j;
 }
 
@@ -202,9 +225,14 @@ std::string EvalReportText(const EvalReport& r) {
     return absl::StrFormat("%-11s rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %.3f s\n", name,
                            e.rel_rms, e.max_abs, e.psnr, e.seconds);
   };
-  std::string text = absl::StrFormat("reference  rel_se %.5f  %d rays  %.1f s%s\n",
-                                     r.reference_rel_se, r.reference_rays, r.reference_seconds,
-                                     r.reference_converged ? "" : "  (NOT converged)");
+  std::string text = absl::StrFormat(
+      "reference  rel_se %.5f  %d rays  %.1f s%s%s\n", r.reference_rel_se, r.reference_rays,
+      r.reference_seconds, r.reference_converged ? "" : "  (NOT converged)",
+      r.bounces > 0 || r.store_bounces > 0
+          ? absl::StrFormat("  %d bounces (store: %d)", r.bounces, r.store_bounces)
+          : std::string());
+  // A bounce store's direct light alone: what leaving the bounces out costs.
+  if (r.has_direct) text += row("0 bounces", r.direct);
   if (r.has_dense) text += row("dense T", r.dense);
   return text + row("compressed", r.compressed);
 }

@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "absl/status/statusor.h"
+#include "core/scene/scene.h"
 #include "core/transport/ray_caster.h"
 #include "runtime/env/env_map.h"
 #include "runtime/glossy/glossy_store.h"
@@ -30,6 +31,10 @@ struct EvalOptions {
   // (runtime/reference/glossy_eval.h) with this BRDF, its reference traced with it; a
   // diffuse store takes lambert only (anything else is an error saying why).
   GlossyOptions glossy;
+  // Diffuse bounces of the reference: < 0 the store's own count; a count
+  // above 0 traces the path-traced reference (runtime/reference/path_reference.h),
+  // so a 0-bounce store can be held against the light it leaves out.
+  int bounces = -1;
 };
 
 // Over all unmasked cells and the three channels of image vs reference:
@@ -49,8 +54,10 @@ ErrorStats CompareToReference(std::span<const float> image, std::span<const floa
 absl::StatusOr<ErrorStats> CompareFinite(std::span<const float> image,
                                          std::span<const float> reference, std::string_view what);
 
-// The scene a store was baked from, rebuilt for ray casting; FailedPrecondition
-// if its file no longer hashes to the baked scene.
+// The scene a store was baked from; FailedPrecondition if its file no longer
+// hashes to the baked scene.
+absl::StatusOr<Scene> LoadBakedScene(const StoreInfo& info);
+// The same, rebuilt for ray casting.
 absl::StatusOr<RayCaster> BuildBakedScene(const StoreInfo& info);
 // The ray offset the bake used (its own, or the scene's default).
 float BakedEpsilon(const StoreInfo& info, const RayCaster& caster);
@@ -68,6 +75,13 @@ struct EvalReport {
   double reference_seconds = 0;
   bool reference_converged = true;
   int64_t dense_rays = 0;
+  int bounces = 0;        // of the reference
+  int store_bounces = 0;  // of the store
+  // A store with bounces: its direct light alone (dense T₀, what a 0-bounce
+  // bake would hold uncompressed) against the same reference, beside the
+  // dense answer with the store's bounces (runtime/reference/bounce_eval.h).
+  ErrorStats direct;
+  bool has_direct = false;
 };
 
 // The store relit under env (lat-long, turned by options.rotate_degrees)
@@ -86,10 +100,14 @@ absl::StatusOr<EvalReport> CompareWithReference(const RayCaster& caster, const S
                                                 const EnvMap& env,
                                                 const ReferenceOptions& ref_options, int terms,
                                                 const ImageFn& compressed, const DenseFn& dense);
+// The same against a reference already traced.
+absl::StatusOr<EvalReport> CompareWithReference(const ReferenceResult& reference, int terms,
+                                                const ImageFn& compressed, const DenseFn& dense);
 
 // {"terms": n, "dense": {"rel_rms", "max_abs", "psnr", "seconds"},
 //  "compressed": {same keys}, "reference": {"rel_se", "rays", "seconds",
-//  "converged"}}; "dense" is null when not evaluated.
+//  "converged", "bounces"}, "store_bounces": B, "direct": {same keys} or
+//  null}; "dense" is null when not evaluated.
 nlohmann::json EvalReportJson(const EvalReport& report);
 // The same for a person: the reference's line, then dense T's and the
 // store's (rel_rms, max_abs, psnr, seconds), one line each.

@@ -73,6 +73,8 @@ BakeParams Unusual() {
   p.level_scaling = LevelScaling::kPaper;
   p.seed = 18446744073709551557ull;  // beyond a double's 53 bits
   p.refine = false;
+  p.bounces = 3;
+  p.gather_rays = 64;
   p.keep_staging = true;
   p.tile_size = 8;
   p.column_group = 300;

@@ -19,6 +19,9 @@
 #include "tests/core/test_shapes.h"
 
 namespace wavebake {
+// Named, so that its helpers stay apart from transport_row_test.cc's in a
+// unity batch.
+namespace refined_row_test {
 namespace {
 
 using test_shapes::BuildOrDie;
@@ -313,4 +316,5 @@ TEST(RefinedRowTest, StatsAddUpOverRows) {
 }
 
 }  // namespace
+}  // namespace refined_row_test
 }  // namespace wavebake
