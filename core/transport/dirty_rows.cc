@@ -1,0 +1,123 @@
+#include "core/transport/dirty_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "absl/strings/str_cat.h"
+#include "core/scene/scene_check.h"
+
+namespace wavebake {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+// Slack on every angle and radius, far above float rounding of the cone
+// test: a margin costs a few extra traced rays, never a missed one.
+constexpr float kAnglePad = 1e-4f;
+constexpr float kRadiusPad = 1e-4f;
+
+Bounds3 MeshBounds(const Mesh& m) {
+  Bounds3 b;
+  for (Vec3 p : m.positions) {
+    b.lo = Min(b.lo, p);
+    b.hi = Max(b.hi, p);
+  }
+  return b;
+}
+
+}  // namespace
+
+DirtyRowTest::DirtyRowTest(RayCaster changed, std::optional<RayCaster> unchanged,
+                           JitterPattern pattern, DirtyRowOptions options)
+    : changed_(std::make_shared<RayCaster>(std::move(changed))),
+      unchanged_(unchanged ? std::make_shared<RayCaster>(*std::move(unchanged)) : nullptr),
+      pattern_(std::make_shared<JitterPattern>(std::move(pattern))),
+      options_(options) {}
+
+absl::StatusOr<DirtyRowTest> DirtyRowTest::Build(const Scene& changed, const Scene& unchanged,
+                                                 const JitterPattern& pattern,
+                                                 const DirtyRowOptions& options) {
+  if (changed.meshes.empty())
+    return absl::InvalidArgumentError("changed: no changed mesh (nothing can be dirty)");
+  if (pattern.corners.size() != static_cast<size_t>(pattern.texels()) * 4)
+    return absl::InvalidArgumentError("pattern: needs the corners of every texel (cube domain)");
+  absl::StatusOr<RayCaster> changed_caster = RayCaster::Build(changed);
+  if (!changed_caster.ok()) return changed_caster.status();
+  std::optional<RayCaster> unchanged_caster;
+  if (!unchanged.meshes.empty()) {
+    absl::StatusOr<RayCaster> c = RayCaster::Build(unchanged);
+    if (!c.ok()) return c.status();
+    unchanged_caster.emplace(*std::move(c));
+  }
+  DirtyRowTest test(*std::move(changed_caster), std::move(unchanged_caster), pattern, options);
+  for (const Mesh& m : changed.meshes) {
+    const Bounds3 b = MeshBounds(m);
+    const float r = 0.5f * b.diagonal();
+    test.bounds_.push_back({b.centre(), r * (1 + kRadiusPad) + 1e-6f});
+  }
+  const int texels = pattern.texels();
+  test.centre_.resize(texels);
+  test.cos_radius_.resize(texels);
+  test.sin_radius_.resize(texels);
+  for (int m = 0; m < texels; ++m) {
+    const Vec3* c = &pattern.corners[static_cast<size_t>(m) * 4];
+    const Vec3 centre = Normalize(c[0] + c[1] + c[2] + c[3]);
+    // A texel is the conic hull of its corners (a convex spherical
+    // quadrilateral under 90°), so its farthest point from the centre is a corner.
+    float radius = 0;
+    for (int k = 0; k < 4; ++k)
+      radius = std::max(radius, std::acos(std::clamp(Dot(centre, c[k]), -1.0f, 1.0f)));
+    radius += kAnglePad;
+    test.centre_[m] = centre;
+    test.cos_radius_[m] = std::cos(radius);
+    test.sin_radius_[m] = std::sin(radius);
+  }
+  return test;
+}
+
+bool DirtyRowTest::TexelRaysChange(Vec3 origin, int m, DirtyRowStats& stats) const {
+  for (int k = 0; k < pattern_->per_texel; ++k) {
+    const Vec3 dir = pattern_->Direction(m, k);
+    ++stats.rays_changed;
+    if (!changed_->Occluded(origin, dir, 0, kInf)) continue;
+    if (!options_.static_occlusion || !unchanged_) return true;
+    ++stats.rays_static;
+    if (!unchanged_->Occluded(origin, dir, 0, kInf)) return true;
+  }
+  return false;
+}
+
+bool DirtyRowTest::MayChange(Vec3 position, Vec3 normal, float epsilon,
+                             DirtyRowStats* stats) const {
+  DirtyRowStats local;
+  const Vec3 origin = position + normal * epsilon;  // as the bake's rays (DESIGN.md §1)
+  bool dirty = false;
+  const int texels = pattern_->texels();
+  for (const Sphere& s : bounds_) {
+    const Vec3 to = s.centre - origin;
+    const float d = Length(to);
+    const bool inside = d <= s.radius;
+    // The sphere seen from the origin: a cone of half-angle α about `axis`.
+    const Vec3 axis = inside ? Vec3{0, 0, 1} : to / d;
+    const float sin_a = inside ? 1 : s.radius / d;
+    const float cos_a = std::sqrt(std::max(0.0f, 1 - sin_a * sin_a));
+    for (int m = 0; m < texels && !dirty; ++m) {
+      // The cones meet iff angle(centre, axis) ≤ α + β; α < 90° and β < 90°,
+      // so α + β < 180° where cos is decreasing:
+      // compare cosines: cos(α + β) = cos α cos β − sin α sin β.
+      if (!inside && Dot(centre_[m], axis) < cos_a * cos_radius_[m] - sin_a * sin_radius_[m])
+        continue;
+      ++local.texels_in_cones;
+      dirty = TexelRaysChange(origin, m, local);
+    }
+    if (dirty) break;
+  }
+  if (stats) {
+    stats->texels_in_cones += local.texels_in_cones;
+    stats->rays_changed += local.rays_changed;
+    stats->rays_static += local.rays_static;
+  }
+  return dirty;
+}
+
+}  // namespace wavebake
