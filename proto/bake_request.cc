@@ -137,6 +137,8 @@ BakeParams ParamsOf(const v1::BakeRequest& r) {
   p.tile_size = r.tile_size();
   p.column_group = r.column_group();
   p.keep_staging = r.keep_staging();
+  p.update_from = r.update_from();
+  p.update_exact = r.update_exact();
   p.refine = r.refine() != "off";
   return p;
 }
@@ -207,6 +209,8 @@ v1::BakeRequest ToBakeRequest(const BakeParams& p) {
   r.set_tile_size(p.tile_size);
   r.set_column_group(p.column_group);
   r.set_keep_staging(p.keep_staging);
+  r.set_update_from(p.update_from);
+  r.set_update_exact(p.update_exact);
   r.set_refine(p.refines() ? "on" : "off");
   return r;
 }

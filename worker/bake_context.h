@@ -24,6 +24,8 @@
 
 namespace wavebake {
 
+struct RowReuse;  // worker/row_reuse.h
+
 struct BakeContext {
   explicit BakeContext(RayCaster c) : caster(std::move(c)) {}
 
@@ -40,6 +42,9 @@ struct BakeContext {
   std::optional<RefinePlan> refine;  // params.refine: the rows are traced by refinement
   float epsilon = 0;                 // ray offset along the normal (DESIGN.md §1)
   RayCaster caster;
+  // An update bake (worker/row_reuse.h): the rows BAKE_TILE copies from an
+  // old store instead of tracing them; null for a full bake.
+  std::shared_ptr<const RowReuse> reuse;
 };
 
 // Loads and checks the scene (reading only what `files` allows, null: a local

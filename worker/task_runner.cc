@@ -13,6 +13,7 @@
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
 #include "worker/recode.h"
+#include "worker/row_reuse.h"
 #include "worker/staging.h"
 #include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
@@ -38,7 +39,15 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::unique_ptr<BakeContext>> ctx =
         MakeBakeContext(scene->load, *params, scene->files.get());
-    if (ctx.ok()) (*ctx)->scene_spec = scene->recorded;
+    if (!ctx.ok()) return ctx;
+    (*ctx)->scene_spec = scene->recorded;
+    if (!params->update_from.empty()) {  // relative: under the store root, as job stores are
+      const std::filesystem::path from = std::filesystem::path(params->update_from);
+      absl::StatusOr<std::shared_ptr<const RowReuse>> reuse = PlanRowReuse(
+          **ctx, from.is_absolute() ? from : env.store_root / from, params->update_exact);
+      if (!reuse.ok()) return reuse.status();
+      (*ctx)->reuse = *std::move(reuse);
+    }
     return ctx;
   });
 }
@@ -69,9 +78,11 @@ absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext
   absl::Status s =
       BakeTile(ctx, partial, task.index(), &stats, {&progress.cancel, &progress.rays_traced});
   if (!s.ok()) return s;
+  nlohmann::json tile_stats = {{"samples", stats.samples}};
+  if (ctx.reuse) tile_stats["rows_reused"] = stats.rows_reused;
   return TaskOutcome{.rays_traced = static_cast<int64_t>(stats.rays_traced),
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
-                     .stats_json = nlohmann::json{{"samples", stats.samples}}.dump()};
+                     .stats_json = tile_stats.dump()};
 }
 
 // Cancel is seen between staging chunks and columns: a large group at a
@@ -101,6 +112,9 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
             ctx, partial, {.keep_staging = ctx.params.keep_staging, .cancel = &progress.cancel});
         !s.ok())
       return s;
+    if (ctx.reuse) {
+      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse); !s.ok()) return s;
+    }
     if (progress.cancel.load()) return Cancelled(task);
     if (absl::Status s = PublishFinishedStore(partial, out); !s.ok()) return s;
   }

@@ -109,6 +109,8 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
     return bad("bits", p.bits, " is outside 2..16 (or auto)");
   if (!IsPowerOfTwoIn(p.tile_size, 1, 256))
     return bad("tile_size", p.tile_size, " is not a power of two up to 256");
+  if (p.update_exact && p.update_from.empty())
+    return absl::InvalidArgumentError("update_exact: needs update_from (the store to update)");
   if (p.column_group < 0 || p.column_group > 65536)
     return bad("column_group", p.column_group, " is outside 1..65536 (or 0: the plan's)");
   if (!(p.ray_epsilon >= 0)) return bad("ray_epsilon", p.ray_epsilon, " is negative");
