@@ -99,6 +99,21 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
   r.rebaked = r.samples - r.reused;
 }
 
+// in_place and tile_touched of RowReuse, from the old grid.
+void MarkTiles(const SampleSet& now, const SampleSet& old, const JobPlan& plan, RowReuse& r) {
+  r.tile_touched.assign(plan.tiles(), 0);
+  r.in_place = now.width == old.width && now.height == old.height;
+  if (!r.in_place) return;
+  for (int y = 0; y < now.height; ++y)
+    for (int x = 0; x < now.width; ++x) {
+      const size_t cell = size_t(y) * now.width + x;
+      const int64_t src = r.source[cell], at = plan.StagingCell(x, y);
+      const bool was = old.grid[cell] >= 0, is = now.grid[cell] >= 0;
+      if (src >= 0 && src != at) r.in_place = false;
+      if ((is && src < 0) || was != is) r.tile_touched[at / plan.tile_cells()] = 1;
+    }
+}
+
 }  // namespace
 
 nlohmann::json RowReuse::Record() const {
@@ -196,6 +211,7 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& 
   } else {
     r->rebaked = r->samples;
   }
+  MarkTiles(ctx.samples, *old_samples, ctx.plan, *r);
   r->plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
@@ -237,10 +253,20 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
   return count;
 }
 
-absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse) {
+absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
+                               int64_t columns_recomputed, int64_t columns) {
   absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
   if (!attrs.ok()) return attrs.status();
-  (*attrs)["update"] = reuse.Record();
+  nlohmann::json record = reuse.Record();
+  record["columns"] = columns;
+  record["columns_recomputed"] = columns_recomputed;
+  record["column_decisions"] =
+      reuse.exact ? "every column coded anew from the merged rows, as a full bake"
+                  : "columns whose values changed in a tile with a rebaked cell: adaptive depth "
+                    "searched again, selected against the new matrix energy; the others keep "
+                    "the old depth and selection; one matrix-wide quantization step over all "
+                    "(FINALIZE)";
+  (*attrs)["update"] = std::move(record);
   return WriteAttrs(store, *attrs);
 }
 

@@ -36,6 +36,13 @@ struct RowReuse {
   // Per cell of the new grid (y·W + x): the old staging array's column
   // (JobPlan::StagingCell of the old cell) holding its row, or -1: traced.
   std::vector<int64_t> source;
+  // Every reused row sits in the cell it had (camera layouts, a kept
+  // hilbert layout): the column images differ from the old ones only in
+  // the tiles marked in tile_touched (a rebaked cell, or one masked in one
+  // store and not in the other), so --update can recompute only the columns
+  // those tiles change (worker/local_columns.h).
+  bool in_place = false;
+  std::vector<uint8_t> tile_touched;  // per tile of the plan
   int64_t samples = 0, reused = 0, rebaked = 0;
   int64_t unmatched = 0;  // rebaked because no old sample had its position and normal
   // Non-empty when nothing could be reused, and why (a moved camera, another ε).
@@ -72,7 +79,9 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
                                    std::span<float> rows, size_t stride,
                                    std::vector<uint8_t>& filled);
 
-// Adds reuse.Record() as "update" to the store's root .zattrs (after FINALIZE).
-absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse);
+// Adds reuse.Record() as "update" to the store's root .zattrs (after
+// FINALIZE), with the columns coded anew out of `columns`.
+absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
+                               int64_t columns_recomputed, int64_t columns);
 
 }  // namespace wavebake

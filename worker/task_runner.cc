@@ -12,6 +12,7 @@
 #include "storage/store_reader.h"
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
+#include "worker/local_columns.h"
 #include "worker/recode.h"
 #include "worker/row_reuse.h"
 #include "worker/staging.h"
@@ -91,7 +92,10 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
                                           const std::filesystem::path& partial,
                                           TaskProgress& progress) {
   GroupStats stats;
-  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel});
+  absl::Status s =
+      ctx.reuse && !ctx.reuse->exact
+          ? LocalTransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel})
+          : TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel});
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = 0,
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -108,12 +112,20 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+    int64_t recomputed = ctx.plan.columns;  // before FINALIZE drops staging/groups
+    if (ctx.reuse && !ctx.reuse->exact) {
+      absl::StatusOr<int64_t> n = RecomputedColumns(ctx.plan, partial);
+      if (!n.ok()) return n.status();
+      recomputed = *n;
+    }
     if (absl::Status s = Finalize(
             ctx, partial, {.keep_staging = ctx.params.keep_staging, .cancel = &progress.cancel});
         !s.ok())
       return s;
     if (ctx.reuse) {
-      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse); !s.ok()) return s;
+      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed, ctx.plan.columns);
+          !s.ok())
+        return s;
     }
     if (progress.cancel.load()) return Cancelled(task);
     if (absl::Status s = PublishFinishedStore(partial, out); !s.ok()) return s;

@@ -132,8 +132,24 @@ TEST_F(UpdateBakeTest, UnchangedSceneRebakesNoRow) {
   BakeParams p = Params("camera:16x16");
   p.update_from = old_store.string();
   ASSERT_TRUE(Bake(old_scene_, p, again).ok());
+  // --update (local columns) keeps every old coded column: the old store's bytes.
   const nlohmann::json record = ExpectSameAsFullBake(again, old_store);
   EXPECT_EQ(record.value("rows_rebaked", -1), 0) << record.dump();
+  EXPECT_EQ(record.value("columns_recomputed", -1), 0) << record.dump();
+}
+
+TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
+  const auto old_store = dir_.path() / "old.wbk", updated = dir_.path() / "updated.wbk";
+  ASSERT_TRUE(Bake(old_scene_, Params("camera:16x16"), old_store).ok());
+  BakeParams p = Params("camera:16x16");
+  p.update_from = old_store.string();
+  ASSERT_TRUE(Bake(new_scene_, p, updated).ok());
+  const nlohmann::json attrs = nlohmann::json::parse(ReadTree(updated).at(".zattrs"));
+  const nlohmann::json& u = attrs["update"];
+  EXPECT_EQ(u.value("mode", ""), "local");
+  EXPECT_EQ(u.value("columns", 0), 6 * 8 * 8);
+  EXPECT_GT(u.value("columns_recomputed", 0), 0) << u.dump();
+  EXPECT_LT(u.value("columns_recomputed", 0), u.value("columns", 0)) << u.dump();
 }
 
 TEST_F(UpdateBakeTest, RefusalsNameWhyAndLeaveTheOldStore) {
