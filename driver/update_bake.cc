@@ -40,6 +40,8 @@ std::string UpdateSummary(const std::filesystem::path& store) {
       absl::StrFormat("update (%s) from %s: %lld of %lld rows reused, %lld rebaked",
                       u.value("mode", ""), u.value("from", ""), u.value("rows_reused", 0LL),
                       u.value("rows", 0LL), u.value("rows_rebaked", 0LL));
+  if (u.value("rows_patched", 0LL) > 0)
+    absl::StrAppendFormat(&line, ", %lld patched", u.value("rows_patched", 0LL));
   if (u.contains("columns_recomputed"))
     absl::StrAppendFormat(&line, ", %lld of %lld columns recomputed",
                           u.value("columns_recomputed", 0LL), u.value("columns", 0LL));

@@ -71,6 +71,7 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
       continue;
     }
     if (!reused.empty() && reused[cell]) {  // an update bake's old row: already staged values
+      if (reused[cell] == 2) PatchRow(*ctx.reuse, ctx, id, row);
       energy += SumOfSquares(row.data(), row.size());
       ++stats.samples;
       continue;

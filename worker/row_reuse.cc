@@ -17,6 +17,7 @@
 #include "storage/zarr_array.h"
 #include "storage/zarr_group.h"
 #include "worker/bake_context.h"
+#include "worker/row_transform.h"
 #include "worker/staging.h"
 
 namespace wavebake {
@@ -70,7 +71,7 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
               const DirtyRowTest* dirty, RowReuse& r) {
   const SampleSet& s = ctx.samples;
   std::vector<int64_t> by_sample(s.size(), -1);
-  std::vector<uint8_t> unmatched(s.size(), 0);
+  std::vector<uint8_t> unmatched(s.size(), 0), patch(s.size(), 0);
   std::vector<DirtyRowStats> stats(s.size() == 0 ? 1 : 64);
   const int chunk = std::max(1, (s.size() + 63) / 64);
   ParallelFor(static_cast<int>(stats.size()), [&](int c) {
@@ -80,7 +81,10 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
         unmatched[id] = 1;
         continue;
       }
-      if (dirty && dirty->MayChange(s.position[id], s.normal[id], ctx.epsilon, &stats[c])) continue;
+      if (dirty && dirty->MayChange(s.position[id], s.normal[id], ctx.epsilon, &stats[c])) {
+        if (!r.delta) continue;
+        patch[id] = 1;
+      }
       by_sample[id] = old_column[it->second];
     }
   });
@@ -93,10 +97,15 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
     const int32_t id = s.grid[cell];
     if (id < 0) continue;
     r.source[cell] = by_sample[id];
-    r.reused += by_sample[id] >= 0;
+    if (patch[id]) {
+      if (r.patch.empty()) r.patch.assign(s.grid.size(), 0);
+      r.patch[cell] = 1;
+      ++r.patched;
+    }
+    r.reused += by_sample[id] >= 0 && !patch[id];
     r.unmatched += unmatched[id];
   }
-  r.rebaked = r.samples - r.reused;
+  r.rebaked = r.samples - r.reused - r.patched;
 }
 
 // in_place and tile_touched of RowReuse, from the old grid.
@@ -110,7 +119,8 @@ void MarkTiles(const SampleSet& now, const SampleSet& old, const JobPlan& plan, 
       const int64_t src = r.source[cell], at = plan.StagingCell(x, y);
       const bool was = old.grid[cell] >= 0, is = now.grid[cell] >= 0;
       if (src >= 0 && src != at) r.in_place = false;
-      if ((is && src < 0) || was != is) r.tile_touched[at / plan.tile_cells()] = 1;
+      const bool patched = !r.patch.empty() && r.patch[cell];
+      if ((is && src < 0) || was != is || patched) r.tile_touched[at / plan.tile_cells()] = 1;
     }
 }
 
@@ -121,6 +131,7 @@ nlohmann::json RowReuse::Record() const {
                       {"mode", exact ? "exact" : "local"},
                       {"rows", samples},
                       {"rows_reused", reused},
+                      {"rows_patched", patched},
                       {"rows_rebaked", rebaked},
                       {"rows_unmatched", unmatched},
                       {"changed_meshes", changed_meshes},
@@ -206,6 +217,17 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& 
                               UnchangedGeometry(ctx.scene, diff), ctx.jitter);
       if (!test.ok()) return test.status();
       dirty.emplace(*std::move(test));
+      // --update patches the rows the edit reaches (brute-force difference,
+      // diffuse T on the cube only); --update-exact traces them.
+      if (!exact && ctx.params.transport == Transport::kDiffuse &&
+          !ctx.params.light_domain.is_plane()) {
+        auto delta = std::make_shared<DirtyRowTest>(*dirty);
+        if (absl::Status s = delta->SetPlacements(RemovedGeometry(*old_scene, diff),
+                                                  AddedGeometry(ctx.scene, diff));
+            !s.ok())
+          return s;
+        r->delta = std::move(delta);
+      }
     }
     MarkRows(ctx, StagingColumns(*old_samples, ctx.plan), old_ids, dirty ? &*dirty : nullptr, *r);
   } else {
@@ -247,10 +269,25 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
         for (int j = 0; j < n; ++j) row[j] = (*chunk)[size_t(j) * cells + at];
       }
     }
-    for (const auto& [cell, at] : pairs) filled[cell] = 1;
+    for (const auto& [cell, at] : pairs) {
+      const size_t grid =
+          size_t(rect.y0 + cell / rect.width) * plan.width + rect.x0 + cell % rect.width;
+      filled[cell] = !reuse.patch.empty() && reuse.patch[grid] ? 2 : 1;
+    }
     count += static_cast<int>(pairs.size());
   }
   return count;
+}
+
+void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row) {
+  thread_local std::vector<float> delta;
+  delta.resize(row.size());
+  if (!reuse.delta->RowDelta(ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, delta,
+                             nullptr))
+    return;
+  // The row transform is linear: transform(old + Δ) = staged old + transform(Δ).
+  RowTransform(ctx.params.row_filter, ctx.plan.light_res, delta);
+  for (size_t m = 0; m < row.size(); ++m) row[m] += delta[m];
 }
 
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,

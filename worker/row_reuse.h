@@ -42,6 +42,13 @@ struct RowReuse {
   // store and not in the other), so --update can recompute only the columns
   // those tiles change (worker/local_columns.h).
   bool in_place = false;
+  // --update only (not exact), diffuse rows on the cube: a matched sample
+  // the edit reaches is patched instead of traced: its old row plus the
+  // row transform of DirtyRowTest::RowDelta (the brute-force difference over
+  // the rays that see the change). patch[cell] = 1 for those; empty if none.
+  std::vector<uint8_t> patch;
+  std::shared_ptr<const DirtyRowTest> delta;
+  int64_t patched = 0;
   std::vector<uint8_t> tile_touched;  // per tile of the plan
   int64_t samples = 0, reused = 0, rebaked = 0;
   int64_t unmatched = 0;  // rebaked because no old sample had its position and normal
@@ -74,10 +81,14 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& 
 
 // Copies the old rows of tile `tile`'s reused cells into `rows` (cell c of
 // the tile at c·stride, plan.columns values, as BAKE_TILE lays them out) and
-// sets filled[c] = 1 for them (0 for the others). Returns how many.
+// sets filled[c] = 1 for them, 2 for those to patch (PatchRow), 0 for the
+// others. Returns how many.
 absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, int tile,
                                    std::span<float> rows, size_t stride,
                                    std::vector<uint8_t>& filled);
+
+// Adds the change's difference to the old row of sample `id` (filled 2).
+void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row);
 
 // Adds reuse.Record() as "update" to the store's root .zattrs (after
 // FINALIZE), with the columns coded anew out of `columns`.

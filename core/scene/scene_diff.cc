@@ -62,6 +62,20 @@ Scene ChangedGeometry(const Scene& old_scene, const Scene& new_scene, const Scen
   return changed;
 }
 
+Scene RemovedGeometry(const Scene& old_scene, const SceneDiff& diff) {
+  Scene s;
+  s.name = old_scene.name + " (removed geometry)";
+  for (int i : diff.removed) s.meshes.push_back(old_scene.meshes[i]);
+  return s;
+}
+
+Scene AddedGeometry(const Scene& new_scene, const SceneDiff& diff) {
+  Scene s;
+  s.name = new_scene.name + " (added geometry)";
+  for (int j : diff.added) s.meshes.push_back(new_scene.meshes[j]);
+  return s;
+}
+
 Scene UnchangedGeometry(const Scene& new_scene, const SceneDiff& diff) {
   Scene kept;
   kept.name = new_scene.name + " (unchanged geometry)";

@@ -43,6 +43,9 @@ SceneDiff DiffScenes(const Scene& old_scene, const Scene& new_scene);
 // A Scene holding the changed geometry only: the removed meshes of the old
 // scene and the added meshes of the new one (empty if nothing moved).
 Scene ChangedGeometry(const Scene& old_scene, const Scene& new_scene, const SceneDiff& diff);
+// Its two halves: the old placement (removed meshes) and the new (added).
+Scene RemovedGeometry(const Scene& old_scene, const SceneDiff& diff);
+Scene AddedGeometry(const Scene& new_scene, const SceneDiff& diff);
 // The new scene's meshes that the change left alone (the occluders a
 // changed ray may still be blocked by).
 Scene UnchangedGeometry(const Scene& new_scene, const SceneDiff& diff);

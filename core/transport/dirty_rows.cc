@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "absl/strings/str_cat.h"
 #include "core/scene/scene_check.h"
@@ -87,12 +88,12 @@ bool DirtyRowTest::TexelRaysChange(Vec3 origin, int m, DirtyRowStats& stats) con
   return false;
 }
 
-bool DirtyRowTest::MayChange(Vec3 position, Vec3 normal, float epsilon,
-                             DirtyRowStats* stats) const {
-  DirtyRowStats local;
-  const Vec3 origin = position + normal * epsilon;  // as the bake's rays (DESIGN.md §1)
+template <class F>
+bool DirtyRowTest::ForTexelsInCones(Vec3 origin, DirtyRowStats& stats, F f) const {
   bool dirty = false;
   const int texels = pattern_->texels();
+  std::vector<uint8_t> seen;  // a texel in two cones is visited once
+  if (bounds_.size() > 1) seen.assign(texels, 0);
   for (const Sphere& s : bounds_) {
     const Vec3 to = s.centre - origin;
     const float d = Length(to);
@@ -107,11 +108,73 @@ bool DirtyRowTest::MayChange(Vec3 position, Vec3 normal, float epsilon,
       // compare cosines: cos(α + β) = cos α cos β − sin α sin β.
       if (!inside && Dot(centre_[m], axis) < cos_a * cos_radius_[m] - sin_a * sin_radius_[m])
         continue;
-      ++local.texels_in_cones;
-      dirty = TexelRaysChange(origin, m, local);
+      if (!seen.empty()) {
+        if (seen[m]) continue;
+        seen[m] = 1;
+      }
+      ++stats.texels_in_cones;
+      dirty = f(m);
     }
     if (dirty) break;
   }
+  return dirty;
+}
+
+absl::Status DirtyRowTest::SetPlacements(const Scene& removed, const Scene& added) {
+  for (auto [scene, caster] : {std::pair{&removed, &removed_}, std::pair{&added, &added_}}) {
+    if (scene->meshes.empty()) {
+      caster->reset();
+      continue;
+    }
+    absl::StatusOr<RayCaster> c = RayCaster::Build(*scene);
+    if (!c.ok()) return c.status();
+    *caster = std::make_shared<RayCaster>(*std::move(c));
+  }
+  return absl::OkStatus();
+}
+
+bool DirtyRowTest::RowDelta(Vec3 position, Vec3 normal, float epsilon, std::span<float> delta,
+                            DirtyRowStats* stats) const {
+  DirtyRowStats local;
+  const Vec3 origin = position + normal * epsilon;
+  std::fill(delta.begin(), delta.end(), 0.0f);
+  bool any = false;
+  const int per = pattern_->per_texel;
+  ForTexelsInCones(origin, local, [&](int m) {
+    float sum = 0;
+    for (int k = 0; k < per; ++k) {
+      const Vec3 dir = pattern_->Direction(m, k);
+      const float c = Dot(normal, dir);
+      if (c <= 0) continue;
+      ++local.rays_changed;
+      if (!changed_->Occluded(origin, dir, 0, kInf)) continue;
+      const bool was = removed_ && removed_->Occluded(origin, dir, 0, kInf);
+      const bool is = added_ && added_->Occluded(origin, dir, 0, kInf);
+      if (was == is) continue;
+      ++local.rays_static;
+      if (unchanged_ && unchanged_->Occluded(origin, dir, 0, kInf)) continue;
+      sum += (was ? 1.0f : -1.0f) * c;  // V_new − V_old: visible where the old placement was
+    }
+    if (sum != 0) {
+      delta[m] = pattern_->solid_angle[m] / (per * std::numbers::pi_v<float>)*sum;
+      any = true;
+    }
+    return false;
+  });
+  if (stats) {
+    stats->texels_in_cones += local.texels_in_cones;
+    stats->rays_changed += local.rays_changed;
+    stats->rays_static += local.rays_static;
+  }
+  return any;
+}
+
+bool DirtyRowTest::MayChange(Vec3 position, Vec3 normal, float epsilon,
+                             DirtyRowStats* stats) const {
+  DirtyRowStats local;
+  const Vec3 origin = position + normal * epsilon;  // as the bake's rays (DESIGN.md §1)
+  const bool dirty =
+      ForTexelsInCones(origin, local, [&](int m) { return TexelRaysChange(origin, m, local); });
   if (stats) {
     stats->texels_in_cones += local.texels_in_cones;
     stats->rays_changed += local.rays_changed;

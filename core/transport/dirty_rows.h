@@ -21,6 +21,7 @@
 // few that hit, against the static meshes.
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -59,6 +60,19 @@ class DirtyRowTest {
   // Thread-safe; stats may be null.
   bool MayChange(Vec3 position, Vec3 normal, float epsilon, DirtyRowStats* stats) const;
 
+  // For `--update`'s row patch: the old placement (removed meshes) and the
+  // new one (added meshes) as separate scenes, so RowDelta can tell which
+  // one a ray hits. Either may be empty.
+  absl::Status SetPlacements(const Scene& removed, const Scene& added);
+  // delta (M values, overwritten) = the brute-force transport row of the new
+  // scene minus the old one's, in the pixel basis, over the rays of the
+  // texels whose cones meet a changed bound (every other ray has the same
+  // visibility in both): Ω_m/(Kπ) Σ_{n·ω_k>0} (V_new,k − V_old,k) n·ω_k,
+  // the brute-force entry of DESIGN.md §1. Returns whether any entry is
+  // non-zero. Needs SetPlacements; thread-safe.
+  bool RowDelta(Vec3 position, Vec3 normal, float epsilon, std::span<float> delta,
+                DirtyRowStats* stats) const;
+
  private:
   struct Sphere {
     Vec3 centre;
@@ -67,9 +81,14 @@ class DirtyRowTest {
   DirtyRowTest(RayCaster changed, std::optional<RayCaster> unchanged, JitterPattern pattern,
                DirtyRowOptions options);
   bool TexelRaysChange(Vec3 origin, int m, DirtyRowStats& stats) const;
+  // f(m) for every texel whose cone meets a changed bound seen from origin,
+  // until f returns true; whether it did.
+  template <class F>
+  bool ForTexelsInCones(Vec3 origin, DirtyRowStats& stats, F f) const;
 
   std::shared_ptr<const RayCaster> changed_;
-  std::shared_ptr<const RayCaster> unchanged_;  // null: nothing left to occlude
+  std::shared_ptr<const RayCaster> unchanged_;        // null: nothing left to occlude
+  std::shared_ptr<const RayCaster> removed_, added_;  // SetPlacements; null: none
   std::shared_ptr<const JitterPattern> pattern_;
   DirtyRowOptions options_;
   std::vector<Sphere> bounds_;  // one per changed mesh

@@ -135,6 +135,26 @@ TEST_F(DirtyRowsTest, StaticOccludersKeepTheShedClean) {
   EXPECT_TRUE(coarse.MayChange(inside.position, inside.normal, kEps, nullptr));
 }
 
+// The patch of --update: old row + RowDelta is the new scene's brute-force
+// row, against two full traces (TransportRow shares no code with RowDelta).
+TEST_F(DirtyRowsTest, RowDeltaIsTheBruteForceRowsDifference) {
+  DirtyRowTest test = Test();
+  ASSERT_TRUE(
+      test.SetPlacements(RemovedGeometry(old_scene, diff), AddedGeometry(new_scene, diff)).ok());
+  const RayCaster old_caster = BuildOrDie(old_scene), new_caster = BuildOrDie(new_scene);
+  std::vector<float> a(cubemap.size()), b(cubemap.size()), delta(cubemap.size());
+  int patched = 0;
+  for (const Sample& s : Samples()) {
+    TransportRow(old_caster, cubemap, pattern, s.position, s.normal, kEps, a, nullptr);
+    TransportRow(new_caster, cubemap, pattern, s.position, s.normal, kEps, b, nullptr);
+    patched += test.RowDelta(s.position, s.normal, kEps, delta, nullptr);
+    for (int m = 0; m < cubemap.size(); ++m)
+      ASSERT_NEAR(a[m] + delta[m], b[m], 1e-6f)
+          << "texel " << m << " of " << s.position.x << ", " << s.position.z;
+  }
+  EXPECT_GT(patched, 50);
+}
+
 TEST_F(DirtyRowsTest, ConesTraceFewRays) {
   const DirtyRowTest test = Test();
   DirtyRowStats stats;

@@ -150,6 +150,10 @@ TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
   EXPECT_EQ(u.value("columns", 0), 6 * 8 * 8);
   EXPECT_GT(u.value("columns_recomputed", 0), 0) << u.dump();
   EXPECT_LT(u.value("columns_recomputed", 0), u.value("columns", 0)) << u.dump();
+  // The rows the moved box reaches are patched, not traced; only those with
+  // no old sample at their position (on the box, or where it stood) are.
+  EXPECT_GT(u.value("rows_patched", 0), 0) << u.dump();
+  EXPECT_EQ(u.value("rows_rebaked", -1), u.value("rows_unmatched", -2)) << u.dump();
 }
 
 TEST_F(UpdateBakeTest, RefusalsNameWhyAndLeaveTheOldStore) {
