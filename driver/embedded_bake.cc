@@ -158,6 +158,15 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
   BakeParams params = given;
   if (absl::Status s = PrepareUpdate(params); !s.ok()) return s;  // before anything is written
+  if (!params.update_from.empty()) {
+    absl::StatusOr<bool> copied = CopyIfUnchanged(scene, params, out);
+    if (!copied.ok()) return copied.status();
+    if (*copied) {  // nothing to rebake (no job ran)
+      v1::Job done;
+      done.set_phase(v1::PHASE_DONE);
+      return done;
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   PhaseClock phases(start);
   std::map<std::string, std::string> local_scenes;  // sha256 -> the path as given

@@ -1,8 +1,16 @@
 #include "driver/update_bake.h"
 
+#include <chrono>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "storage/scene_loader.h"
+#include "storage/scoped_dir.h"
+#include "storage/store_layout.h"
+#include "storage/store_reader.h"
+#include "storage/store_scene.h"
 #include "storage/zarr_group.h"
+#include "worker/publish_store.h"
 #include "worker/row_reuse.h"
 
 namespace wavebake::driver {
@@ -14,6 +22,57 @@ absl::Status PrepareUpdate(BakeParams& params) {
   if (ec) return absl::InvalidArgumentError(absl::StrCat("--update: ", ec.message()));
   params.update_from = from.lexically_normal().string();
   return CheckUpdateSource(params.update_from, params);
+}
+
+absl::StatusOr<bool> CopyIfUnchanged(const std::string& scene, const BakeParams& params,
+                                     const std::filesystem::path& out) {
+  const std::filesystem::path from = params.update_from;
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(from);
+  if (!info.ok()) return info.status();
+  absl::StatusOr<Scene> loaded = LoadScene(scene);
+  if (!loaded.ok()) return loaded.status();
+  if (StoreSceneHash(*info, *loaded) != info->scene_hash) return false;
+  const auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<ScopedDir> tmp = ScopedDir::CreateBeside(out, "update");
+  if (!tmp.ok()) return tmp.status();
+  const std::filesystem::path copy = tmp->path() / "store.wbk";
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(from, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    const std::filesystem::path rel = std::filesystem::relative(it->path(), from, ec);
+    if (!params.keep_staging && *rel.begin() == store::kStaging) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_directory(ec)) {
+      std::filesystem::create_directories(copy / rel, ec);
+    } else {
+      std::filesystem::create_directories((copy / rel).parent_path(), ec);
+      if (!ec) std::filesystem::copy_file(it->path(), copy / rel, ec);
+    }
+    if (ec) break;
+  }
+  if (ec)
+    return absl::InternalError(
+        absl::StrCat("--update: copying ", from.string(), ": ", ec.message()));
+  absl::StatusOr<nlohmann::json> attrs = ReadAttrs(copy);
+  if (!attrs.ok()) return attrs.status();
+  (*attrs)["scene"] = RecordedSceneName(scene);
+  const int64_t rows = attrs->value("S", int64_t{0}), columns = attrs->value("M", int64_t{0});
+  (*attrs)["update"] = {
+      {"from", from.string()},
+      {"mode", params.update_exact ? "exact" : "local"},
+      {"rows", rows},
+      {"rows_reused", rows},
+      {"rows_patched", 0},
+      {"rows_rebaked", 0},
+      {"columns", columns},
+      {"columns_recomputed", 0},
+      {"unchanged_scene", "the scene hashes as the old store's: its files were copied"},
+      {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+  if (absl::Status s = WriteAttrs(copy, *attrs); !s.ok()) return s;
+  if (absl::Status s = PublishStore(copy, out); !s.ok()) return s;
+  return true;
 }
 
 absl::Status RecordUpdateTimes(const std::filesystem::path& store, double seconds,

@@ -15,6 +15,15 @@ namespace wavebake::driver {
 // name --update and what the old store lacks or the first parameter that differs.
 absl::Status PrepareUpdate(BakeParams& params);
 
+// An update whose scene hashes as the old store's (same content, same
+// parameters: CheckUpdateSource passed) rebakes nothing: the old store's
+// files are copied (staging/ only if params.keep_staging), its "scene"
+// renamed as this bake would record it, an "update" record added, and the
+// copy published at `out`. Returns false (and writes nothing) when the
+// scene differs; the bake then runs.
+absl::StatusOr<bool> CopyIfUnchanged(const std::string& scene, const BakeParams& params,
+                                     const std::filesystem::path& out);
+
 // Adds the update's wall time, its BAKE_TILE phase's, and an estimate of the
 // time saved (the phase's time per rebaked row times the rows reused) to the
 // "update" record of `store` (a finished store, not yet published).

@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include "absl/strings/str_cat.h"
@@ -108,6 +109,45 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
   r.rebaked = r.samples - r.reused - r.patched;
 }
 
+// The old store's hilbert grid with its sample ids (global vertex ids, the
+// meshes concatenated in order) renamed to the new scene's: an unchanged
+// mesh maps to its partner, a removed one to the first added one of its
+// name and vertex count (a moved mesh). Nothing if a mesh of either scene
+// has no counterpart, or the old grid is not over vertex ids.
+std::optional<std::vector<int32_t>> KeptHilbertGrid(const SampleSet& old, const Scene& old_scene,
+                                                    const Scene& new_scene, const SceneDiff& diff,
+                                                    const SampleSet& now) {
+  const size_t n_old = old_scene.meshes.size();
+  std::vector<int> to(n_old, -1);
+  for (const auto& [i, j] : diff.unchanged) to[i] = j;
+  std::vector<bool> taken(new_scene.meshes.size(), false);
+  for (int i : diff.removed)
+    for (int j : diff.added)
+      if (!taken[j] && new_scene.meshes[j].name == old_scene.meshes[i].name &&
+          new_scene.meshes[j].positions.size() == old_scene.meshes[i].positions.size()) {
+        to[i] = j;
+        taken[j] = true;
+        break;
+      }
+  for (int j : diff.added)
+    if (!taken[j]) return std::nullopt;
+  std::vector<int32_t> new_offset(new_scene.meshes.size() + 1, 0), rename;
+  for (size_t j = 0; j < new_scene.meshes.size(); ++j)
+    new_offset[j + 1] = new_offset[j] + static_cast<int32_t>(new_scene.meshes[j].positions.size());
+  for (size_t i = 0; i < n_old; ++i) {
+    if (to[i] < 0) return std::nullopt;
+    for (size_t k = 0; k < old_scene.meshes[i].positions.size(); ++k)
+      rename.push_back(new_offset[to[i]] + static_cast<int32_t>(k));
+  }
+  if (old.vertex.size() != rename.size() || now.size() != static_cast<int>(rename.size()) ||
+      old.grid.size() != now.grid.size())
+    return std::nullopt;
+  std::vector<int32_t> grid(old.grid.size(), -1);
+  for (size_t c = 0; c < grid.size(); ++c)
+    if (const int32_t id = old.grid[c]; id >= 0) grid[c] = rename[old.vertex[id]];
+  return grid;
+}
+
 // in_place and tile_touched of RowReuse, from the old grid.
 void MarkTiles(const SampleSet& now, const SampleSet& old, const JobPlan& plan, RowReuse& r) {
   r.tile_touched.assign(plan.tiles(), 0);
@@ -132,6 +172,8 @@ nlohmann::json RowReuse::Record() const {
                       {"rows", samples},
                       {"rows_reused", reused},
                       {"rows_patched", patched},
+                      {"layout", kept_layout ? "the old store's cells (moved meshes keep theirs)"
+                                             : "this bake's own"},
                       {"rows_rebaked", rebaked},
                       {"rows_unmatched", unmatched},
                       {"changed_meshes", changed_meshes},
@@ -171,7 +213,7 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
   return absl::OkStatus();
 }
 
-absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& ctx,
+absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx,
                                                              const std::filesystem::path& old_store,
                                                              bool exact) {
   const auto start = std::chrono::steady_clock::now();
@@ -197,6 +239,13 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& 
   r->samples = ctx.samples.size();
   r->source.assign(ctx.samples.grid.size(), -1);
   const SceneDiff diff = DiffScenes(*old_scene, ctx.scene);
+  if (!exact && ctx.layout.kind == LayoutKind::kHilbert) {
+    if (std::optional<std::vector<int32_t>> grid =
+            KeptHilbertGrid(*old_samples, *old_scene, ctx.scene, diff, ctx.samples)) {
+      ctx.samples.grid = *std::move(grid);
+      r->kept_layout = true;
+    }
+  }
   for (int i : diff.removed) r->changed_meshes.push_back(old_scene->meshes[i].name);
   for (int j : diff.added) r->changed_meshes.push_back(ctx.scene.meshes[j].name);
   for (int j : diff.albedo_changed) r->albedo_meshes.push_back(ctx.scene.meshes[j].name);

@@ -49,6 +49,7 @@ struct RowReuse {
   std::vector<uint8_t> patch;
   std::shared_ptr<const DirtyRowTest> delta;
   int64_t patched = 0;
+  bool kept_layout = false;           // the hilbert cells are the old store's
   std::vector<uint8_t> tile_touched;  // per tile of the plan
   int64_t samples = 0, reused = 0, rebaked = 0;
   int64_t unmatched = 0;  // rebaked because no old sample had its position and normal
@@ -75,7 +76,14 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
 // recorded: the old placement of what moved bounds the dirty rows), diffs the
 // scenes (core/scene/scene_diff.h) and runs the dirty-row test on every
 // matched sample. Reads only.
-absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(const BakeContext& ctx,
+//
+// For --update (not exact) on a hilbert layout, ctx.samples.grid is first
+// replaced by the old store's cells when every mesh has a counterpart of the
+// same vertex count (unchanged, or moved: same name): the samples of a moved
+// mesh stay in their old cells instead of re-sorting the whole curve, so
+// the reused rows stay in place and the columns can be kept
+// (worker/local_columns.h). The store's layout then is the old one.
+absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx,
                                                              const std::filesystem::path& old_store,
                                                              bool exact);
 

@@ -45,13 +45,15 @@ void WriteCube(const std::filesystem::path& path) {
 
 // Ground, a tall block at the back (it fixes the bounding box, hence ε) and
 // a small box whose foot is at (x, z).
-void WriteScene(const std::filesystem::path& path, double x, double z) {
+void WriteScene(const std::filesystem::path& path, double x, double z, double red = 0.8) {
   const nlohmann::json scene = {
       {"meshes",
        {{{"file", "ground.obj"}},
         {{"file", "cube.obj"},
          {"transform", {{"scale", {1.6, 0.8, 0.2}}, {"translate", {0, 0.4, -0.85}}}}},
-        {{"file", "cube.obj"}, {"transform", {{"scale", 0.15}, {"translate", {x, 0.075, z}}}}}}},
+        {{"file", "cube.obj"},
+         {"albedo", {red, 0.8, 0.8}},
+         {"transform", {{"scale", 0.15}, {"translate", {x, 0.075, z}}}}}}},
       {"camera", {{"eye", {0, 1.6, 2.2}}, {"target", {0, 0.1, 0}}}}};
   std::ofstream(path) << scene.dump(2);
 }
@@ -138,22 +140,47 @@ TEST_F(UpdateBakeTest, UnchangedSceneRebakesNoRow) {
   EXPECT_EQ(record.value("columns_recomputed", -1), 0) << record.dump();
 }
 
-TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
-  const auto old_store = dir_.path() / "old.wbk", updated = dir_.path() / "updated.wbk";
-  ASSERT_TRUE(Bake(old_scene_, Params("camera:16x16"), old_store).ok());
-  BakeParams p = Params("camera:16x16");
+// A repainted box changes no row (albedo is factored out of T): the update
+// runs the pipeline, reuses every row, recodes no column, and its store is
+// the full bake's of the repainted scene (new samples/albedo).
+TEST_F(UpdateBakeTest, AlbedoEditReusesEveryRowAndColumn) {
+  const auto painted = dir_.path() / "painted.json";
+  WriteScene(painted, -0.5, 0.3, 0.2);
+  const auto old_store = dir_.path() / "old.wbk", full = dir_.path() / "full.wbk",
+             updated = dir_.path() / "updated.wbk";
+  ASSERT_TRUE(Bake(old_scene_, Params("hilbert:16x16"), old_store).ok());
+  ASSERT_TRUE(Bake(painted, Params("hilbert:16x16"), full).ok());
+  BakeParams p = Params("hilbert:16x16");
   p.update_from = old_store.string();
-  ASSERT_TRUE(Bake(new_scene_, p, updated).ok());
-  const nlohmann::json attrs = nlohmann::json::parse(ReadTree(updated).at(".zattrs"));
-  const nlohmann::json& u = attrs["update"];
-  EXPECT_EQ(u.value("mode", ""), "local");
-  EXPECT_EQ(u.value("columns", 0), 6 * 8 * 8);
-  EXPECT_GT(u.value("columns_recomputed", 0), 0) << u.dump();
-  EXPECT_LT(u.value("columns_recomputed", 0), u.value("columns", 0)) << u.dump();
-  // The rows the moved box reaches are patched, not traced; only those with
-  // no old sample at their position (on the box, or where it stood) are.
-  EXPECT_GT(u.value("rows_patched", 0), 0) << u.dump();
-  EXPECT_EQ(u.value("rows_rebaked", -1), u.value("rows_unmatched", -2)) << u.dump();
+  ASSERT_TRUE(Bake(painted, p, updated).ok());
+  const nlohmann::json record = ExpectSameAsFullBake(updated, full);
+  EXPECT_EQ(record.value("rows_reused", -1), record.value("rows", -2)) << record.dump();
+  EXPECT_EQ(record.value("columns_recomputed", -1), 0) << record.dump();
+  EXPECT_THAT(record["albedo_meshes"].dump(), HasSubstr("cube"));
+}
+
+// A hilbert layout keeps the old cells (the moved box's vertices stay in
+// theirs), so its columns are kept as a camera layout's are.
+TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
+  for (const std::string layout : {"camera:16x16", "hilbert:16x16"}) {
+    SCOPED_TRACE(layout);
+    const auto old_store = dir_.path() / "old.wbk", updated = dir_.path() / "updated.wbk";
+    ASSERT_TRUE(Bake(old_scene_, Params(layout), old_store).ok());
+    BakeParams p = Params(layout);
+    p.update_from = old_store.string();
+    ASSERT_TRUE(Bake(new_scene_, p, updated).ok());
+    const nlohmann::json attrs = nlohmann::json::parse(ReadTree(updated).at(".zattrs"));
+    const nlohmann::json& u = attrs["update"];
+    EXPECT_EQ(u.value("mode", ""), "local");
+    EXPECT_EQ(u.value("columns", 0), 6 * 8 * 8);
+    EXPECT_GT(u.value("columns_recomputed", 0), 0) << u.dump();
+    EXPECT_LT(u.value("columns_recomputed", 0), u.value("columns", 0)) << u.dump();
+    // The rows the moved box reaches are patched, not traced; only those with
+    // no old sample at their position (on the box, or where it stood) are.
+    EXPECT_GT(u.value("rows_patched", 0), 0) << u.dump();
+    EXPECT_EQ(u.value("rows_rebaked", -1), u.value("rows_unmatched", -2)) << u.dump();
+    for (const auto& s : {old_store, updated}) std::filesystem::remove_all(s);
+  }
 }
 
 TEST_F(UpdateBakeTest, RefusalsNameWhyAndLeaveTheOldStore) {
