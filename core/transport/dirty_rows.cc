@@ -55,6 +55,8 @@ absl::StatusOr<DirtyRowTest> DirtyRowTest::Build(const Scene& changed, const Sce
     const Bounds3 b = MeshBounds(m);
     const float r = 0.5f * b.diagonal();
     test.bounds_.push_back({b.centre(), r * (1 + kRadiusPad) + 1e-6f});
+    const Vec3 pad = Vec3{1, 1, 1} * (r * kRadiusPad + 1e-6f);
+    test.boxes_.push_back({b.lo - pad, b.hi + pad});
   }
   const int texels = pattern.texels();
   test.centre_.resize(texels);
@@ -76,9 +78,33 @@ absl::StatusOr<DirtyRowTest> DirtyRowTest::Build(const Scene& changed, const Sce
   return test;
 }
 
+// Slab test of the ray origin + t·dir, t ≥ 0, against every padded box: a
+// ray that misses them all cannot hit a changed triangle.
+bool DirtyRowTest::MissesBoxes(Vec3 origin, Vec3 dir) const {
+  for (const Bounds3& b : boxes_) {
+    double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+    bool hit = true;
+    for (int a = 0; a < 3 && hit; ++a) {
+      const double o = origin[a], d = dir[a], lo = b.lo[a], hi = b.hi[a];
+      if (d == 0) {
+        hit = o >= lo && o <= hi;
+        continue;
+      }
+      double ta = (lo - o) / d, tb = (hi - o) / d;
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      hit = t0 <= t1;
+    }
+    if (hit) return false;
+  }
+  return true;
+}
+
 bool DirtyRowTest::TexelRaysChange(Vec3 origin, int m, DirtyRowStats& stats) const {
   for (int k = 0; k < pattern_->per_texel; ++k) {
     const Vec3 dir = pattern_->Direction(m, k);
+    if (MissesBoxes(origin, dir)) continue;
     ++stats.rays_changed;
     if (!changed_->Occluded(origin, dir, 0, kInf)) continue;
     if (!options_.static_occlusion || !unchanged_) return true;
@@ -145,7 +171,7 @@ bool DirtyRowTest::RowDelta(Vec3 position, Vec3 normal, float epsilon, std::span
     for (int k = 0; k < per; ++k) {
       const Vec3 dir = pattern_->Direction(m, k);
       const float c = Dot(normal, dir);
-      if (c <= 0) continue;
+      if (c <= 0 || MissesBoxes(origin, dir)) continue;
       ++local.rays_changed;
       if (!changed_->Occluded(origin, dir, 0, kInf)) continue;
       const bool was = removed_ && removed_->Occluded(origin, dir, 0, kInf);

@@ -27,6 +27,7 @@
 #include "absl/status/statusor.h"
 #include "core/directions/jitter_pattern.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_check.h"
 #include "core/transport/ray_caster.h"
 #include "core/util/vec3.h"
 
@@ -92,6 +93,8 @@ class DirtyRowTest {
   std::shared_ptr<const JitterPattern> pattern_;
   DirtyRowOptions options_;
   std::vector<Sphere> bounds_;  // one per changed mesh
+  std::vector<Bounds3> boxes_;  // the same meshes' boxes, padded: rays missing all skip Embree
+  bool MissesBoxes(Vec3 origin, Vec3 dir) const;
   // Per texel: unit centre direction, cos and sin of its angular radius.
   std::vector<Vec3> centre_;
   std::vector<float> cos_radius_, sin_radius_;
