@@ -28,6 +28,9 @@ absl::Status Refuse(const std::filesystem::path& old_store, const auto&... why) 
   return absl::FailedPreconditionError(absl::StrCat("update: ", old_store.string(), ": ", why...));
 }
 
+// Most cone texels a patched row may have (RowReuse::patch).
+constexpr int kPatchTexels = 32;
+
 // A sample by the bits of its position and normal: equal keys trace equal rows.
 using SampleKey = std::array<uint32_t, 6>;
 struct SampleKeyHash {
@@ -83,7 +86,12 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
         continue;
       }
       if (dirty && dirty->MayChange(s.position[id], s.normal[id], ctx.epsilon, &stats[c])) {
-        if (!r.delta) continue;
+        // A patch traces single rays through its cones against three BVHs;
+        // past kPatchTexels it costs more than the refined row (~1400
+        // packet rays per row of the N=32 bench bakes): traced instead.
+        if (!r.delta ||
+            r.delta->TexelsInCones(s.position[id], s.normal[id], ctx.epsilon) > kPatchTexels)
+          continue;
         patch[id] = 1;
       }
       by_sample[id] = old_column[it->second];
@@ -172,6 +180,7 @@ nlohmann::json RowReuse::Record() const {
                       {"rows", samples},
                       {"rows_reused", reused},
                       {"rows_patched", patched},
+                      {"patch_max_texels", kPatchTexels},
                       {"layout", kept_layout ? "the old store's cells (moved meshes keep theirs)"
                                              : "this bake's own"},
                       {"rows_rebaked", rebaked},

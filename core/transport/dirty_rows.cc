@@ -146,6 +146,12 @@ bool DirtyRowTest::ForTexelsInCones(Vec3 origin, DirtyRowStats& stats, F f) cons
   return dirty;
 }
 
+int DirtyRowTest::TexelsInCones(Vec3 position, Vec3 normal, float epsilon) const {
+  DirtyRowStats stats;
+  ForTexelsInCones(position + normal * epsilon, stats, [](int) { return false; });
+  return static_cast<int>(stats.texels_in_cones);
+}
+
 absl::Status DirtyRowTest::SetPlacements(const Scene& removed, const Scene& added) {
   for (auto [scene, caster] : {std::pair{&removed, &removed_}, std::pair{&added, &added_}}) {
     if (scene->meshes.empty()) {

@@ -61,6 +61,10 @@ class DirtyRowTest {
   // Thread-safe; stats may be null.
   bool MayChange(Vec3 position, Vec3 normal, float epsilon, DirtyRowStats* stats) const;
 
+  // How many texels' cones meet a changed bound seen from the sample's ray
+  // origin (RowDelta traces their rays): the cost of a patch.
+  int TexelsInCones(Vec3 position, Vec3 normal, float epsilon) const;
+
   // For `--update`'s row patch: the old placement (removed meshes) and the
   // new one (added meshes) as separate scenes, so RowDelta can tell which
   // one a ray hits. Either may be empty.
