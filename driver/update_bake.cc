@@ -83,11 +83,12 @@ absl::Status RecordUpdateTimes(const std::filesystem::path& store, double second
   nlohmann::json& u = (*attrs)["update"];
   u["seconds"] = seconds;
   u["baking_seconds"] = baking_seconds;
-  const double rebaked = u.value("rows_rebaked", 0.0), reused = u.value("rows_reused", 0.0);
-  // Per rebaked row as the phase went; a row near the change costs more than
-  // most (it has the edit's silhouettes), so this errs low. Unknown without
-  // a rebaked row.
-  if (rebaked > 0) u["estimated_seconds_saved"] = baking_seconds / rebaked * reused;
+  const double worked = u.value("rows_rebaked", 0.0) + u.value("rows_patched", 0.0),
+               reused = u.value("rows_reused", 0.0);
+  // The phase's seconds per row it traced or patched, times the rows it
+  // copied: a row near the change costs more than most (it holds the
+  // edit's silhouettes), so this errs low. Unknown when no row was worked.
+  if (worked > 0) u["estimated_seconds_saved"] = baking_seconds / worked * reused;
   return WriteAttrs(store, *attrs);
 }
 

@@ -25,7 +25,8 @@ absl::StatusOr<bool> CopyIfUnchanged(const std::string& scene, const BakeParams&
                                      const std::filesystem::path& out);
 
 // Adds the update's wall time, its BAKE_TILE phase's, and an estimate of the
-// time saved (the phase's time per rebaked row times the rows reused) to the
+// time saved (the phase's time per traced or patched row times the rows
+// copied) to the
 // "update" record of `store` (a finished store, not yet published).
 absl::Status RecordUpdateTimes(const std::filesystem::path& store, double seconds,
                                double baking_seconds);
