@@ -21,6 +21,7 @@
 #include "driver/embedded_bake.h"
 #include "driver/job_query.h"
 #include "driver/signal_watcher.h"
+#include "driver/update_bake.h"
 #include "web/bake_monitor.h"
 
 namespace wavebake::cli {
@@ -95,6 +96,8 @@ void Run(BakeCommandFlags f) {
   std::printf("%s: %d tiles, %d groups, %lld rays, %.2f s\n", given.c_str(), job->tiles(),
               job->groups(), static_cast<long long>(job->rays_traced()), seconds);
   if (!job->stats_json().empty()) std::printf("stats: %s\n", job->stats_json().c_str());
+  if (const std::string update = driver::UpdateSummary(f.out); !update.empty())
+    std::printf("%s\n", update.c_str());
   if (monitor) ServeUntil("bake", monitor.server(), interrupted);
 }
 
@@ -112,6 +115,14 @@ void AddBakeCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--quiet", f->quiet, "no progress on stderr");
   AddBakeFlags(*cmd, f->bake);
+  CLI::Option* update =
+      cmd->add_option("--update", f->bake.params.update_from,
+                      "OLD.wbk, baked with --keep-staging and the same flags: reuse its rows "
+                      "where the scene's edit cannot reach them, rebake the others");
+  cmd->add_flag("--update-exact", f->bake.params.update_exact,
+                "--update: rerun the whole column stage from the merged rows (the store is "
+                "byte-identical to a full bake but for .zattrs' \"update\" record)")
+      ->needs(update);
   // --auto owns the light resolution and the column terms, and judges by an
   // explicit --target-error (the parser's errors name the flags).
   CLI::Option* auto_flag =
@@ -139,6 +150,7 @@ void AddBakeCommand(CLI::App& app) {
                   "--serve: require this bearer token (first line of the file)")
       ->needs(cmd->get_option("--serve"));
   cmd->get_option("--serve")->excludes(auto_flag);
+  update->excludes(auto_flag);
   cmd->callback([f] { Run(*f); });
 }
 

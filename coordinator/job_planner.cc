@@ -149,6 +149,11 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
               std::move(options)](const v1::BakeRequest& request) -> absl::StatusOr<PlannedJob> {
     absl::StatusOr<BakeParams> params = ToBakeParams(request);
     if (!params.ok()) return params.status();
+    // Input from a remote client never names a file of the server.
+    if (!params->update_from.empty() && !options.local_updates)
+      return absl::InvalidArgumentError(
+          "update_from: a coordinator takes no store path from a client; update with a local "
+          "`wavebake bake NEW --update OLD.wbk`");
     absl::StatusOr<LayoutSpec> layout = ParseLayout(params->layout);
     if (!layout.ok()) return layout.status();
     absl::StatusOr<Scene> scene = LoadRequestScene(request, options);

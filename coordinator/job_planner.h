@@ -30,6 +30,10 @@ struct PlannerOptions {
   // sha256 → LoadScene spec. The embedded `wavebake bake` plans a file scene
   // in place (a JSON scene's meshes are found beside it).
   std::map<std::string, std::string> local_scenes;
+  // An update bake's old store (BakeRequest.update_from) is a path of this
+  // machine: only the embedded bake, whose client is the machine's user,
+  // plans one.
+  bool local_updates = false;
 };
 
 PlanFn MakeJobPlanner(PlannerOptions options);

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include "driver/job_query.h"
 #include "driver/job_submit.h"
 #include "driver/job_watch.h"
+#include "driver/update_bake.h"
 #include "proto/bake_request.h"
 #include "storage/scoped_dir.h"
 #include "worker/publish_store.h"
@@ -107,6 +109,31 @@ class Watchdog {
   std::jthread thread_;
 };
 
+// When the job entered and left BAKE_TILE, from its events.
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::chrono::steady_clock::time_point start)
+      : baking_(start), after_(start) {}
+  void Saw(v1::Phase phase) {
+    const auto now = std::chrono::steady_clock::now();
+    if (phase == v1::PHASE_BAKING && !in_baking_) {
+      in_baking_ = true;
+      baking_ = now;
+    }
+    if (phase > v1::PHASE_BAKING && !after_seen_) {
+      after_seen_ = true;
+      after_ = now;
+    }
+  }
+  double BakingSeconds() const {
+    return after_seen_ ? std::chrono::duration<double>(after_ - baking_).count() : 0.0;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point baking_, after_;
+  bool in_baking_ = false, after_seen_ = false;
+};
+
 // Calls on_ending once, on whichever way EmbeddedBake leaves after
 // on_started, while the coordinator still runs.
 class EndingCall {
@@ -129,10 +156,23 @@ class EndingCall {
 
 }  // namespace
 
-absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams& params,
+absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams& given,
                                      const std::filesystem::path& out,
                                      const EmbeddedBakeOptions& options) {
   if (absl::Status s = CheckOutputPath(out); !s.ok()) return s;
+  BakeParams params = given;
+  if (absl::Status s = PrepareUpdate(params); !s.ok()) return s;  // before anything is written
+  if (!params.update_from.empty()) {
+    absl::StatusOr<bool> copied = CopyIfUnchanged(scene, params, out);
+    if (!copied.ok()) return copied.status();
+    if (*copied) {  // nothing to rebake (no job ran)
+      v1::Job done;
+      done.set_phase(v1::PHASE_DONE);
+      return done;
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  PhaseClock phases(start);
   std::map<std::string, std::string> local_scenes;  // sha256 -> the path as given
   if (!IsBuiltinScene(scene)) {
     absl::StatusOr<SceneFile> file = ReadSceneFile(scene);
@@ -144,8 +184,10 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
   absl::StatusOr<ScopedDir> data = ScopedDir::CreateBeside(out, "bake");
   if (!data.ok()) return data.status();
   const std::filesystem::path store_root = data->path() / "store";
-  const PlannerOptions planner{
-      .data_dir = data->path(), .store_root = store_root, .local_scenes = local_scenes};
+  const PlannerOptions planner{.data_dir = data->path(),
+                               .store_root = store_root,
+                               .local_scenes = local_scenes,
+                               .local_updates = true};
   absl::StatusOr<std::unique_ptr<Coordinator>> coordinator = Coordinator::Start(
       {.listen_address = "",  // in-process only
        .data_dir = data->path(),
@@ -174,7 +216,11 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
     if (!submitted.ok()) return submitted.status();
     ending.job_id = submitted->id();
     Watchdog watchdog(client, submitted->id(), options.interrupted, loops);
-    job = WatchJob(client, submitted->id(), {.patience_seconds = 60, .on_event = options.on_event});
+    job = WatchJob(client, submitted->id(),
+                   {.patience_seconds = 60, .on_event = [&](const v1::JobEvent& e) {
+                      phases.Saw(e.phase());
+                      if (options.on_event) options.on_event(e);
+                    }});
     if (job.ok() && job->phase() == v1::PHASE_CANCELLED && loops.AllStopped() &&
         !loops.error().ok()) {
       job = loops.error();  // the workers' own failure, not a user's cancel
@@ -183,6 +229,14 @@ absl::StatusOr<v1::Job> EmbeddedBake(const std::string& scene, const BakeParams&
   }  // workers drained: nothing writes any more
   ending.Call();
   if (job.ok() && job->phase() == v1::PHASE_DONE) {
+    if (!params.update_from.empty()) {
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (absl::Status s =
+              RecordUpdateTimes(store_root / job->store_path(), seconds, phases.BakingSeconds());
+          !s.ok())
+        return s;
+    }
     if (absl::Status s = PublishStore(store_root / job->store_path(), out); !s.ok()) return s;
   }
   (*coordinator)->Shutdown();

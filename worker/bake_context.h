@@ -25,6 +25,8 @@
 
 namespace wavebake {
 
+struct RowReuse;  // worker/row_reuse.h
+
 struct BakeContext {
   explicit BakeContext(RayCaster c) : caster(std::move(c)) {}
 
@@ -47,6 +49,9 @@ struct BakeContext {
   // params.bounces auto: the choice (plan.bounces holds the count).
   std::optional<AutoBounceChoice> auto_bounces;
   RayCaster caster;
+  // An update bake (worker/row_reuse.h): the rows BAKE_TILE copies from an
+  // old store instead of tracing them; null for a full bake.
+  std::shared_ptr<const RowReuse> reuse;
 };
 
 // Loads and checks the scene (reading only what `files` allows, null: a local

@@ -10,6 +10,7 @@
 #include "core/transport/transport_row.h"
 #include "storage/store_layout.h"
 #include "storage/zarr_array.h"
+#include "worker/row_reuse.h"
 #include "worker/row_transform.h"
 #include "worker/staging.h"
 #include "worker/task_buffer.h"
@@ -71,7 +72,8 @@ void TraceRow(const BakeContext& ctx, Vec3 position, Vec3 normal, std::span<floa
 // row is still in cache; the fixed order (cell, then m) makes the sum the
 // same bits on every worker.
 void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::span<float> rows,
-                  double& energy, TileStats& stats, RefineScratch& scratch) {
+                  const std::vector<uint8_t>& reused, double& energy, TileStats& stats,
+                  RefineScratch& scratch) {
   const int m_count = ctx.plan.columns;
   const int y = rect.y0 + cy;
   TransportStats traced;
@@ -81,6 +83,12 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
     const int32_t id = ctx.samples.grid[static_cast<size_t>(y) * ctx.samples.width + rect.x0 + cx];
     if (id < 0) {
       std::fill(row.begin(), row.end(), 0.0f);
+      continue;
+    }
+    if (!reused.empty() && reused[cell]) {  // an update bake's old row: already staged values
+      if (reused[cell] == 2) PatchRow(*ctx.reuse, ctx, id, row);
+      energy += SumOfSquares(row.data(), row.size());
+      ++stats.samples;
       continue;
     }
     TraceRow(ctx, ctx.samples.position[id], ctx.samples.normal[id], row, &traced, scratch);
@@ -225,7 +233,8 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
 
   const TileRect rect = plan.Tile(tile);
   const std::shared_ptr<MemoryStaging::Job> held =
-      memory != nullptr && !ctx.params.keep_staging ? memory->Admit(store, plan) : nullptr;
+      memory != nullptr && !ctx.params.keep_staging && !ctx.reuse ? memory->Admit(store, plan)
+                                                                  : nullptr;
   TileStats local;
   if (held != nullptr && !HasSamples(ctx, rect)) {
     // Every chunk of a tile without samples is zeros: in memory, pages never
@@ -240,10 +249,16 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
   double energy = 0;
   RefineScratch scratch;
+  std::vector<uint8_t> reused;  // per cell of the tile: its row came from an old store
+  if (ctx.reuse) {
+    absl::StatusOr<int> n = FillReusedRows(*ctx.reuse, plan, tile, rows, RowStride(plan), reused);
+    if (!n.ok()) return n.status();
+    local.rows_reused = static_cast<uint64_t>(*n);
+  }
   for (int cy = 0; cy < rect.height; ++cy) {
     if (signals.cancel && signals.cancel->load(std::memory_order_relaxed))
       return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
-    TraceTileRow(ctx, rect, cy, rows, energy, local, scratch);
+    TraceTileRow(ctx, rect, cy, rows, reused, energy, local, scratch);
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
   }
@@ -252,6 +267,7 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     stats->rays_traced += local.rays_traced;
     stats->bytes_written += local.bytes_written;
     stats->samples += local.samples;
+    stats->rows_reused += local.rows_reused;
   }
   return written;
 }

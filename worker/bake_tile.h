@@ -18,6 +18,7 @@ struct TileStats {
   uint64_t rays_traced = 0;    // occlusion rays handed to Embree
   uint64_t bytes_written = 0;  // compressed chunk bytes on disk (staging/transport + tile_energy)
   uint64_t samples = 0;        // non-masked cells of the tile
+  uint64_t rows_reused = 0;    // of those, rows an update bake copied (worker/row_reuse.h)
 };
 
 // Writes chunks (g, tile) of staging/transport for every group g and chunk

@@ -13,7 +13,9 @@
 #include "storage/store_reader.h"
 #include "worker/bake_tile.h"
 #include "worker/finalize.h"
+#include "worker/local_columns.h"
 #include "worker/recode.h"
+#include "worker/row_reuse.h"
 #include "worker/staging.h"
 #include "worker/store_manifest.h"
 #include "worker/transform_columns.h"
@@ -39,7 +41,15 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::unique_ptr<BakeContext>> ctx =
         MakeBakeContext(scene->load, *params, scene->files.get());
-    if (ctx.ok()) (*ctx)->scene_spec = scene->recorded;
+    if (!ctx.ok()) return ctx;
+    (*ctx)->scene_spec = scene->recorded;
+    if (!params->update_from.empty()) {  // relative: under the store root, as job stores are
+      const std::filesystem::path from = std::filesystem::path(params->update_from);
+      absl::StatusOr<std::shared_ptr<const RowReuse>> reuse = PlanRowReuse(
+          **ctx, from.is_absolute() ? from : env.store_root / from, params->update_exact);
+      if (!reuse.ok()) return reuse.status();
+      (*ctx)->reuse = *std::move(reuse);
+    }
     return ctx;
   });
 }
@@ -70,9 +80,11 @@ absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext
   absl::Status s = BakeTile(ctx, partial, task.index(), &stats,
                             {&progress.cancel, &progress.rays_traced}, memory);
   if (!s.ok()) return s;
+  nlohmann::json tile_stats = {{"samples", stats.samples}};
+  if (ctx.reuse) tile_stats["rows_reused"] = stats.rows_reused;
   return TaskOutcome{.rays_traced = static_cast<int64_t>(stats.rays_traced),
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
-                     .stats_json = nlohmann::json{{"samples", stats.samples}}.dump()};
+                     .stats_json = tile_stats.dump()};
 }
 
 // Cancel is seen between staging chunks and columns: a large group at a
@@ -81,7 +93,11 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
                                           const std::filesystem::path& partial,
                                           TaskProgress& progress, const MemoryStaging* memory) {
   GroupStats stats;
-  absl::Status s = TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel}, memory);
+  // An update (worker/row_reuse.h) stages through the store, never in memory.
+  absl::Status s =
+      ctx.reuse && !ctx.reuse->exact
+          ? LocalTransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel})
+          : TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel}, memory);
   if (!s.ok()) return s;
   return TaskOutcome{.rays_traced = 0,
                      .bytes_written = static_cast<int64_t>(stats.bytes_written),
@@ -119,6 +135,12 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
+    int64_t recomputed = ctx.plan.columns;  // before FINALIZE drops staging/groups
+    if (ctx.reuse && !ctx.reuse->exact) {
+      absl::StatusOr<int64_t> n = RecomputedColumns(ctx.plan, partial);
+      if (!n.ok()) return n.status();
+      recomputed = *n;
+    }
     if (absl::Status s = FinalizeStore(ctx, partial,
                                        {.keep_staging = ctx.params.keep_staging,
                                         .cancel = &progress.cancel,
@@ -126,6 +148,11 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
                                         .memory = memory});
         !s.ok())
       return s;
+    if (ctx.reuse) {
+      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed, ctx.plan.columns);
+          !s.ok())
+        return s;
+    }
     if (progress.cancel.load()) return Cancelled(task);
     if (absl::Status s = PublishFinishedStore(partial, out); !s.ok()) return s;
   }

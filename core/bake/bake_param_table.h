@@ -113,6 +113,7 @@ inline constexpr std::pair<std::string_view, Transport> kTransports[] = {
 
 absl::StatusOr<std::string> ParseLayoutSpelling(std::string_view s);
 std::string PrintLayout(const std::string& s);
+absl::StatusOr<std::string> ParseText(std::string_view s);  // any string, kept as given
 absl::StatusOr<LightDomain> ParseDomainSpelling(std::string_view s);
 std::string PrintDomain(const LightDomain& d);
 inline bool Refines(const BakeParams& p) { return p.refines(); }
@@ -247,6 +248,17 @@ void ForEach(Visit&& visit) {
                 "leave the staging arrays (row-transformed T, transposed) in the store", S::kOutput,
                 Record::kNever},
                &BakeParams::keep_staging});
+  // An update bake (worker/row_reuse.h): `wavebake bake --update OLD.wbk
+  // [--update-exact]` (flags of bake alone, cli/cmd_bake.cc); not a property
+  // of the matrix. The request carries them to the embedded bake's workers.
+  visit(Spelled<std::string>{
+      {"update_from", "", "the store whose rows an update reuses", S::kOutput, Record::kNever},
+      &BakeParams::update_from,
+      ParseText,
+      PrintLayout});
+  visit(Switch{
+      {"update_exact", "", "an update reruns the whole column stage", S::kOutput, Record::kNever},
+      &BakeParams::update_exact});
   visit(Number<int>{.info = {"tile_size", "--tile-size",
                              "spatial tile edge of one BAKE_TILE task (power of two)", S::kTrace},
                     .field = &BakeParams::tile_size,

@@ -65,6 +65,13 @@ struct BakeParams {
   // Not a property of the matrix (not recorded with it): FINALIZE leaves
   // staging/ in the store for inspection.
   bool keep_staging = false;
+  // An update bake (worker/row_reuse.h), not recorded with the matrix
+  // either: the old store (baked with keep_staging, the same parameters)
+  // whose staged rows are reused where the scene edit cannot reach them; ""
+  // is a full bake. update_exact: the whole column stage runs from the
+  // merged rows (the store is byte-identical to a full bake's).
+  std::string update_from;
+  bool update_exact = false;
 
   // Whether the rows are traced by refinement: asked for, on the cube, for T.
   bool refines() const {

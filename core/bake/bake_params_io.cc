@@ -18,6 +18,7 @@ absl::StatusOr<std::string> ParseLayoutSpelling(std::string_view s) {
   return std::string(s);
 }
 std::string PrintLayout(const std::string& s) { return s; }
+absl::StatusOr<std::string> ParseText(std::string_view s) { return std::string(s); }
 absl::StatusOr<LightDomain> ParseDomainSpelling(std::string_view s) { return ParseLightDomain(s); }
 std::string PrintDomain(const LightDomain& d) { return ToString(d); }
 
@@ -136,6 +137,15 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
                "--transport diffuse for bounces)");
   if (p.column_terms == 0 && p.target_error == 0)
     return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
+  if (p.update_exact && p.update_from.empty())
+    return absl::InvalidArgumentError("update_exact: needs update_from (the store to update)");
+  // A local edit reaches every sample's bounced light (the gather spans the
+  // whole scene), while an update reuses direct rows where the edit cannot
+  // reach them: bounce stores are baked whole.
+  if (!p.update_from.empty() && p.bounces != 0)
+    return bad("bounces",
+               "an update reuses direct rows only, and an edit reaches every sample's bounced "
+               "light: bake a store with bounces in full");
   return absl::OkStatus();
 }
 

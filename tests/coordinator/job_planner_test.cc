@@ -215,3 +215,26 @@ TEST_F(JobPlannerTest, ReservesThePartialStoreOnceAndCleanupRemovesIt) {
 
 }  // namespace
 }  // namespace wavebake
+
+namespace wavebake {
+namespace {
+
+// Input from a remote client never names a file of the server: an update's
+// old store is a path, so only the embedded bake (local_updates) plans one,
+// and nothing is reserved for a refused request.
+TEST_F(JobPlannerTest, AnUpdateFromAClientIsRefusedBeforeAnyFileIsRead) {
+  v1::BakeRequest r = testing::BuiltinRequest("builtin:sphere-plane");
+  r.set_light_res(8);
+  r.set_layout("camera:16x16");
+  r.set_update_from("/etc/passwd");
+  absl::StatusOr<PlannedJob> remote = MakeJobPlanner(Options())(Request(r, "up.wbk"));
+  ASSERT_FALSE(remote.ok());
+  EXPECT_EQ(remote.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(std::string(remote.status().message()), ::testing::StartsWith("update_from: "));
+  EXPECT_THAT(std::string(remote.status().message()),
+              ::testing::Not(::testing::HasSubstr("passwd")));
+  EXPECT_FALSE(std::filesystem::exists(Options().store_root / ".up.wbk.partial"));
+}
+
+}  // namespace
+}  // namespace wavebake
