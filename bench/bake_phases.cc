@@ -1,4 +1,4 @@
-// One whole bake through the product path (driver/embedded_bake.h: the
+// One whole bake through the product path (driver/bake/embedded_bake.h: the
 // coordinator and worker loops in this process), timed phase by phase:
 // BAKING (BAKE_TILE × tiles: trace, row transform, transpose, staging
 // writes), TRANSFORMING (TRANSFORM_COLUMNS × groups) and FINALIZING, each in

@@ -1,5 +1,5 @@
 #pragma once
-// One whole bake through the product path (driver/embedded_bake.h: the
+// One whole bake through the product path (driver/bake/embedded_bake.h: the
 // coordinator and worker loops in this process), timed phase by phase in
 // wall and CPU seconds (the process's user + system time, all threads):
 // what bench_bake_phases prints and bench_refine_bake compares. Header-only:
@@ -14,9 +14,9 @@
 
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
-#include "driver/embedded_bake.h"
-#include "driver/job_query.h"
-#include "worker/store_manifest.h"
+#include "driver/bake/embedded_bake.h"
+#include "driver/jobs/job_query.h"
+#include "worker/columns/store_manifest.h"
 
 namespace wavebake::bench {
 

@@ -1,4 +1,4 @@
-// One BAKE_TILE task (worker/bake_tile.h) on builtin:sphere-plane — camera
+// One BAKE_TILE task (worker/tiles/bake_tile.h) on builtin:sphere-plane — camera
 // layout 64×64, N=32, K=4, the default 32×32 tile and the plan's column groups —
 // beside, in the same run, the pure tracing cost of the same tile: the row
 // tracer alone for the same samples (no row transform, no transpose, no
@@ -14,7 +14,7 @@
 // not tracing (target: close to 1, tracing dominates). The two differ by the
 // time the store writes wait for fsync (and by CPU contention on a shared
 // machine). Benchmark times are wall-clock.
-#include "worker/bake_tile.h"
+#include "worker/tiles/bake_tile.h"
 
 #include <benchmark/benchmark.h>
 #include <time.h>
@@ -30,9 +30,9 @@
 
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
-#include "worker/bake_context.h"
-#include "worker/row_transform.h"
-#include "worker/staging.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/row_transform.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

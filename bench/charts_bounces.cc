@@ -23,7 +23,7 @@
 #include "runtime/reference/eval.h"
 #include "runtime/reference/path_reference.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

@@ -3,12 +3,12 @@
 //
 //   build/bench_charts_data OUT_DIR [--quick] [--light-res-only] [--threads T]
 //
-// Each (scene, layout, light resolution) is traced once (worker/recode.h
+// Each (scene, layout, light resolution) is traced once (worker/tiles/recode.h
 // TraceStaging); every compression setting then reruns only the column
-// stage on that trace (worker/recode.h Recode), so a sweep costs one trace
+// stage on that trace (worker/tiles/recode.h Recode), so a sweep costs one trace
 // plus one column stage per point. The x
 // axis of charts 1, 5 and 6 is the store's own stats.matrix_rel_rms =
-// sqrt(Σ dropped + quantization energy / Σ energy) (worker/store_stats.h):
+// sqrt(Σ dropped + quantization energy / Σ energy) (worker/columns/store_stats.h):
 // the relative Frobenius error of the whole matrix, a summary that depends on
 // no lighting. Chart 1 adds the relighting error each store has under both
 // probes of ../shared/data against the dense T (the error users see), and
@@ -33,16 +33,16 @@
 #include "core/bake/bake_params.h"
 #include "core/bake/bake_params_io.h"
 #include "core/directions/cubemap.h"
-#include "driver/reference_measure.h"
-#include "driver/staged_relight.h"
+#include "driver/eval/reference_measure.h"
+#include "driver/relight/staged_relight.h"
 #include "runtime/env/env_map.h"
 #include "runtime/env/env_resample.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/store_layout.h"
-#include "storage/store_reader.h"
-#include "worker/bake_context.h"
-#include "worker/recode.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_reader.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/recode.h"
 
 namespace wavebake {
 namespace {
@@ -134,7 +134,7 @@ void Drop(const Staged& staged) {
 
 // Chart 1 "under both probes": each store relit with all its wavelet lights
 // under each probe of ../shared/data, against the dense T of the same trace
-// relit under that probe (driver/staged_relight.h):
+// relit under that probe (driver/relight/staged_relight.h):
 // the relighting error compression alone adds for that lighting, which the
 // matrix error bounds for all lightings at once.
 struct ProbeCase {
@@ -241,9 +241,9 @@ void SweepBits(const Staged& staged, const RunConfig& run, Csv& csv) {
 
 // Chart 2: brute force against visibility refinement per N — rays, trace
 // time, column stage, size, matrix error — and the relighting error under
-// `env` against the independent reference (driver/reference_measure.h,
+// `env` against the independent reference (driver/eval/reference_measure.h,
 // traced once): the trace's own dense T at N (discretization alone, relit
-// from the trace: driver/staged_relight.h) and the store with all 6N²
+// from the trace: driver/relight/staged_relight.h) and the store with all 6N²
 // wavelet lights and with the runtime's default 256 — what `eval
 // --reference` reports, and what `bake --auto` chooses N by.
 void SweepLightRes(const SceneCase& scene, const std::string& env, const RunConfig& run, Csv& csv) {

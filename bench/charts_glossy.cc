@@ -27,7 +27,7 @@
 
 #include "bench/chart_util.h"
 #include "core/directions/cubemap.h"
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/env/env_resample.h"
 #include "runtime/glossy/glossy_store.h"
 #include "runtime/reference/dense_trace.h"

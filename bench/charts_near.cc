@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "bench/chart_util.h"
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/near_field/near_field.h"
 #include "runtime/reference/area_eval.h"
 #include "runtime/reference/area_reference.h"

@@ -36,15 +36,15 @@
 #include "bench/chart_util.h"
 #include "core/bake/bake_params.h"
 #include "core/bake/bake_params_io.h"
-#include "driver/embedded_bake.h"
-#include "driver/job_query.h"
+#include "driver/bake/embedded_bake.h"
+#include "driver/jobs/job_query.h"
 #include "runtime/env/env_map.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/incremental.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/relighter.h"
 #include "runtime/relight/row_basis.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake {
 namespace {

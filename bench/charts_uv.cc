@@ -27,13 +27,13 @@
 #include "bench/chart_util.h"
 #include "core/bake/bake_params.h"
 #include "core/bake/bake_params_io.h"
-#include "storage/store_layout.h"
-#include "storage/store_reader.h"
-#include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_reader.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "storage/store_layout.h"
-#include "storage/zarr_array.h"
-#include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/recode.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/recode.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

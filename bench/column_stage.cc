@@ -14,7 +14,7 @@
 //                            --benchmark_report_aggregates_only=true
 //
 // BM_ColumnStage/threads:T is the whole column stage as a rerun on the kept
-// trace (worker/recode.h) with T TRANSFORM_COLUMNS tasks at a time:
+// trace (worker/tiles/recode.h) with T TRANSFORM_COLUMNS tasks at a time:
 // x_trace_cpu = its CPU time (all threads) / the trace's, x_trace = its wall
 // time / (the one-thread trace's wall time / T), the trace divided evenly.
 //
@@ -40,16 +40,16 @@
 #include <string>
 #include <vector>
 
-#include "storage/store_layout.h"
-#include "storage/store_reader.h"
-#include "storage/zarr_array.h"
-#include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/recode.h"
-#include "worker/staging.h"
-#include "worker/store_manifest.h"
-#include "worker/transform_columns.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_reader.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/store_manifest.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/recode.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 

@@ -36,11 +36,11 @@
 
 #include "core/products/haar_product.h"
 #include "core/products/haar_tree.h"
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/glossy/glossy_store.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/row_basis.h"
-#include "storage/scoped_dir.h"
+#include "storage/files/scoped_dir.h"
 
 namespace wavebake {
 namespace {

@@ -37,9 +37,9 @@
 #include <thread>
 #include <vector>
 
-#include "coordinator/coordinator.h"
-#include "coordinator/lease_table.h"
-#include "coordinator/sqlite_util.h"
+#include "coordinator/scheduling/lease_table.h"
+#include "coordinator/service/coordinator.h"
+#include "coordinator/state/sqlite_util.h"
 #include "wavebake.grpc.pb.h"
 
 namespace wavebake {

@@ -30,7 +30,7 @@
 #include <memory>
 #include <optional>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/near_field/area_light.h"
 #include "runtime/near_field/near_field_brute.h"
 

@@ -30,7 +30,7 @@
 #include "core/directions/texel_irradiance.h"
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
-#include "worker/bake_context.h"
+#include "worker/tiles/bake_context.h"
 
 namespace wavebake {
 namespace {

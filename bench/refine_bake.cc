@@ -5,13 +5,13 @@
 //
 // Cases: builtin:cubes-wall on camera:256x256, spot.obj and the bunny on
 // hilbert:64x64 (../shared/data). For each, at N = 64:
-//   * two bakes through the product path (driver/embedded_bake.h, W workers,
+//   * two bakes through the product path (driver/bake/embedded_bake.h, W workers,
 //     default 2): --refine off and on; rays, wall and CPU seconds, store size;
 //   * each store's relighting error against the independent reference under
 //     grace.hdr and pisa.hdr with the runtime's default 256 wavelet lights —
 //     `eval --reference --no-dense`'s compressed rel_rms: the same reference
 //     (same samples, seed and ray offset) traced once and used for both
-//     stores (driver/reference_measure.h);
+//     stores (driver/eval/reference_measure.h);
 // and at N = 128 the rays alone: refinement's, traced row by row, against the
 // rays brute force would trace (core/transport/transport_row.h BruteForceRays, counted
 // without tracing).
@@ -38,8 +38,8 @@
 #include "bench/bake_run.h"
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
-#include "driver/reference_measure.h"
-#include "worker/bake_context.h"
+#include "driver/eval/reference_measure.h"
+#include "worker/tiles/bake_context.h"
 
 namespace wavebake {
 namespace {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Update bakes against full bakes, in the same run (worker/row_reuse.h):
+# Update bakes against full bakes, in the same run (worker/tiles/row_reuse.h):
 # for each scene pair (a -> b: one small object moved) a store of a is baked
 # with --keep-staging, then b is baked in full, with --update-exact and with
 # --update from a's store; an unchanged scene is updated too. Prints wall

@@ -1,4 +1,4 @@
-// Relight view frame rate (web/relight_service.h, web/monitor_server.h): the
+// Relight view frame rate (web/views/relight_service.h, web/monitor_server.h): the
 // frames a page following the rotation slider gets, beside the bare Eq. 8
 // relight of the same store with the same lights (runtime/relight/relighter.h) in the
 // same run. `x_relight` is a frame's wall time over the bare relight's; the
@@ -21,12 +21,12 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/env/env_map.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/store_relight.h"
 #include "web/monitor_server.h"
-#include "web/relight_service.h"
+#include "web/views/relight_service.h"
 
 namespace wavebake {
 namespace {

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "storage/zstd_codec.h"
+#include "storage/zarr/zstd_codec.h"
 
 namespace wavebake {
 namespace {

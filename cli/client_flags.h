@@ -3,7 +3,7 @@
 // `status`, `cancel`, `fetch`, `worker`): --coordinator, --token-file, --tls-ca.
 #include <CLI/CLI.hpp>
 
-#include "driver/client.h"
+#include "driver/jobs/client.h"
 
 namespace wavebake::cli {
 

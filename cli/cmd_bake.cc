@@ -1,7 +1,7 @@
 // `wavebake bake SCENE --out OUT.wbk [--workers N] [bake flags]` (DESIGN.md
 // §5): the embedded default, a coordinator and N workers in this process
-// (driver/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
-// at OUT. With --auto (driver/auto_bake.h) the light resolution, column
+// (driver/bake/embedded_bake.h). SIGINT or SIGTERM cancels the bake; nothing is left
+// at OUT. With --auto (driver/bake/auto_bake.h) the light resolution, column
 // target and bits are searched for the smallest store within --target-error
 // of the independent reference under --env. With --serve the web monitor
 // follows the bake and then relights its store (web/bake_monitor.h).
@@ -17,11 +17,11 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "cli/web_flags.h"
-#include "driver/auto_bake.h"
-#include "driver/embedded_bake.h"
-#include "driver/job_query.h"
-#include "driver/signal_watcher.h"
-#include "driver/update_bake.h"
+#include "driver/bake/auto_bake.h"
+#include "driver/bake/embedded_bake.h"
+#include "driver/bake/update_bake.h"
+#include "driver/jobs/job_query.h"
+#include "driver/process/signal_watcher.h"
 #include "web/bake_monitor.h"
 
 namespace wavebake::cli {

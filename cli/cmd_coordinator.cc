@@ -1,5 +1,5 @@
 // `wavebake coordinator --listen ADDR --data DIR [--http ADDR]` (DESIGN.md
-// §4, §5): the coordinator process (driver/coordinator_run.h), and with
+// §4, §5): the coordinator process (driver/process/coordinator_run.h), and with
 // --http the web monitor and /metrics, until SIGINT or SIGTERM.
 #include <spdlog/spdlog.h>
 
@@ -12,9 +12,9 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/web_flags.h"
-#include "driver/coordinator_run.h"
-#include "driver/exit_deadline.h"
-#include "driver/signal_watcher.h"
+#include "driver/process/coordinator_run.h"
+#include "driver/process/exit_deadline.h"
+#include "driver/process/signal_watcher.h"
 #include "web/coordinator_source.h"
 
 namespace wavebake::cli {
@@ -51,7 +51,7 @@ void Run(CoordinatorFlags f) {
       StartMonitor("coordinator", f.web, web::CoordinatorSource(coordinator, run->planner));
   stop.get_future().wait();
   spdlog::info("coordinator: shutting down");
-  // Bounded (driver/exit_deadline.h): a call stuck in a long planning step
+  // Bounded (driver/process/exit_deadline.h): a call stuck in a long planning step
   // must not keep a stopped coordinator alive.
   driver::ExitDeadline deadline(kShutdownBound, "coordinator", 1);
   if (monitor) monitor->Stop();  // it reads the coordinator

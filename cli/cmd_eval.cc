@@ -14,8 +14,8 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
-#include "driver/evaluate.h"
-#include "driver/tree_eval.h"
+#include "driver/eval/evaluate.h"
+#include "driver/eval/tree_eval.h"
 
 namespace wavebake::cli {
 namespace {

@@ -1,12 +1,12 @@
 // `wavebake export STORE --format wavelet-tree --out DIR [--cut-off C |
 // --target-error E] [--bits 8|16]`: a diffuse store's rows as GPU textures,
-// Boulton §4.4–4.5 (driver/tree_export.h; the format in DIR/header.json).
+// Boulton §4.4–4.5 (driver/relight/tree_export.h; the format in DIR/header.json).
 #include <cmath>
 #include <cstdio>
 
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/tree_export.h"
+#include "driver/relight/tree_export.h"
 
 namespace wavebake::cli {
 namespace {

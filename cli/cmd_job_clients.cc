@@ -12,9 +12,9 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "driver/health.h"
-#include "driver/job_query.h"
-#include "driver/store_fetch.h"
+#include "driver/jobs/health.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/store_fetch.h"
 
 namespace wavebake::cli {
 namespace {

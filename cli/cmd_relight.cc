@@ -5,14 +5,14 @@
 // (uv layouts); a visibility store through the triple product with --brdf
 // (runtime/glossy/glossy_store.h), --brdf-sequence editing its material; with
 // --rotate-sequence a rotating environment over many frames, its frames and
-// errors.csv into --out (driver/relight_command.h). With --area-light,
-// near-field planar lights instead (driver/area_light_commands.h).
+// errors.csv into --out (driver/relight/relight_command.h). With --area-light,
+// near-field planar lights instead (driver/relight/area_light_commands.h).
 #include <cstdio>
 
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/shading_flags.h"
-#include "driver/relight_command.h"
+#include "driver/relight/relight_command.h"
 
 namespace wavebake::cli {
 namespace {

@@ -6,8 +6,8 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/job_query.h"
-#include "driver/job_text.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/job_text.h"
 
 namespace wavebake::cli {
 namespace {

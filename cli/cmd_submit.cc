@@ -8,8 +8,8 @@
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "driver/job_query.h"
-#include "driver/job_submit.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/job_submit.h"
 
 namespace wavebake::cli {
 namespace {

@@ -1,5 +1,5 @@
 // `wavebake view STORE… [--http ADDR]`: the stores relit on the browser's
-// GPU from wavelet-tree textures (web/gpu_view.h). Loopback only: the view
+// GPU from wavelet-tree textures (web/views/gpu_view.h). Loopback only: the view
 // has no token.
 #include <atomic>
 #include <chrono>
@@ -8,9 +8,9 @@
 
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/coordinator_run.h"
-#include "driver/signal_watcher.h"
-#include "web/gpu_view.h"
+#include "driver/process/coordinator_run.h"
+#include "driver/process/signal_watcher.h"
+#include "web/views/gpu_view.h"
 
 namespace wavebake::cli {
 namespace {

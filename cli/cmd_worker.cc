@@ -9,8 +9,8 @@
 #include "cli/client_flags.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
-#include "driver/signal_watcher.h"
-#include "driver/worker_run.h"
+#include "driver/process/signal_watcher.h"
+#include "driver/process/worker_run.h"
 
 namespace wavebake::cli {
 namespace {

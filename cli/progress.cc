@@ -5,9 +5,9 @@
 #include <cstdio>
 
 #include "cli/command_error.h"
-#include "driver/job_query.h"
-#include "driver/job_text.h"
-#include "driver/job_watch.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/job_text.h"
+#include "driver/jobs/job_watch.h"
 
 namespace wavebake::cli {
 

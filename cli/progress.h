@@ -1,14 +1,14 @@
 #pragma once
 // A followed job on stderr (DESIGN.md §5 "Long work shows a progress bar on
 // a terminal and plain progress lines otherwise"): each event of
-// driver/job_watch.h redraws the bar with the coordinator's own per-phase
+// driver/jobs/job_watch.h redraws the bar with the coordinator's own per-phase
 // task counts, rays/s and ETA; the notable events (failures, expired leases,
 // restarts) get a line of their own.
 #include <chrono>
 #include <functional>
 #include <string>
 
-#include "driver/client.h"
+#include "driver/jobs/client.h"
 
 namespace wavebake::cli {
 

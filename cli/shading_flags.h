@@ -1,11 +1,11 @@
 #pragma once
 // The flags `relight` and `eval` share: the material (runtime/glossy/glossy_store.h)
-// and the near-field lights (driver/area_light_commands.h).
+// and the near-field lights (driver/relight/area_light_commands.h).
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "driver/area_light_commands.h"
-#include "driver/relight_command.h"
+#include "driver/relight/area_light_commands.h"
+#include "driver/relight/relight_command.h"
 
 namespace wavebake::cli {
 

@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
-#include "driver/coordinator_run.h"
+#include "driver/process/coordinator_run.h"
 
 namespace wavebake::cli {
 

@@ -8,11 +8,11 @@
 #include <mutex>
 #include <thread>
 
-#include "driver/client.h"
-#include "driver/job_query.h"
-#include "driver/job_submit.h"
-#include "driver/job_watch.h"
-#include "driver/store_fetch.h"
+#include "driver/jobs/client.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/job_submit.h"
+#include "driver/jobs/job_watch.h"
+#include "driver/jobs/store_fetch.h"
 #include "python/py_convert.h"
 
 namespace wavebake::python {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
-#include "driver/job_json.h"
+#include "driver/jobs/job_json.h"
 
 namespace wavebake::python {
 

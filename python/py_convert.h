@@ -1,6 +1,6 @@
 #pragma once
 // Between Python objects and the project's types: protobuf messages as dicts
-// (the one JSON shape of driver/job_json.h), BakeRequest fields from keyword
+// (the one JSON shape of driver/jobs/job_json.h), BakeRequest fields from keyword
 // arguments, nlohmann::json as Python values, absl errors as exceptions.
 #include <google/protobuf/message.h>
 #include <pybind11/pybind11.h>

@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "driver/tree_export.h"
+#include "driver/relight/tree_export.h"
 #include "python/py_convert.h"
 
 namespace wavebake::python {

@@ -1,6 +1,6 @@
 #pragma once
 // wavebake.export: a diffuse store's rows as GPU wavelet-tree textures, as
-// `wavebake export` writes them (driver/tree_export.h).
+// `wavebake export` writes them (driver/relight/tree_export.h).
 #include <pybind11/pybind11.h>
 
 namespace wavebake::python {

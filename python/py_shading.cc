@@ -13,9 +13,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/products/brdf.h"
-#include "driver/area_light_commands.h"
-#include "driver/area_relight.h"
-#include "driver/evaluate.h"
+#include "driver/eval/evaluate.h"
+#include "driver/relight/area_light_commands.h"
+#include "driver/relight/area_relight.h"
 #include "python/py_convert.h"
 #include "python/py_store.h"
 #include "runtime/env/env_map.h"

@@ -12,14 +12,14 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "proto/bake_request.h"
 #include "python/py_convert.h"
 #include "runtime/env/env_map.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake::python {
 namespace {

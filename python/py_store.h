@@ -14,7 +14,7 @@
 #include "runtime/glossy/glossy_store.h"
 #include "runtime/near_field/near_field.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake::python {
 

@@ -1,12 +1,12 @@
 #pragma once
-// The web monitor of an embedded bake (driver/embedded_bake.h, `bake
+// The web monitor of an embedded bake (driver/bake/embedded_bake.h, `bake
 // --serve`): while the bake runs, the pages show its in-process coordinator;
 // once it has ended, a frozen copy of the job whose store is at `out`, which
 // the relight view opens.
 #include <filesystem>
 #include <memory>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "web/job_source.h"
 #include "web/monitor_server.h"
 

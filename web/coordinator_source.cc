@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/lease_id.h"
-#include "coordinator/proto_convert.h"
+#include "coordinator/scheduling/lease_id.h"
+#include "coordinator/service/proto_convert.h"
 
 namespace wavebake::web {
 namespace {

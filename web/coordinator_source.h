@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "coordinator/coordinator.h"
-#include "coordinator/job_planner.h"
+#include "coordinator/service/coordinator.h"
+#include "coordinator/service/job_planner.h"
 #include "web/job_source.h"
 
 namespace wavebake::web {

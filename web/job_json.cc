@@ -1,7 +1,7 @@
 #include "web/job_json.h"
 
-#include "driver/job_json.h"
-#include "driver/job_text.h"
+#include "driver/jobs/job_json.h"
+#include "driver/jobs/job_text.h"
 
 namespace wavebake::web {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Jobs and events as the monitor's pages read them. A job is the one JSON
-// shape of a job (driver/job_json.h), the same as `wavebake status --json`
+// shape of a job (driver/jobs/job_json.h), the same as `wavebake status --json`
 // and Python's dicts.
 #include <nlohmann/json.hpp>
 #include <span>

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "coordinator/client_paths.h"
-#include "coordinator/scheduler_metrics.h"
+#include "coordinator/scheduling/scheduler_metrics.h"
+#include "coordinator/service/client_paths.h"
 #include "core/scene/scene.h"
 #include "wavebake.pb.h"
 

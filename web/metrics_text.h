@@ -8,7 +8,7 @@
 // in wavebake_jobs{phase}.
 #include <string>
 
-#include "coordinator/scheduler_metrics.h"
+#include "coordinator/scheduling/scheduler_metrics.h"
 #include "web/process_metrics.h"
 
 namespace wavebake::web {

@@ -10,9 +10,9 @@
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "web/http_gate.h"
+#include "web/http/http_gate.h"
+#include "web/http/socket_stream.h"
 #include "web/routes.h"
-#include "web/socket_stream.h"
 
 namespace wavebake::web {
 namespace {

@@ -6,7 +6,7 @@
 // bearer token. Served by `wavebake coordinator --http ADDR` and `wavebake
 // bake --serve ADDR`. /healthz stays open, like gRPC health checking, so
 // probes need no secret; everything else answers 401 without the token.
-// Served by its own accept path (web/http_gate.h), one request per
+// Served by its own accept path (web/http/http_gate.h), one request per
 // connection, so that no client holds a serving thread while it sends.
 #include <filesystem>
 #include <memory>
@@ -14,7 +14,7 @@
 
 #include "absl/status/statusor.h"
 #include "web/job_source.h"
-#include "web/probe_catalogue.h"
+#include "web/views/probe_catalogue.h"
 
 struct ssl_ctx_st;
 
@@ -25,7 +25,7 @@ class Server;
 namespace wavebake::web {
 
 struct RouteContext;  // web/routes.h
-class HttpGate;       // web/http_gate.h
+class HttpGate;       // web/http/http_gate.h
 
 struct MonitorOptions {
   std::string listen = "127.0.0.1:0";           // host:port; port 0 picks a free one

@@ -11,12 +11,12 @@
 #include <string>
 
 #include "absl/status/status.h"
-#include "web/job_gpu.h"
+#include "web/http/stream_slots.h"
+#include "web/http/web_auth.h"
 #include "web/job_source.h"
 #include "web/pages.h"
-#include "web/relight_service.h"
-#include "web/stream_slots.h"
-#include "web/web_auth.h"
+#include "web/views/job_gpu.h"
+#include "web/views/relight_service.h"
 
 namespace wavebake::web {
 

@@ -6,7 +6,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "runtime/io/image_io.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 #include "web/routes.h"
 
 namespace wavebake::web {

@@ -5,7 +5,7 @@
 // command-line flag and help, its range or words, and when the store records
 // it. The command-line flags (cli/bake_flags.cc), the request's conversion
 // (proto/bake_request.cc), the .zattrs writer and reader
-// (storage/params_json.cc), the staging's trace record (worker/recode.cc) and
+// (storage/store/params_json.cc), the staging's trace record (worker/tiles/recode.cc) and
 // the validation (core/bake/bake_params_io.cc) are loops over these rows, so
 // a new parameter is a BakeParams field, one row here and, if clients may set
 // it over gRPC, a BakeRequest field of the same name.
@@ -248,7 +248,7 @@ void ForEach(Visit&& visit) {
                 "leave the staging arrays (row-transformed T, transposed) in the store", S::kOutput,
                 Record::kNever},
                &BakeParams::keep_staging});
-  // An update bake (worker/row_reuse.h): `wavebake bake --update OLD.wbk
+  // An update bake (worker/tiles/row_reuse.h): `wavebake bake --update OLD.wbk
   // [--update-exact]` (flags of bake alone, cli/cmd_bake.cc); not a property
   // of the matrix. The request carries them to the embedded bake's workers.
   visit(Spelled<std::string>{

@@ -65,7 +65,7 @@ struct BakeParams {
   // Not a property of the matrix (not recorded with it): FINALIZE leaves
   // staging/ in the store for inspection.
   bool keep_staging = false;
-  // An update bake (worker/row_reuse.h), not recorded with the matrix
+  // An update bake (worker/tiles/row_reuse.h), not recorded with the matrix
   // either: the old store (baked with keep_staging, the same parameters)
   // whose staged rows are reused where the scene edit cannot reach them; ""
   // is a full bake. update_exact: the whole column stage runs from the

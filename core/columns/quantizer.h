@@ -17,7 +17,7 @@
 // Q_b = 2^(b−1) − 1, i.e. the column normalized by its max and quantized to b
 // bits. kUniform spends no extra bits on fine levels: for orthonormal filters
 // the MSE weight of every coefficient is 1, so one step for all of them is the
-// high-rate optimal allocation (worker/finalize.h picks the steps).
+// high-rate optimal allocation (worker/columns/finalize.h picks the steps).
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -3,7 +3,7 @@
 // the light resolution N, the column target and (through --bits auto) the
 // bits of the smallest store whose relighting stays within E of the
 // independent reference (runtime/reference/reference.h). Pure decisions from
-// measurements, no I/O: the orchestration (driver/auto_bake.h) asks Next() what
+// measurements, no I/O: the orchestration (driver/bake/auto_bake.h) asks Next() what
 // to measure, measures it and reports back.
 //
 // The error model: against the reference, the relit store's relative RMS

@@ -15,7 +15,7 @@
 #include "runtime/relight/finite_output.h"
 #include "runtime/relight/lighting.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 

@@ -25,7 +25,7 @@
 #include "runtime/glossy/brdf_slices.h"
 #include "runtime/glossy/glossy_relighter.h"
 #include "runtime/relight/sample_rows.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake {
 

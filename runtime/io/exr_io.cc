@@ -16,7 +16,7 @@
 #include "absl/strings/str_cat.h"
 #include "runtime/io/exr_preflight.h"
 #include "runtime/io/image_io.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 

@@ -12,7 +12,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "runtime/io/lightmap.h"
-#include "storage/scoped_dir.h"
+#include "storage/files/scoped_dir.h"
 
 namespace wavebake {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // Image and mesh outputs of `wavebake relight` (DESIGN.md §5) and the EXR
-// reader behind LoadEnvMap. Every write is atomic (storage/atomic_file.h).
+// reader behind LoadEnvMap. Every write is atomic (storage/files/atomic_file.h).
 #include <array>
 #include <cstdint>
 #include <filesystem>

@@ -4,7 +4,7 @@
 
 #include "runtime/io/image_io.h"
 #include "runtime/io/stb_codecs.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 

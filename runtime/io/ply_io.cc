@@ -8,7 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "runtime/io/image_io.h"
 #include "runtime/io/tonemap.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 

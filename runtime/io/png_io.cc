@@ -6,7 +6,7 @@
 #include "runtime/io/image_io.h"
 #include "runtime/io/stb_codecs.h"
 #include "runtime/io/tonemap.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 

@@ -8,7 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "runtime/io/image_io.h"
-#include "storage/json_file.h"
+#include "storage/files/json_file.h"
 
 namespace wavebake {
 namespace {

@@ -26,7 +26,7 @@
 #include "runtime/near_field/area_light.h"
 #include "runtime/near_field/light_canvas.h"
 #include "runtime/relight/cell_rows.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake {
 

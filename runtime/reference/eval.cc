@@ -16,7 +16,7 @@
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/glossy_eval.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

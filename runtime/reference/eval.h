@@ -1,6 +1,6 @@
 #pragma once
 // The measurement behind `wavebake eval STORE --env ENV --reference` (DESIGN.md
-// §5; the command: driver/evaluate.h): how far the store's relighting is from
+// §5; the command: driver/eval/evaluate.h): how far the store's relighting is from
 // an independently traced reference (runtime/reference/reference.h), next to
 // how far the uncompressed T is (runtime/reference/dense_trace.h), so
 // discretization and compression error can be told apart.
@@ -19,7 +19,7 @@
 #include "runtime/glossy/glossy_store.h"
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/reference.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake {
 

@@ -12,7 +12,7 @@
 #include "runtime/io/image_io.h"
 #include "runtime/relight/finite_output.h"
 #include "runtime/relight/lighting.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

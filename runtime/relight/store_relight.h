@@ -1,7 +1,7 @@
 #pragma once
 // Relighting a finished store (DESIGN.md §5 relight): the store opened for
 // relighting, one relit image, and its output file (the command that ties
-// them together: driver/relight_to_file.h).
+// them together: driver/relight/relight_to_file.h).
 #include <filesystem>
 #include <span>
 #include <string_view>
@@ -12,7 +12,7 @@
 #include "core/layouts/samples.h"
 #include "runtime/env/env_map.h"
 #include "runtime/relight/relighter.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 namespace wavebake {
 
@@ -22,7 +22,7 @@ struct OpenedStore {
   Relighter relighter;
 };
 
-// ReadStoreInfo + ReadSamples + ReadTransport (storage/store_reader.h) into a
+// ReadStoreInfo + ReadSamples + ReadTransport (storage/store/store_reader.h) into a
 // Relighter. Errors: not a store, another format version, inconsistent arrays
 // (named by the reader or Relighter::Create).
 absl::StatusOr<OpenedStore> OpenStore(const std::filesystem::path& store);
@@ -36,7 +36,7 @@ absl::Status RequireCubeDomain(const StoreInfo& info);
 // [W*H*3] linear RGB × albedo, NaN in masked cells. Error: terms ≤ 0.
 absl::StatusOr<std::vector<float>> RelightImage(OpenedStore& store, const EnvMap& env, int terms);
 
-// One relit image [W*H*3] written by out's extension (driver/relight_to_file.h
+// One relit image [W*H*3] written by out's extension (driver/relight/relight_to_file.h
 // RelightToFile says which).
 absl::Status WriteRelit(const OpenedStore& store, std::span<const float> rgb, float exposure_stops,
                         const std::filesystem::path& out);

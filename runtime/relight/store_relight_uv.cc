@@ -8,7 +8,7 @@
 #include "runtime/io/image_io.h"
 #include "runtime/io/lightmap.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

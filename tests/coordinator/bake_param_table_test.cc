@@ -12,7 +12,7 @@
 #include "core/bake/bake_param_words.h"
 #include "core/bake/bake_params_io.h"
 #include "proto/bake_request.h"
-#include "storage/params_json.h"
+#include "storage/store/params_json.h"
 
 namespace wavebake {
 namespace {

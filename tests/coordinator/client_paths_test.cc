@@ -1,6 +1,6 @@
 // ClientPaths: the data directory and store root never reach a client, in
 // any of the spellings a message may use; other text is left alone.
-#include "coordinator/client_paths.h"
+#include "coordinator/service/client_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-// The job's ETA (coordinator/eta_model.h): from measured task times of the
+// The job's ETA (coordinator/scheduling/eta_model.h): from measured task times of the
 // running stage, priors scaled by the tile stage's wall time for stages not
 // begun, 0 once the job is done. Expected values follow the model's
 // definition by hand, with a fake clock so task times are exact.
 #include <gtest/gtest.h>
 
-#include "coordinator/eta_model.h"
-#include "coordinator/lease_table.h"
-#include "coordinator/proto_convert.h"
+#include "coordinator/scheduling/eta_model.h"
+#include "coordinator/scheduling/lease_table.h"
+#include "coordinator/service/proto_convert.h"
 #include "tests/coordinator/test_util.h"
 
 namespace wavebake {

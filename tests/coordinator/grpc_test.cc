@@ -12,8 +12,8 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/coordinator.h"
-#include "coordinator/scene_store.h"
+#include "coordinator/service/coordinator.h"
+#include "coordinator/state/scene_store.h"
 #include "tests/coordinator/fake_worker.h"
 #include "tests/coordinator/test_util.h"
 

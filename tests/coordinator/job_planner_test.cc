@@ -1,7 +1,7 @@
 // The real planner (DESIGN.md §2, §4): tasks from the layout's grid without
 // tracing, scenes from built-ins or uploads, bad scenes named by their field,
 // the partial store reserved once, and cleanup of ended jobs.
-#include "coordinator/job_planner.h"
+#include "coordinator/service/job_planner.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "absl/strings/str_cat.h"
-#include "coordinator/scene_store.h"
+#include "coordinator/state/scene_store.h"
 #include "proto/bake_request.h"
 #include "tests/coordinator/test_util.h"
 

@@ -1,6 +1,6 @@
 // JobStore over SQLite (WAL): a coordinator that dies and restarts on the same
 // file resumes every unfinished job (DESIGN.md §4).
-#include "coordinator/job_store.h"
+#include "coordinator/state/job_store.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "coordinator/lease_table.h"
+#include "coordinator/scheduling/lease_table.h"
 #include "tests/coordinator/test_util.h"
 
 namespace wavebake {

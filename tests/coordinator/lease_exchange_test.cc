@@ -4,7 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "coordinator/lease_table.h"
+#include "coordinator/scheduling/lease_table.h"
 #include "tests/coordinator/test_util.h"
 
 namespace wavebake {

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "coordinator/lease_table.h"
+#include "coordinator/scheduling/lease_table.h"
 #include "tests/coordinator/test_util.h"
 
 namespace wavebake {

@@ -1,6 +1,6 @@
 // LeaseTable with a fake clock and no database: stages, ordering, expiry,
 // attempts, worker exclusion, cancel and cleanup (DESIGN.md §2, §4).
-#include "coordinator/lease_table.h"
+#include "coordinator/scheduling/lease_table.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Partial stores of no unfinished job are removed at start; nothing else is.
-#include "coordinator/orphan_stores.h"
+#include "coordinator/state/orphan_stores.h"
 
 #include <gtest/gtest.h>
 

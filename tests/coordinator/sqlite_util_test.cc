@@ -1,6 +1,6 @@
 // SQLite errors name the database file and stay short: a failed schema used
 // to be quoted whole (kilobytes) before "database or disk is full".
-#include "coordinator/sqlite_util.h"
+#include "coordinator/state/sqlite_util.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "coordinator/job_types.h"
+#include "coordinator/scheduling/job_types.h"
 #include "tests/testing/scratch_dir.h"
 #include "wavebake.pb.h"
 

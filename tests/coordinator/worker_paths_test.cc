@@ -1,5 +1,5 @@
 // Worker failure reasons lose the worker's paths before they are stored.
-#include "coordinator/worker_paths.h"
+#include "coordinator/service/worker_paths.h"
 
 #include <gtest/gtest.h>
 

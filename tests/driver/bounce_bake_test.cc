@@ -9,11 +9,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/env/env_map.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/json_file.h"
-#include "storage/store_reader.h"
+#include "storage/files/json_file.h"
+#include "storage/store/store_reader.h"
 #include "tests/testing/bowl_scene.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"

@@ -4,7 +4,7 @@
 // shuffled order with retries (DESIGN.md §1 "Determinism"); it passes the
 // white furnace through the whole pipeline; its events add up; and a failed,
 // refused or interrupted bake leaves nothing at the output.
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,15 +20,15 @@
 
 #include "core/bake/bake_params_io.h"
 #include "core/wavelets/wavelet2d.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
-#include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/publish_store.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/publish_store.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake::driver {
 namespace {

@@ -1,5 +1,5 @@
 // The glossy command-line values: --view and --brdf-sequence
-// (runtime/glossy/glossy_store.h, driver/material_sequence.h).
+// (runtime/glossy/glossy_store.h, driver/relight/material_sequence.h).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/products/brdf.h"
-#include "driver/material_sequence.h"
+#include "driver/relight/material_sequence.h"
 #include "runtime/glossy/glossy_store.h"
 
 namespace wavebake::driver {

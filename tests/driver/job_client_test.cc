@@ -1,4 +1,4 @@
-// The job client (driver/job_submit.h, job_watch.h, job_query.h,
+// The job client (driver/jobs/job_submit.h, job_watch.h, job_query.h,
 // store_fetch.h) against a real coordinator on a TCP port with one worker
 // loop: a scene file is uploaded once by content hash, a watch sees every
 // persisted event once and in order, status and cancel report the job, and
@@ -10,16 +10,16 @@
 #include <fstream>
 #include <thread>
 
-#include "coordinator/coordinator.h"
-#include "coordinator/job_planner.h"
-#include "driver/client.h"
-#include "driver/job_query.h"
-#include "driver/job_submit.h"
-#include "driver/job_watch.h"
-#include "driver/store_fetch.h"
+#include "coordinator/service/coordinator.h"
+#include "coordinator/service/job_planner.h"
+#include "driver/jobs/client.h"
+#include "driver/jobs/job_query.h"
+#include "driver/jobs/job_submit.h"
+#include "driver/jobs/job_watch.h"
+#include "driver/jobs/store_fetch.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
-#include "worker/worker_loop.h"
+#include "worker/loop/worker_loop.h"
 
 namespace wavebake::driver {
 namespace {

@@ -1,8 +1,8 @@
-// The job views of `wavebake status` (driver/job_text.h): every field a user
+// The job views of `wavebake status` (driver/jobs/job_text.h): every field a user
 // reads is there, the rate and ETA only when the coordinator knows them, and
 // the JSON line is the whole message under its proto field names, numbers
 // as numbers, phases as DONE.
-#include "driver/job_text.h"
+#include "driver/jobs/job_text.h"
 
 #include <gmock/gmock.h>
 #include <google/protobuf/util/json_util.h>
@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "driver/job_json.h"
+#include "driver/jobs/job_json.h"
 
 namespace wavebake::driver {
 namespace {

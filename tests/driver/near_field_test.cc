@@ -15,13 +15,13 @@
 #include <numbers>
 #include <string>
 
-#include "driver/area_relight.h"
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
+#include "driver/relight/area_relight.h"
 #include "runtime/near_field/near_field_brute.h"
 #include "runtime/reference/area_reference.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/json_file.h"
+#include "storage/files/json_file.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake::driver {

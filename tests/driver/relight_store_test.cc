@@ -1,5 +1,5 @@
 // The runtime against real stores baked by the embedded bake
-// (driver/embedded_bake.h): the white furnace through bake + relight, the
+// (driver/bake/embedded_bake.h): the white furnace through bake + relight, the
 // compressed path against the dense retrace of the same T, `eval`'s report,
 // RelightToFile outputs, and bad inputs. Lives in tests/driver because the
 // driver is the layer that links both the bake and the runtime.
@@ -13,15 +13,15 @@
 #include <string>
 
 #include "core/bake/bake_params.h"
-#include "driver/embedded_bake.h"
-#include "driver/evaluate.h"
-#include "driver/relight_sequence.h"
-#include "driver/relight_to_file.h"
+#include "driver/bake/embedded_bake.h"
+#include "driver/eval/evaluate.h"
+#include "driver/relight/relight_sequence.h"
+#include "driver/relight/relight_to_file.h"
 #include "runtime/env/env_resample.h"
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/eval.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake::driver {

@@ -1,8 +1,8 @@
-// The dense staged T relit (driver/staged_relight.h) is the dense retrace of
+// The dense staged T relit (driver/relight/staged_relight.h) is the dense retrace of
 // runtime/reference/dense_trace.h — another implementation, in the pixel basis — when
 // the bake traced by brute force; with refinement it differs only by what
 // refinement changes (the exact integral), a fraction of a percent.
-#include "driver/staged_relight.h"
+#include "driver/relight/staged_relight.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/eval.h"
 #include "tests/testing/scratch_dir.h"
-#include "worker/recode.h"
+#include "worker/tiles/recode.h"
 
 namespace wavebake::driver {
 namespace {

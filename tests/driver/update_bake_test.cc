@@ -1,4 +1,4 @@
-// `bake NEW --update OLD.wbk` (worker/row_reuse.h): with --update-exact the
+// `bake NEW --update OLD.wbk` (worker/tiles/row_reuse.h): with --update-exact the
 // store is byte-identical to a full bake of the new scene (every file; the
 // .zattrs too once its "update" record is set aside), for a camera and a
 // hilbert layout (which re-sorts its samples when a mesh moves); an
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 

@@ -9,12 +9,12 @@
 #include <fstream>
 #include <memory>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/env/env_map.h"
 #include "runtime/io/lightmap.h"
 #include "runtime/io/stb_codecs.h"
 #include "runtime/relight/store_relight.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake {

@@ -1,14 +1,14 @@
 #pragma once
 // The scene harnesses (obj, ply, json): the input is an uploaded scene file,
 // loaded as the coordinator loads one (confined to its upload directory,
-// storage/scene_files.h). Beside that directory lie a mesh and a material
+// storage/scene_files/scene_files.h). Beside that directory lie a mesh and a material
 // library with values found nowhere else: a scene that loads either broke
 // out of its upload. A loaded scene must be what CheckAndRepairScene promises.
 #include <cmath>
 
 #include "core/scene/scene.h"
-#include "storage/scene_files.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_files.h"
+#include "storage/scene_files/scene_loader.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

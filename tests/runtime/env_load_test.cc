@@ -10,7 +10,7 @@
 #include "runtime/io/image_io.h"
 #include "runtime/io/stb_codecs.h"
 #include "runtime/relight/lighting.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "env_test_util.h"
 #include "runtime/io/image_io.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 namespace {

@@ -8,7 +8,7 @@
 #include "absl/strings/match.h"
 #include "runtime/io/image_io.h"
 #include "runtime/io/stb_codecs.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 namespace {

@@ -15,7 +15,7 @@
 #include "env_test_util.h"
 #include "gmock/gmock.h"
 #include "runtime/io/stb_codecs.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 namespace {

@@ -17,7 +17,7 @@
 #include "core/transport/ray_caster.h"
 #include "runtime/env/env_map.h"
 #include "runtime/env/latlong.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

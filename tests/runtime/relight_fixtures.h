@@ -27,7 +27,7 @@
 #include "core/transport/transport_row.h"
 #include "core/wavelets/subband.h"
 #include "core/wavelets/wavelet2d.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake::testing {
 

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "env_test_util.h"
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 
 namespace wavebake {
 namespace {

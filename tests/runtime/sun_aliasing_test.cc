@@ -20,7 +20,7 @@
 #include "runtime/reference/dense_trace.h"
 #include "runtime/reference/eval.h"
 #include "runtime/reference/reference.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 namespace wavebake {
 namespace {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Workers check their configuration at start (storage/store_root_marker.h):
+# Workers check their configuration at start (storage/store/store_root_marker.h):
 # a --store-root that is the coordinator's data dir (not its store/), a
 # directory that does not exist (an NFS mount that is missing), another
 # coordinator's store root, or a read-only one makes `worker` exit non-zero

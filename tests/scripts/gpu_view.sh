@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Relighting on the browser's GPU (web/gpu_view.h, tests/scripts/gpu_view.py):
+# Relighting on the browser's GPU (web/views/gpu_view.h, tests/scripts/gpu_view.py):
 # `wavebake export --format wavelet-tree` writes what its header documents,
 # refuses a visibility store by name, and `wavebake view` serves a page whose
 # WebGL2 frame (headless chromium, SwiftShader) equals the C++ decoder's frame

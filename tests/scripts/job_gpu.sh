@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The job page's relight view on the browser's GPU (web/job_gpu.h): headless
+# The job page's relight view on the browser's GPU (web/views/job_gpu.h): headless
 # chromium with SwiftShader draws a finished job's store from its arrays,
 # and turning the rotation slider fetches only the kept lights — no frame
 # request (tests/scripts/job_gpu.py counts them).

@@ -64,7 +64,7 @@ NEWER_FIELDS = {("V1Probe", "grpc"): {"port": int, "service": str}}
 NEWER_REQUIRED = {("V1Probe", "grpc"): {"port"}}
 PRIMITIVES = {"str": str, "int": int, "bool": bool, "float": (int, float)}
 # The health service --health-listen keeps SERVING while the process serves
-# (kLivenessService, coordinator/coordinator.h).
+# (kLivenessService, coordinator/service/coordinator.h).
 LIVENESS_SERVICE = "liveness"
 
 
@@ -306,7 +306,7 @@ def policy(docs, svc, sts, dep, coord, worker):
         if probe.get("grpc", {}).get("port") != hport or "exec" in probe:
             fail(f"coordinator.{p} is not a grpc probe on the health port {hport}")
     # Readiness is the overall status (NOT_SERVING on a full --data disk);
-    # liveness the service that stays SERVING then (coordinator/coordinator.h).
+    # liveness the service that stays SERVING then (coordinator/service/coordinator.h).
     if coord["readinessProbe"]["grpc"].get("service", "") != "":
         fail("coordinator.readinessProbe does not ask the overall health status")
     if coord["livenessProbe"]["grpc"].get("service") != LIVENESS_SERVICE:

@@ -2,7 +2,7 @@
 // next: whatever the sizes of the pieces appended, the array reads back as
 // the values in order (through ZarrArray, the same bytes WriteAll writes),
 // and a wrong total length is an error naming the array.
-#include "storage/array_appender.h"
+#include "storage/zarr/array_appender.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <span>
 
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 #include "tests/storage/array_values.h"
 #include "tests/storage/test_support.h"
 

@@ -7,8 +7,8 @@
 
 #include <thread>
 
-#include "storage/chunk_region.h"
-#include "storage/zarr_array.h"
+#include "storage/zarr/chunk_region.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/storage/array_values.h"
 #include "tests/storage/test_support.h"
 

@@ -11,8 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "storage/scene_files.h"
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_files.h"
+#include "storage/scene_files/scene_loader.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake {

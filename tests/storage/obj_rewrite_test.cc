@@ -2,7 +2,7 @@
 // CRLF and comments rewrites to the plain text written out here by hand; each
 // way a line can be wrong is refused naming the line; a face too large to
 // triangulate is refused in time linear in the file.
-#include "storage/obj_rewrite.h"
+#include "storage/scene_files/obj_rewrite.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The PLY check and rewrite: the three encodings of one mesh give the same
 // ASCII text (written out here by hand), and each way a file can lie about
 // itself is refused, naming where.
-#include "storage/ply_rewrite.h"
+#include "storage/scene_files/ply_rewrite.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "storage/zarr_array.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/storage/array_values.h"
 #include "tests/storage/test_support.h"
 

@@ -1,8 +1,8 @@
-// What a scene file may make the loader read (storage/scene_files.h): an
+// What a scene file may make the loader read (storage/scene_files/scene_files.h): an
 // uploaded scene only files under its confined root — no absolute path, no
 // "..", no OBJ material library elsewhere — with messages that name no
 // server path; the local user's scene reads anything, with a warning.
-#include "storage/scene_files.h"
+#include "storage/scene_files/scene_files.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 #include "tests/testing/scratch_dir.h"
 
 namespace wavebake {

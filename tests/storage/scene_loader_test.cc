@@ -1,4 +1,4 @@
-#include "storage/scene_loader.h"
+#include "storage/scene_files/scene_loader.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -209,7 +209,7 @@ end_header
   for (Vec3 n : s.meshes[0].normals) EXPECT_NEAR(Length(n - Vec3{0, 0, 1}), 0, 1e-6);
 }
 
-// Binary PLY reaches assimp rewritten (storage/ply_rewrite.h): data whose
+// Binary PLY reaches assimp rewritten (storage/scene_files/ply_rewrite.h): data whose
 // first byte is a line end is read in place, and s/t become UV channel 0.
 TEST_F(SceneLoaderTest, ReadsBinaryPlyWhoseDataStartsWithALineEnd) {
   std::string ply =

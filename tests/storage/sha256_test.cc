@@ -1,6 +1,6 @@
 // SHA-256 against the FIPS 180-4 example vectors (an independent anchor),
 // fed whole and in pieces, and through a file.
-#include "storage/sha256.h"
+#include "storage/files/sha256.h"
 
 #include <gtest/gtest.h>
 

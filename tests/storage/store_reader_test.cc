@@ -1,7 +1,7 @@
 // The store reader against a store written by hand here, array by array
 // (DESIGN.md §3), with its expected values worked out from the dequantization
 // formula of DESIGN.md §1 and levels read off the Mallat layout by hand.
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 
 #include <fcntl.h>
 #include <gmock/gmock.h>
@@ -17,12 +17,12 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/columns/quantizer.h"
-#include "storage/params_json.h"
-#include "storage/store_check.h"
-#include "storage/store_layout.h"
-#include "storage/store_samples.h"
-#include "storage/store_verify.h"
-#include "storage/zarr_array.h"
+#include "storage/store/params_json.h"
+#include "storage/store/store_check.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_samples.h"
+#include "storage/store/store_verify.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/storage/test_support.h"
 
 namespace wavebake {
@@ -284,7 +284,7 @@ TEST(StoreReaderTest, ANonFiniteSampleValueIsDataLossNamingIt) {
 // write end to free the reader and fails instead of hanging.
 TEST(StoreReaderTest, AFifoInTheStoreIsRefusedWithoutBlocking) {
   for (const std::string& name : {std::string(".zattrs"), std::string(store::kScale) + "/0",
-                                 std::string(store::kData) + "/.zarray"}) {
+                                  std::string(store::kData) + "/.zarray"}) {
     TempDir tmp;
     const auto store = tmp.path() / "s.wbk";
     WriteStore(store);
@@ -438,7 +438,7 @@ TEST(StoreReaderTest, SamplesRoundTrip) {
   EXPECT_EQ(CheckStoreComplete(store).code(), absl::StatusCode::kDataLoss);
 }
 
-// VerifyStore (storage/store_verify.h) reads every chunk of every array: a
+// VerifyStore (storage/store/store_verify.h) reads every chunk of every array: a
 // whole store verifies; one flipped byte in any chunk is DATA_LOSS naming it.
 TEST(StoreVerifyTest, EveryChunkIsRead) {
   TempDir dir;

@@ -1,7 +1,7 @@
-// Where a store's scene is found (storage/store_scene.h): built-ins as
+// Where a store's scene is found (storage/store/store_scene.h): built-ins as
 // named; a file name as given, beside the store, then along
 // $WAVEBAKE_SCENE_PATH; a store records names, never directories.
-#include "storage/store_scene.h"
+#include "storage/store/store_scene.h"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-#include "storage/zarr_array.h"
+#include "storage/zarr/zarr_array.h"
 
 #define ZSTD_STATIC_LINKING_ONLY  // ZSTD_getFrameHeader
 #include <gmock/gmock.h>
@@ -7,7 +7,7 @@
 
 #include <fstream>
 
-#include "storage/atomic_file.h"
+#include "storage/files/atomic_file.h"
 #include "tests/storage/array_values.h"
 #include "tests/storage/test_support.h"
 

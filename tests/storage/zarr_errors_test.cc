@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "storage/zarr_array.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/storage/test_support.h"
 
 namespace wavebake {

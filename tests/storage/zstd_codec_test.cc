@@ -1,4 +1,4 @@
-#include "storage/zstd_codec.h"
+#include "storage/zarr/zstd_codec.h"
 
 #define ZSTD_STATIC_LINKING_ONLY  // ZSTD_getFrameHeader, to inspect the frame flags
 #include <gmock/gmock.h>

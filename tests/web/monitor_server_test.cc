@@ -14,9 +14,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "driver/embedded_bake.h"
+#include "driver/bake/embedded_bake.h"
 #include "runtime/io/tonemap.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 #include "tests/testing/scratch_dir.h"
 #include "web/coordinator_source.h"
 

@@ -1,7 +1,7 @@
 // The relight view's probes: the built-ins and the .hdr/.exr files under
 // --probes, by relative name; any other name — a path, a file outside the
 // list, a traversal — is refused, so a client never names a server file.
-#include "web/probe_catalogue.h"
+#include "web/views/probe_catalogue.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The monitor's token check: the bearer header compares the whole token;
 // sessions come only from the right token, are unguessable ids, and the
 // cookie is HttpOnly and SameSite=Strict (Secure under TLS).
-#include "web/web_auth.h"
+#include "web/http/web_auth.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

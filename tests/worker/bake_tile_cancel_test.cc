@@ -6,10 +6,10 @@
 
 #include <atomic>
 
-#include "storage/store_layout.h"
+#include "storage/store/store_layout.h"
 #include "tests/worker/staging_testing.h"
-#include "worker/bake_tile.h"
-#include "worker/staging.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

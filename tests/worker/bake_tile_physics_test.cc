@@ -12,9 +12,9 @@
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
 #include "tests/worker/staging_testing.h"
-#include "worker/bake_tile.h"
-#include "worker/row_transform.h"
-#include "worker/staging.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/row_transform.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

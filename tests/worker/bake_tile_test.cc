@@ -1,6 +1,6 @@
 // BAKE_TILE as a task: bit-identical staging whatever the threads, the tile
 // order and retries (DESIGN.md §1 "Determinism"), its counters, and bad input.
-#include "worker/bake_tile.h"
+#include "worker/tiles/bake_tile.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,9 +15,9 @@
 
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
-#include "storage/store_layout.h"
+#include "storage/store/store_layout.h"
 #include "tests/worker/staging_testing.h"
-#include "worker/staging.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

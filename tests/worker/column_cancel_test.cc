@@ -7,11 +7,11 @@
 
 #include <atomic>
 
-#include "storage/store_layout.h"
+#include "storage/store/store_layout.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/finalize.h"
-#include "worker/group_result.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/group_result.h"
+#include "worker/columns/transform_columns.h"
 
 namespace wavebake {
 namespace {

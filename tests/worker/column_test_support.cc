@@ -10,9 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "storage/store_layout.h"
-#include "storage/zarr_array.h"
-#include "worker/transform_columns.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/columns/transform_columns.h"
 
 namespace wavebake::column_testing {
 

@@ -2,7 +2,7 @@
 // Helpers of the column-stage tests: scratch directories, a bake context for
 // a small job, the synthetic matrix of tests/testing/synthetic_columns.h
 // as staging written directly in the staging format
-// (storage/store_layout.h, core/bake/job_plan.h) with ZarrArray, and the
+// (storage/store/store_layout.h, core/bake/job_plan.h) with ZarrArray, and the
 // independent python reader.
 #include <filesystem>
 #include <functional>
@@ -15,7 +15,7 @@
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 #include "tests/testing/synthetic_columns.h"
-#include "worker/bake_context.h"
+#include "worker/tiles/bake_context.h"
 
 namespace wavebake::column_testing {
 

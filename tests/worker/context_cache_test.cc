@@ -1,6 +1,6 @@
 // ContextCache: a job's BakeContext is built once per worker, however many of
 // its threads ask at once, and shared read-only.
-#include "worker/context_cache.h"
+#include "worker/loop/context_cache.h"
 
 #include <gtest/gtest.h>
 

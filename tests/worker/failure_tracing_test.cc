@@ -19,7 +19,7 @@
 #include "core/scene/builtin_scenes.h"
 #include "core/transport/transport_row.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/bake_context.h"
+#include "worker/tiles/bake_context.h"
 
 namespace wavebake {
 namespace {

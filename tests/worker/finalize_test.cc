@@ -2,7 +2,7 @@
 // decoding and inverse-transforming a column gives back the staged column
 // within the error target plus the quantizer's bound (DESIGN.md §1), the bit
 // count is the fewest meeting half the target, and the manifest adds up.
-#include "worker/finalize.h"
+#include "worker/columns/finalize.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,13 +15,13 @@
 #include "core/columns/quantizer.h"
 #include "core/wavelets/subband.h"
 #include "core/wavelets/wavelet2d.h"
-#include "storage/store_layout.h"
-#include "storage/store_reader.h"
-#include "storage/zarr_array.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_reader.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/group_result.h"
-#include "worker/store_manifest.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/group_result.h"
+#include "worker/columns/store_manifest.h"
+#include "worker/columns/transform_columns.h"
 
 namespace wavebake {
 namespace {

@@ -1,8 +1,8 @@
-// The group result file (worker/group_result.h): what TRANSFORM_COLUMNS
+// The group result file (worker/columns/group_result.h): what TRANSFORM_COLUMNS
 // writes reads back field for field, the column table reads back alone, and
 // every kind of damage is DataLoss naming the file — never a crash, a huge
 // allocation or a silently wrong group.
-#include "worker/group_result.h"
+#include "worker/columns/group_result.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,24 +1,24 @@
-// Staging held in memory (worker/memory_staging.h) is the transpose of
+// Staging held in memory (worker/tiles/memory_staging.h) is the transpose of
 // DESIGN.md §2 without the store's round trip: the store it produces is
 // byte for byte the store-staged one's, whichever tiles went to memory, in
 // any order and with retries; a job that does not fit the budget goes
 // through the store; a chunk found in neither place fails the group instead
 // of reading as zeros; FINALIZE lets the memory go.
-#include "worker/memory_staging.h"
+#include "worker/tiles/memory_staging.h"
 
 #include <gtest/gtest.h>
 
 #include <numeric>
 #include <random>
 
-#include "storage/store_layout.h"
+#include "storage/store/store_layout.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
-#include "worker/bake_context.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

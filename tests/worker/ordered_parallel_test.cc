@@ -1,6 +1,6 @@
 // OrderedParallel: items produced on several threads are consumed in order,
 // never more than `window` ahead, and the first error stops the rest.
-#include "worker/ordered_parallel.h"
+#include "worker/loop/ordered_parallel.h"
 
 #include <gtest/gtest.h>
 

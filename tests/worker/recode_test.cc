@@ -1,8 +1,8 @@
-// Column-stage-only reruns on a kept trace (worker/recode.h): the recoded
+// Column-stage-only reruns on a kept trace (worker/tiles/recode.h): the recoded
 // store is bit-identical to a fresh bake with the new column parameters, the
 // trace is left untouched, and a trace of other trace parameters is refused
 // by name.
-#include "worker/recode.h"
+#include "worker/tiles/recode.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,10 +11,10 @@
 
 #include "tests/testing/file_tree.h"
 #include "tests/worker/staging_testing.h"
-#include "worker/bake_tile.h"
-#include "worker/finalize.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/finalize.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

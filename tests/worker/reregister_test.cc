@@ -11,7 +11,7 @@
 
 #include "tests/testing/scratch_dir.h"
 #include "wavebake.grpc.pb.h"
-#include "worker/worker_loop.h"
+#include "worker/loop/worker_loop.h"
 
 namespace wavebake {
 namespace {

@@ -1,4 +1,4 @@
-#include "worker/row_transform.h"
+#include "worker/tiles/row_transform.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SceneCache: built-ins pass through, uploaded scenes are fetched once by
 // content hash and reused, local scenes are used in place; the store always
 // records a name every worker agrees on.
-#include "worker/scene_cache.h"
+#include "worker/loop/scene_cache.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "storage/sha256.h"
+#include "storage/files/sha256.h"
 #include "tests/worker/staging_testing.h"
 
 namespace wavebake {
@@ -124,7 +124,7 @@ TEST(SceneCacheTest, BytesThatDoNotHashToTheirNameAreRefusedAndNotCached) {
 }
 
 // A worker loads an uploaded scene as the coordinator planned it: reading
-// only what was uploaded (storage/scene_files.h), not its own disk.
+// only what was uploaded (storage/scene_files/scene_files.h), not its own disk.
 TEST(SceneCacheTest, UploadedScenesReadOnlyTheirUpload) {
   ScratchDir dir;
   SceneCache cache(dir.path());

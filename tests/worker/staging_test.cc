@@ -1,4 +1,4 @@
-#include "worker/staging.h"
+#include "worker/tiles/staging.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/bake/job_plan.h"
-#include "storage/store_layout.h"
-#include "storage/zarr_array.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/worker/staging_testing.h"
 
 namespace wavebake {
@@ -24,7 +24,7 @@ JobPlan Plan(int light_res, int width, int height, int tile_size, int column_gro
   return MakeJobPlan(p, width, height);
 }
 
-// The shapes of storage/store_layout.h, spelled out from N, W, H and the task
+// The shapes of storage/store/store_layout.h, spelled out from N, W, H and the task
 // sizes: [6N², W·H] chunked [group, tile edge²], and one energy per tile.
 TEST(StagingTest, CreatesBothArraysWithTheDocumentedLayout) {
   ScratchDir dir;

@@ -2,7 +2,7 @@
 // Helpers for the BAKE_TILE tests: a scratch store directory, a context, and
 // reading the staging arrays back through the Zarr layer (an independent
 // reader of what BakeTile wrote: chunk (g, t) as the layout of
-// storage/store_layout.h and core/bake/job_plan.h defines it).
+// storage/store/store_layout.h and core/bake/job_plan.h defines it).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -15,10 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include "storage/store_layout.h"
-#include "storage/zarr_array.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/testing/scratch_dir.h"
-#include "worker/bake_context.h"
+#include "worker/tiles/bake_context.h"
 
 namespace wavebake::staging_testing {
 

@@ -10,9 +10,9 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/bake/bake_params_io.h"
-#include "storage/store_reader.h"
+#include "storage/store/store_reader.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/finalize.h"
+#include "worker/columns/finalize.h"
 
 namespace wavebake {
 namespace {

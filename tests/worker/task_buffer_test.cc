@@ -2,7 +2,7 @@
 // TRANSFORM_COLUMNS must write every element they read. Baked once over a
 // buffer poisoned with NaN and once over one poisoned with 7, with a padded
 // last group, the stores must be the same bytes.
-#include "worker/task_buffer.h"
+#include "worker/loop/task_buffer.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <limits>
 
 #include "tests/worker/staging_testing.h"
-#include "worker/bake_tile.h"
-#include "worker/staging.h"
-#include "worker/transform_columns.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/tiles/bake_tile.h"
+#include "worker/tiles/staging.h"
 
 namespace wavebake {
 namespace {

@@ -2,7 +2,7 @@
 // "Column transform", 4D paper §4.2): smooth columns compress with depth,
 // isolated spikes inflate under a full transform, and the adaptive search
 // never keeps more than either fixed choice.
-#include "worker/transform_columns.h"
+#include "worker/columns/transform_columns.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <algorithm>
 #include <functional>
 
-#include "storage/store_layout.h"
+#include "storage/store/store_layout.h"
 #include "tests/worker/column_test_support.h"
-#include "worker/group_result.h"
+#include "worker/columns/group_result.h"
 
 namespace wavebake {
 namespace {

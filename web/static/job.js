@@ -1,7 +1,7 @@
 // One job: summary, timeline of its task leases per worker, and for a DONE
 // job its store statistics and the relight view: on the browser's GPU when
 // it has WebGL2 with float targets and blending and the store is one the
-// GPU path draws (web/job_gpu.h: the 4D store decoded by view_4d.js, only
+// GPU path draws (web/views/job_gpu.h: the 4D store decoded by view_4d.js, only
 // the kept lights fetched per change, no frame requests); otherwise frames
 // relit by the server as the controls move (at most one request in flight,
 // the latest wins).
@@ -9,7 +9,7 @@
 
 const jobId = location.pathname.split("/").pop();
 const KIND_COLOURS = { BAKE_TILE: "#2f81f7", TRANSFORM_COLUMNS: "#d4a72c", FINALIZE: "#1a7f37" };
-// A job is the Job message as JSON (driver/job_json.h): the scene is in its
+// A job is the Job message as JSON (driver/jobs/job_json.h): the scene is in its
 // request, "ended" is a phase from DONE on, an ETA < 0 is unknown.
 const ENDED = new Set(["DONE", "FAILED", "CANCELLED"]);
 function jobEnded(job) { return ENDED.has(job.phase); }

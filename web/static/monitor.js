@@ -2,7 +2,7 @@
 // falls back to polling /api/jobs; no reload.
 "use strict";
 
-// A job is the Job message as JSON (driver/job_json.h): the scene is in its
+// A job is the Job message as JSON (driver/jobs/job_json.h): the scene is in its
 // request, "ended" is a phase from DONE on, an ETA < 0 is unknown.
 const ENDED = new Set(["DONE", "FAILED", "CANCELLED"]);
 function jobEnded(job) { return ENDED.has(job.phase); }

@@ -1,4 +1,4 @@
-// The GPU relight view (web/gpu_view.h) in two modes: mode=tree relights
+// The GPU relight view (web/views/gpu_view.h) in two modes: mode=tree relights
 // from the wavelet-tree textures (view_tree.js, Boulton §4.5), mode=4d from
 // the 4D store's own arrays (view_4d.js, the 4D paper's Eq. 8). Both draw
 // into one W×H RGBA32F frame (alpha 0 on masked cells) that display.frag

@@ -1,4 +1,4 @@
-// mode=4d of the GPU view (web/gpu_view.h): the 4D store itself relit on
+// mode=4d of the GPU view (web/views/gpu_view.h): the 4D store itself relit on
 // the GPU, Eq. 8 of the 4D paper (§4.5, Fig. 6). The store's CSC arrays
 // (meta.json documents them) are uploaded once. Per probe, rotation and
 // term count the server sends the kept lights (column, RGB weight); the

@@ -1,4 +1,4 @@
-// mode=tree of the GPU view (web/gpu_view.h): the store's wavelet-tree
+// mode=tree of the GPU view (web/views/gpu_view.h): the store's wavelet-tree
 // textures (header.json documents them) uploaded once; per probe, rotation
 // and term count the server sends the environment trees (a few KB) and
 // wavelet_tree.frag computes B per texel by walking both trees in parallel

@@ -1,5 +1,5 @@
 // What a client sends the web monitor, as its gate reads it before a thread
-// is spent (web/http_head.h), then as cpp-httplib parses what the gate let
+// is spent (web/http/http_head.h), then as cpp-httplib parses what the gate let
 // through (on an in-memory stream, no socket). Properties beyond "no
 // crash": a ready request is a prefix of the bytes within the limits and
 // is ready again on exactly those bytes and not one fewer; a refusal is one
@@ -8,7 +8,7 @@
 #include <httplib.h>
 
 #include "tests/fuzz/fuzz_util.h"
-#include "web/http_head.h"
+#include "web/http/http_head.h"
 
 namespace wavebake::fuzz {
 

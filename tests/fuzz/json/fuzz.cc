@@ -1,4 +1,4 @@
-// JSON scene uploads (storage/scene_loader_json.cc), their mesh references
+// JSON scene uploads (storage/scene_files/scene_loader_json.cc), their mesh references
 // resolved inside the upload, where tri.obj lies (tests/fuzz/scene_fuzz.h).
 #include "tests/fuzz/scene_fuzz.h"
 

@@ -1,11 +1,11 @@
-// The OBJ check and rewrite alone (storage/obj_rewrite.h), without assimp
+// The OBJ check and rewrite alone (storage/scene_files/obj_rewrite.h), without assimp
 // behind it (tests/fuzz/obj loads whole scenes). Properties beyond "no
 // crash": a refusal is INVALID_ARGUMENT naming a line of the input; a
 // rewrite is a fixed point (its own rewrite), has no more lines than the
 // input, and every face in it has 3 to 255 corners with indices in range.
 #include <charconv>
 
-#include "storage/obj_rewrite.h"
+#include "storage/scene_files/obj_rewrite.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

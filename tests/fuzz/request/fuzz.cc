@@ -4,11 +4,11 @@
 // that normalizes normalizes to itself again, turns into BakeParams, and
 // those params survive ToBakeRequest; a lease id that parses formats back to
 // the same text, and every error is INVALID_ARGUMENT naming its field.
-#include "coordinator/job_service.h"
-#include "coordinator/lease_id.h"
+#include "coordinator/scheduling/lease_id.h"
+#include "coordinator/service/job_service.h"
 #include "core/bake/bake_params_io.h"
 #include "proto/bake_request.h"
-#include "storage/params_json.h"
+#include "storage/store/params_json.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

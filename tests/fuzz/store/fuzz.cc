@@ -9,13 +9,13 @@
 #include <map>
 
 #include "core/bake/bake_params.h"
-#include "storage/params_json.h"
-#include "storage/store_check.h"
-#include "storage/store_layout.h"
-#include "storage/store_reader.h"
-#include "storage/store_samples.h"
-#include "storage/store_verify.h"
-#include "storage/zarr_array.h"
+#include "storage/store/params_json.h"
+#include "storage/store/store_check.h"
+#include "storage/store/store_layout.h"
+#include "storage/store/store_reader.h"
+#include "storage/store/store_samples.h"
+#include "storage/store/store_verify.h"
+#include "storage/zarr/zarr_array.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace wavebake::fuzz {

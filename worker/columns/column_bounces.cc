@@ -1,0 +1,171 @@
+#include "worker/columns/column_bounces.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/tiles/staging.h"
+
+namespace wavebake {
+namespace {
+
+double BounceSumOfSquares(const float* v, size_t n) {
+  double sum = 0;
+  for (size_t i = 0; i < n; ++i) sum += double(v[i]) * v[i];
+  return sum;
+}
+
+absl::Status WriteBounceEnergy(const JobPlan& plan, const std::filesystem::path& store, int group,
+                               const std::vector<double>& energy) {
+  // Idempotent (a recode's staging has no such array until its first group).
+  absl::StatusOr<ZarrArray> a =
+      ZarrArray::Create(store::Path(store, store::kStagingBounceEnergy), BounceEnergySpec(plan));
+  if (!a.ok()) return a.status();
+  const std::vector<float> row(energy.begin(), energy.end());
+  const int64_t index[2] = {group, 0};
+  return a->WriteChunk<float>(index, row);
+}
+
+// The group's columns of the auxiliary samples' direct rows A₀
+// (staging/aux_transport): column c at aux[c·S_a, (c+1)·S_a). A chunk not
+// written is a tile not baked, never zeros.
+absl::Status AssembleAuxColumns(const JobPlan& plan, const std::filesystem::path& store, int group,
+                                std::span<float> aux) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingAuxTransport));
+  if (!a.ok()) return a.status();
+  if (!SameSpec(a->spec(), AuxTransportSpec(plan)))
+    return absl::FailedPreconditionError(
+        absl::StrCat(a->dir().string(), ": does not match the job plan"));
+  const size_t tile_cells = plan.tile_cells(), samples = plan.aux_samples;
+  std::vector<float> chunk(size_t(plan.group_size) * tile_cells);
+  for (int t = 0; t < plan.aux_tiles(); ++t) {
+    const int64_t index[2] = {group, t};
+    if (!std::filesystem::exists(a->ChunkPath(index)))
+      return absl::FailedPreconditionError(absl::StrCat(a->dir().string(), ": auxiliary tile ", t,
+                                                        " (tile ", plan.tiles() + t,
+                                                        ") has not been baked"));
+    if (absl::Status s = a->ReadChunkInto(index, std::as_writable_bytes(std::span(chunk))); !s.ok())
+      return s;
+    const size_t first = size_t(t) * tile_cells;
+    const size_t n = std::min(tile_cells, samples - first);
+    for (int c = 0; c < plan.GroupCount(group); ++c)
+      std::copy_n(chunk.data() + size_t(c) * tile_cells, n, aux.data() + c * samples + first);
+  }
+  return absl::OkStatus();
+}
+
+bool BounceStopped(const TaskSignals& signals) {
+  return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
+}
+
+// Columns first..first+n of `images` (each `cells` long) into `block`,
+// interleaved (block[cell·n + k] = column first+k), and back, added.
+void Interleave(std::span<const float> images, size_t cells, int first, int n,
+                std::span<float> block) {
+  for (int k = 0; k < n; ++k) {
+    const float* src = images.data() + size_t(first + k) * cells;
+    for (size_t i = 0; i < cells; ++i) block[i * n + k] = src[i];
+  }
+}
+
+// energy[b] += Σ v² of each interleaved vector in column order; the image
+// columns += the block (the per-column sums of the unblocked loop, same bits).
+void AddBlock(std::span<const float> block, size_t cells, int first, int n, std::span<float> images,
+              double& energy) {
+  for (int k = 0; k < n; ++k) {
+    double sum = 0;
+    float* dst = images.data() + size_t(first + k) * cells;
+    for (size_t i = 0; i < cells; ++i) {
+      const float v = block[i * n + k];
+      sum += double(v) * v;
+      dst[i] += v;
+    }
+    energy += sum;
+  }
+}
+
+// Mesh and lightmap layouts: T_b = G T_{b−1} over the layout's own cells,
+// BounceGather::kMaxBlock columns at a time (one pass over G's entries per
+// block; the values of the columns side by side).
+absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int group,
+                           std::span<float> images, std::vector<double>& energy,
+                           const TaskSignals& signals) {
+  const size_t cells = size_t(plan.width) * plan.height;
+  const int count = plan.GroupCount(group);
+  std::vector<float> previous(cells * BounceGather::kMaxBlock), next(previous.size());
+  for (int first = 0; first < count; first += BounceGather::kMaxBlock) {
+    if (BounceStopped(signals))
+      return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+    const int n = std::min(BounceGather::kMaxBlock, count - first);
+    for (int k = 0; k < n; ++k)
+      energy[0] += BounceSumOfSquares(images.data() + size_t(first + k) * cells, cells);
+    Interleave(images, cells, first, n, previous);
+    for (int b = 1; b <= plan.bounces; ++b) {
+      gather.ApplyBlock(previous, next, n);
+      AddBlock(next, cells, first, n, images, energy[b]);
+      previous.swap(next);
+    }
+  }
+  return absl::OkStatus();
+}
+
+// A camera layout: Σ_{b=1..B} T_b = G_ca Σ_{b<B} G_aa^b A₀ (core/bake/
+// bake_gather.h): the bounces run over the auxiliary set, and the pixels
+// gather their sum once, so a bounce costs one product with G_aa. energy[b]
+// is then that of the auxiliary set's bounce b, Σ (G_aa^b A₀)² (the record
+// says so), in blocks of columns as above.
+absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
+                           const std::filesystem::path& store, int group, std::span<float> images,
+                           std::vector<double>& energy, const TaskSignals& signals) {
+  const size_t cells = size_t(plan.width) * plan.height, samples = plan.aux_samples;
+  const int count = plan.GroupCount(group);
+  std::vector<float> aux(size_t(count) * samples);
+  if (absl::Status s = AssembleAuxColumns(plan, store, group, aux); !s.ok()) return s;
+  constexpr int kBlock = BounceGather::kMaxBlock;
+  std::vector<float> previous(samples * kBlock), next(previous.size()), sum(previous.size()),
+      bounce(cells * kBlock);
+  for (int first = 0; first < count; first += kBlock) {
+    if (BounceStopped(signals))
+      return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+    const int n = std::min(kBlock, count - first);
+    for (int k = 0; k < n; ++k)
+      energy[0] += BounceSumOfSquares(aux.data() + size_t(first + k) * samples, samples);
+    Interleave(aux, samples, first, n, previous);
+    std::copy_n(previous.begin(), samples * n, sum.begin());
+    for (int b = 1; b <= plan.bounces; ++b) {
+      gathers.aux_gather->ApplyBlock(previous, next, n);
+      for (int k = 0; k < n; ++k) {
+        double e = 0;
+        for (size_t i = 0; i < samples; ++i) e += double(next[i * n + k]) * next[i * n + k];
+        energy[b] += e;
+      }
+      if (b < plan.bounces)
+        for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
+      previous.swap(next);
+    }
+    gathers.gather.ApplyBlock(sum, bounce, n);
+    double pixels = 0;  // the pixels' bounced light: added, not recorded
+    AddBlock(bounce, cells, first, n, images, pixels);
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                             std::span<float> images, const TaskSignals& signals) {
+  const JobPlan& plan = ctx.plan;
+  if (plan.bounces <= 0) return absl::OkStatus();
+  if (!ctx.bounce)
+    return absl::FailedPreconditionError("bounces: the context has no gather operator");
+  std::vector<double> energy(plan.bounces + 1, 0.0);
+  absl::Status s = ctx.bounce->aux_gather
+                       ? AddAuxBounces(*ctx.bounce, plan, store, group, images, energy, signals)
+                       : AddOwnBounces(ctx.bounce->gather, plan, group, images, energy, signals);
+  if (!s.ok()) return s;
+  return WriteBounceEnergy(plan, store, group, energy);
+}
+
+}  // namespace wavebake

@@ -1,0 +1,169 @@
+#include "worker/columns/local_columns.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/columns/column_coding.h"
+#include "storage/files/atomic_file.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/columns/group_result.h"
+#include "worker/tiles/row_reuse.h"
+
+namespace wavebake {
+namespace {
+
+std::filesystem::path CountPath(const std::filesystem::path& store, int group) {
+  return GroupResultDir(store) / absl::StrCat(group, ".recomputed");
+}
+
+absl::Status WriteCount(const std::filesystem::path& store, int group, size_t count) {
+  const std::string text = std::to_string(count);
+  return AtomicWriteFile(CountPath(store, group), std::as_bytes(std::span(text)));
+}
+
+bool Stopped(const TaskSignals& signals) {
+  return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
+}
+
+// changed[j]: column first+j differs from the old store's in some touched tile.
+absl::StatusOr<std::vector<uint8_t>> ChangedColumns(const RowReuse& reuse, const JobPlan& plan,
+                                                    const ZarrArray& now, const ZarrArray& old,
+                                                    int group, const TaskSignals& signals) {
+  const int count = plan.GroupCount(group);
+  const size_t cells = plan.tile_cells();
+  std::vector<uint8_t> changed(count, 0);
+  for (int t = 0; t < plan.tiles(); ++t) {
+    if (!reuse.tile_touched[t]) continue;  // every row of it copied in place: same bits
+    if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+    const int64_t index[] = {group, t};
+    absl::StatusOr<std::vector<float>> a = now.ReadChunk<float>(index);
+    if (!a.ok()) return a.status();
+    absl::StatusOr<std::vector<float>> b = old.ReadChunk<float>(index);
+    if (!b.ok()) return b.status();
+    for (int j = 0; j < count; ++j)
+      changed[j] |=
+          std::memcmp(a->data() + j * cells, b->data() + j * cells, cells * sizeof(float)) != 0;
+  }
+  return changed;
+}
+
+// The W×H images of the changed columns, in column order (k-th changed at k·W·H).
+absl::StatusOr<std::vector<float>> ChangedImages(const JobPlan& plan, const ZarrArray& now,
+                                                 int group, const std::vector<int>& which) {
+  const size_t image = size_t(plan.width) * plan.height;
+  std::vector<float> images(which.size() * image);
+  for (int t = 0; t < plan.tiles(); ++t) {
+    const int64_t index[] = {group, t};
+    absl::StatusOr<std::vector<float>> chunk = now.ReadChunk<float>(index);
+    if (!chunk.ok()) return chunk.status();
+    const TileRect r = plan.Tile(t);
+    for (size_t k = 0; k < which.size(); ++k) {
+      const float* src = chunk->data() + size_t(which[k]) * plan.tile_cells();
+      float* dst = images.data() + k * image + size_t(r.y0) * plan.width + r.x0;
+      for (int y = 0; y < r.height; ++y)
+        std::copy_n(src + size_t(y) * r.width, r.width, dst + size_t(y) * plan.width);
+    }
+  }
+  return images;
+}
+
+}  // namespace
+
+absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem::path& store,
+                                   int group, GroupStats* stats, const TaskSignals& signals) {
+  const JobPlan& plan = ctx.plan;
+  const RowReuse* reuse = ctx.reuse.get();
+  absl::StatusOr<GroupResult> old_result =
+      reuse && reuse->in_place && reuse->full_reason.empty()
+          ? ReadGroupResult(reuse->old_store, group)
+          : absl::StatusOr<GroupResult>(absl::NotFoundError("rows moved"));
+  if (!old_result.ok() || old_result->first_column != plan.GroupFirst(group) ||
+      static_cast<int>(old_result->columns.size()) != plan.GroupCount(group)) {
+    if (absl::Status s = TransformColumns(ctx, store, group, stats, signals); !s.ok()) return s;
+    return WriteCount(store, group, plan.GroupCount(group));
+  }
+  absl::StatusOr<ZarrArray> now = ZarrArray::Open(store::Path(store, store::kStagingTransport));
+  if (!now.ok()) return now.status();
+  absl::StatusOr<ZarrArray> old =
+      ZarrArray::Open(store::Path(reuse->old_store, store::kStagingTransport));
+  if (!old.ok()) return old.status();
+  absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
+  if (!matrix_energy.ok()) return matrix_energy.status();
+  absl::StatusOr<std::vector<uint8_t>> changed =
+      ChangedColumns(*reuse, plan, *now, *old, group, signals);
+  if (!changed.ok()) return changed.status();
+  std::vector<int> which;
+  for (int j = 0; j < plan.GroupCount(group); ++j)
+    if ((*changed)[j]) which.push_back(j);
+  absl::StatusOr<std::vector<float>> images =
+      which.empty() ? std::vector<float>{} : ChangedImages(plan, *now, group, which);
+  if (!images.ok()) return images.status();
+
+  const ColumnCodingParams params =
+      MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  const size_t image = size_t(plan.width) * plan.height;
+  GroupResult result;
+  result.group = group;
+  result.first_column = plan.GroupFirst(group);
+  result.matrix_energy = *matrix_energy;
+  GroupStats local;
+  size_t k = 0, at = 0;  // next changed column; start of the old column's slice
+  CodedColumn coded;
+  for (int j = 0; j < plan.GroupCount(group); ++j) {
+    if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+    const GroupColumn& was = old_result->columns[j];
+    if (k < which.size() && which[k] == j) {
+      CodeColumn(params, std::span(*images).subspan(k++ * image, image), &coded);
+      result.columns.push_back({.depth = static_cast<uint8_t>(coded.depth),
+                                .min_bits = static_cast<uint8_t>(coded.min_bits),
+                                .kept = static_cast<uint32_t>(coded.positions.size()),
+                                .energy = coded.energy,
+                                .reference_energy = coded.reference_energy,
+                                .dropped_energy = coded.dropped_energy,
+                                .max_abs = coded.max_abs,
+                                .step_unit = coded.step_unit});
+      result.positions.insert(result.positions.end(), coded.positions.begin(),
+                              coded.positions.end());
+      result.values.insert(result.values.end(), coded.values.begin(), coded.values.end());
+    } else {
+      GroupColumn kept = was;
+      if (ctx.params.error_scope == ErrorScope::kMatrix) kept.reference_energy = *matrix_energy;
+      result.columns.push_back(kept);
+      result.positions.insert(result.positions.end(), old_result->positions.begin() + at,
+                              old_result->positions.begin() + at + was.kept);
+      result.values.insert(result.values.end(), old_result->values.begin() + at,
+                           old_result->values.begin() + at + was.kept);
+    }
+    local.min_bits = std::max<int>(local.min_bits, result.columns.back().min_bits);
+    at += was.kept;
+  }
+  if (absl::Status s = WriteGroupResult(store, result); !s.ok()) return s;
+  local.columns = plan.GroupCount(group);
+  local.kept = result.positions.size();
+  std::error_code ec;
+  local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
+  if (stats) *stats = local;
+  return WriteCount(store, group, which.size());
+}
+
+absl::StatusOr<int64_t> RecomputedColumns(const JobPlan& plan, const std::filesystem::path& store) {
+  int64_t total = 0;
+  for (int g = 0; g < plan.groups; ++g) {
+    int64_t n = -1;
+    {
+      std::ifstream in(CountPath(store, g));
+      if (!(in >> n) || n < 0) n = plan.GroupCount(g);
+    }
+    total += n;
+    // Read once, by FINALIZE: a kept staging holds a full bake's files only.
+    std::error_code ec;
+    std::filesystem::remove(CountPath(store, g), ec);
+  }
+  return total;
+}
+
+}  // namespace wavebake

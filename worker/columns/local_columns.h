@@ -1,0 +1,40 @@
+#pragma once
+// TRANSFORM_COLUMNS of an `--update` bake (not --update-exact): only the
+// columns the edit changed are transformed again (Boulton §4.5: Haar's local
+// support). A column image is W×H staged values; when every reused row sits
+// in its old cell (RowReuse::in_place), a column whose values in the tiles
+// with a rebaked cell are bit-identical to the old store's is the same image,
+// so its old coded column (the old store's kept staging/groups) is exact
+// and is kept; the others are coded anew from the merged staging.
+//
+// How depth and quantization are decided then: a recomputed column gets the
+// full adaptive depth search and its selection against the budget of the
+// new matrix energy (core/columns/column_coding.h); a kept column keeps its
+// depth and its selection (made against the old matrix energy, which a
+// small edit moves little; its reference energy is set to the new one so
+// FINALIZE budgets it as the others); the quantization step stays
+// matrix-wide, planned by FINALIZE over all columns as in any bake. So the
+// store differs from a full bake only by the selections of kept columns.
+#include <filesystem>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/loop/task_signals.h"
+#include "worker/tiles/bake_context.h"
+
+namespace wavebake {
+
+// TransformColumns of group `group` for ctx (ctx.reuse set, not exact).
+// Falls back to TransformColumns when the rows moved between cells or the
+// old store kept no group result for the group. Writes how many columns
+// were coded anew beside the group result (RecomputedColumns reads it).
+absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem::path& store,
+                                   int group, GroupStats* stats, const TaskSignals& signals = {});
+
+// Σ over groups of the columns LocalTransformColumns coded anew (a group
+// without its count: all its columns), removing the counts (FINALIZE reads
+// them once, so that a kept staging holds only what a full bake's does).
+absl::StatusOr<int64_t> RecomputedColumns(const JobPlan& plan, const std::filesystem::path& store);
+
+}  // namespace wavebake

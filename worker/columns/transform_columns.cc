@@ -1,0 +1,174 @@
+#include "worker/columns/transform_columns.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/columns/column_coding.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/columns/column_bounces.h"
+#include "worker/columns/group_result.h"
+#include "worker/loop/task_buffer.h"
+
+namespace wavebake {
+namespace {
+
+absl::Status WrongPlan(const ZarrArray& a, const std::string& what) {
+  return absl::FailedPreconditionError(
+      absl::StrCat(a.dir().string(), ": ", what, " does not match the job plan"));
+}
+
+// Opens staging/transport and checks it is the layout of this plan
+// (core/bake/job_plan.h): [M, W*H] float32 chunked [group_size, tile_cells].
+absl::StatusOr<ZarrArray> OpenStaging(const JobPlan& plan, const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTransport));
+  if (absl::IsNotFound(a.status()))
+    return absl::FailedPreconditionError(absl::StrCat(a.status().message(), " (no staging)"));
+  if (!a.ok()) return a.status();
+  const ArraySpec& s = a->spec();
+  if (s.dtype != DType::kFloat32) return WrongPlan(*a, "dtype");
+  if (s.shape != std::vector<int64_t>{plan.columns, int64_t{plan.width} * plan.height})
+    return WrongPlan(*a, "shape");
+  if (s.chunks != std::vector<int64_t>{plan.group_size, plan.tile_cells()})
+    return WrongPlan(*a, "chunking");
+  return a;
+}
+
+bool Stopped(const TaskSignals& signals) {
+  return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
+}
+
+absl::Status Cancelled(int group) {
+  return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
+}
+
+// Reads chunk (group, t) of every tile and scatters it into `images`: column
+// c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H). The
+// tiles cover the image, so every element is written.
+// A chunk the job's in-memory staging holds is read from there; any other
+// from the store, which must then hold it (a tile whose energy is written
+// has written its chunks somewhere).
+absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
+                             const MemoryStaging::Job* memory, int group, std::span<float> images,
+                             GroupStats* stats, const TaskSignals& signals) {
+  const int count = plan.GroupCount(group);
+  const size_t cells = size_t(plan.width) * plan.height;
+  std::vector<float> buffer;
+  for (int t = 0; t < plan.tiles(); ++t) {
+    if (Stopped(signals)) return Cancelled(group);
+    std::span<const float> chunk = memory ? memory->Chunk(group, t) : std::span<const float>();
+    if (chunk.empty()) {
+      const int64_t index[2] = {group, t};
+      if (memory != nullptr && !std::filesystem::exists(staging.ChunkPath(index)))
+        return absl::FailedPreconditionError(absl::StrCat(
+            staging.dir().string(), ": chunk ", group, ".", t, " is neither in memory nor staged"));
+      buffer.resize(size_t(plan.group_size) * plan.tile_cells());
+      if (absl::Status s = staging.ReadChunkInto(index, std::as_writable_bytes(std::span(buffer)));
+          !s.ok()) {
+        return s;
+      }
+      chunk = buffer;
+    }
+    stats->staging_bytes += chunk.size() * sizeof(float);
+    const TileRect r = plan.Tile(t);
+    for (int c = 0; c < count; ++c) {
+      const float* src = chunk.data() + size_t(c) * plan.tile_cells();
+      float* dst = images.data() + c * cells + size_t(r.y0) * plan.width + r.x0;
+      for (int y = 0; y < r.height; ++y) {
+        std::copy_n(src + size_t(y) * r.width, r.width, dst + size_t(y) * plan.width);
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+void AppendColumn(const CodedColumn& coded, GroupResult* result) {
+  GroupColumn c;
+  c.depth = static_cast<uint8_t>(coded.depth);
+  c.min_bits = static_cast<uint8_t>(coded.min_bits);
+  c.kept = static_cast<uint32_t>(coded.positions.size());
+  c.energy = coded.energy;
+  c.reference_energy = coded.reference_energy;
+  c.dropped_energy = coded.dropped_energy;
+  c.max_abs = coded.max_abs;
+  c.step_unit = coded.step_unit;
+  result->columns.push_back(c);
+  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
+  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
+}
+
+}  // namespace
+
+absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTileEnergy));
+  if (!a.ok()) return a.status();
+  if (a->spec().shape != std::vector<int64_t>{plan.tiles()} || a->spec().chunks.at(0) != 1)
+    return WrongPlan(*a, "shape");
+  double sum = 0;
+  for (int64_t t = 0; t < plan.tiles(); ++t) {
+    // A missing chunk would read as 0: a tile not baked yet, not an empty one.
+    if (!std::filesystem::exists(a->ChunkPath(std::span(&t, 1))))
+      return absl::FailedPreconditionError(
+          absl::StrCat(a->dir().string(), ": tile ", t, " has not been baked"));
+    absl::StatusOr<std::vector<float>> e = a->ReadChunk<float>(std::span(&t, 1));
+    if (!e.ok()) return e.status();
+    sum += (*e)[0];
+  }
+  return sum / plan.columns;
+}
+
+absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                              GroupStats* stats, const TaskSignals& signals,
+                              const MemoryStaging* memory) {
+  const JobPlan& plan = ctx.plan;
+  if (group < 0 || group >= plan.groups)
+    return absl::InvalidArgumentError(
+        absl::StrCat("group: ", group, " is outside 0..", plan.groups - 1));
+  absl::StatusOr<ZarrArray> staging = OpenStaging(plan, store);
+  if (!staging.ok()) return staging.status();
+  absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
+  if (!matrix_energy.ok()) return matrix_energy.status();
+
+  GroupStats local;
+  const std::span<float> images =
+      TaskBuffer(size_t(plan.GroupCount(group)) * plan.width * plan.height);
+  const std::shared_ptr<MemoryStaging::Job> held = memory ? memory->Find(store) : nullptr;
+  if (absl::Status s = AssembleColumns(plan, *staging, held.get(), group, images, &local, signals);
+      !s.ok())
+    return s;
+  // Diffuse interreflection, added to the column images before they are coded.
+  if (absl::Status s = AddGroupBounces(ctx, store, group, images, signals); !s.ok()) return s;
+
+  ColumnCodingParams params =
+      MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  std::optional<CellFiller> filler;  // only the uv layout fills (core/layouts/layout.h)
+  if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
+    filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
+    params.filler = &*filler;
+  }
+  const size_t cells = size_t(plan.width) * plan.height;
+  GroupResult result;
+  result.group = group;
+  result.first_column = plan.GroupFirst(group);
+  result.matrix_energy = *matrix_energy;
+  CodedColumn coded;
+  for (int c = 0; c < plan.GroupCount(group); ++c) {
+    if (Stopped(signals)) return Cancelled(group);
+    CodeColumn(params, images.subspan(c * cells, cells), &coded);
+    AppendColumn(coded, &result);
+    local.min_bits = std::max(local.min_bits, coded.min_bits);
+  }
+  if (absl::Status s = WriteGroupResult(store, result); !s.ok()) return s;
+
+  local.columns = plan.GroupCount(group);
+  local.kept = result.positions.size();
+  std::error_code ec;
+  local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
+  if (stats != nullptr) *stats = local;
+  return absl::OkStatus();
+}
+
+}  // namespace wavebake

@@ -1,0 +1,44 @@
+#pragma once
+// TRANSFORM_COLUMNS, the reduce half of the blocked transpose (DESIGN.md §2):
+// one group of light columns, read from the staging chunk of every tile,
+// assembled into W×H column images, transformed to their depth and selected
+// (core/columns/column_coding.h), and written back to staging as the group's
+// GroupResult (worker/columns/group_result.h) for FINALIZE. Free of scheduling: the
+// embedded bake's workers and remote ones call it alike, in any order, any number of
+// times (a retry rewrites the same bytes).
+#include <cstdint>
+#include <filesystem>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/bake/job_plan.h"
+#include "worker/loop/task_signals.h"
+#include "worker/tiles/bake_context.h"
+#include "worker/tiles/memory_staging.h"
+
+namespace wavebake {
+
+struct GroupStats {
+  int columns = 0;
+  uint64_t kept = 0;           // coefficients kept over the group's columns
+  uint64_t staging_bytes = 0;  // float32 bytes of staging read (one chunk per tile)
+  uint64_t bytes_written = 0;  // size of the group's result file
+  int min_bits = 2;            // max over the group's columns of their --bits auto need
+};
+
+// Memory: one group of column images (group_size × W×H floats) plus one
+// staging chunk; never S×M. Errors: `group` out of range (InvalidArgument
+// naming "group"); staging missing or of another plan (FailedPrecondition);
+// Cancelled once signals.cancel is seen (checked between staging chunks and
+// between columns; nothing is written then).
+// With `memory`, the chunks the job's in-memory staging holds
+// (worker/tiles/memory_staging.h) are read from there, the rest from the store.
+absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                              GroupStats* stats, const TaskSignals& signals = {},
+                              const MemoryStaging* memory = nullptr);
+
+// E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
+// order in double (the same number on every worker).
+absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store);
+
+}  // namespace wavebake

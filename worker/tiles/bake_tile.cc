@@ -1,0 +1,275 @@
+#include "worker/tiles/bake_tile.h"
+
+#include <algorithm>
+#include <system_error>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/columns/zero_quads.h"
+#include "core/transport/refined_row.h"
+#include "core/transport/transport_row.h"
+#include "storage/store/store_layout.h"
+#include "storage/zarr/zarr_array.h"
+#include "worker/loop/task_buffer.h"
+#include "worker/tiles/row_reuse.h"
+#include "worker/tiles/row_transform.h"
+#include "worker/tiles/staging.h"
+
+namespace wavebake {
+namespace {
+
+struct StagingArrays {
+  ZarrArray transport;
+  ZarrArray tile_energy;
+};
+
+absl::StatusOr<ZarrArray> OpenChecked(const std::filesystem::path& store, const char* name,
+                                      const ArraySpec& expected) {
+  absl::StatusOr<ZarrArray> array = ZarrArray::Open(store::Path(store, name));
+  if (!array.ok()) return array.status();
+  if (!SameSpec(array->spec(), expected)) {
+    return absl::FailedPreconditionError(
+        absl::StrCat(array->dir().string(), ": staging array ", ToZarray(array->spec()).dump(),
+                     " does not match the job plan ", ToZarray(expected).dump()));
+  }
+  return array;
+}
+
+absl::StatusOr<StagingArrays> OpenStaging(const JobPlan& plan, const std::filesystem::path& store) {
+  absl::StatusOr<ZarrArray> transport =
+      OpenChecked(store, store::kStagingTransport, StagingTransportSpec(plan));
+  if (!transport.ok()) return transport.status();
+  absl::StatusOr<ZarrArray> energy =
+      OpenChecked(store, store::kStagingTileEnergy, TileEnergySpec(plan));
+  if (!energy.ok()) return energy.status();
+  return StagingArrays{*std::move(transport), *std::move(energy)};
+}
+
+// Distance between consecutive rows in the tile's row buffer. M·4 bytes is a
+// multiple of 4 KiB (M = 6N², N ≥ 8), so unpadded, the transpose's reads of
+// one m across the rows would all fall into one L1 set; one extra cache line
+// per row spreads them out (a stand-alone timing of the N=32, 32×32 tile
+// transpose: 21–31 ms unpadded, 6–8 ms padded).
+size_t RowStride(const JobPlan& plan) { return static_cast<size_t>(plan.columns) + 16; }
+
+// One sample's direct row, traced as the parameters say.
+void TraceRow(const BakeContext& ctx, Vec3 position, Vec3 normal, std::span<float> row,
+              TransportStats* traced, RefineScratch& scratch) {
+  if (ctx.params.transport == Transport::kVisibility) {
+    VisibilityRow(ctx.caster, ctx.cubemap, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  } else if (ctx.refine) {
+    RefinedTransportRow(ctx.caster, ctx.cubemap, ctx.jitter, *ctx.refine, position, normal,
+                        ctx.epsilon, row, traced, scratch);
+  } else if (ctx.params.light_domain.is_plane()) {
+    TransportRow(ctx.caster, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  } else {  // the cube's faces in Z order
+    TransportRow(ctx.caster, ctx.cubemap, ctx.jitter, position, normal, ctx.epsilon, row, traced);
+  }
+}
+
+// Row-transformed rows of the cells of tile row `cy`, cell c of the tile at
+// c*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
+// row is still in cache; the fixed order (cell, then m) makes the sum the
+// same bits on every worker.
+void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::span<float> rows,
+                  const std::vector<uint8_t>& reused, double& energy, TileStats& stats,
+                  RefineScratch& scratch) {
+  const int m_count = ctx.plan.columns;
+  const int y = rect.y0 + cy;
+  TransportStats traced;
+  for (int cx = 0; cx < rect.width; ++cx) {
+    const size_t cell = size_t(cy) * rect.width + cx;
+    const std::span<float> row = rows.subspan(cell * RowStride(ctx.plan), m_count);
+    const int32_t id = ctx.samples.grid[static_cast<size_t>(y) * ctx.samples.width + rect.x0 + cx];
+    if (id < 0) {
+      std::fill(row.begin(), row.end(), 0.0f);
+      continue;
+    }
+    if (!reused.empty() && reused[cell]) {  // an update bake's old row: already staged values
+      if (reused[cell] == 2) PatchRow(*ctx.reuse, ctx, id, row);
+      energy += SumOfSquares(row.data(), row.size());
+      ++stats.samples;
+      continue;
+    }
+    TraceRow(ctx, ctx.samples.position[id], ctx.samples.normal[id], row, &traced, scratch);
+    RowTransform(ctx.params.row_filter, ctx.plan.light_res, row);
+    energy += SumOfSquares(row.data(), row.size());
+    ++stats.samples;
+  }
+  stats.rays_traced += traced.rays_traced;
+}
+
+// The blocked transpose (DESIGN.md §2) of one column group: chunk (g, tile)
+// is [group_size, tile_cells] row major, column m of T over the tile
+// contiguous; the rows past the last column (the last group's padding) are 0.
+// Sixteen cells at a time, so that every write fills a whole cache line of
+// the chunk (which stays in cache until it is compressed) and the sixteen
+// rows read are reused for sixteen consecutive m.
+void TransposeGroup(std::span<const float> rows, const JobPlan& plan, int g,
+                    std::span<float> chunk) {
+  const size_t cells = plan.tile_cells(), stride = RowStride(plan);
+  const int first = plan.GroupFirst(g), count = plan.GroupCount(g);
+  for (size_t c0 = 0; c0 < cells; c0 += 16) {
+    const size_t width = std::min<size_t>(16, cells - c0);
+    const float* in = rows.data() + c0 * stride + first;
+    for (int j = 0; j < count; ++j) {
+      float* out = chunk.data() + j * cells + c0;
+      for (size_t i = 0; i < width; ++i) out[i] = in[i * stride + j];
+    }
+  }
+  std::fill(chunk.begin() + size_t(count) * cells, chunk.end(), 0.0f);
+}
+
+absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> index,
+                               std::span<const float> data, TileStats& stats) {
+  if (absl::Status s = array.WriteChunk<float>(index, data); !s.ok()) return s;
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(array.ChunkPath(index), ec);
+  if (!ec) stats.bytes_written += bytes;  // progress only: a failed stat fails no task
+  return absl::OkStatus();
+}
+
+// Every group's chunk of the tile into `transport`, each transposed just
+// before it is compressed.
+absl::Status WriteTileChunks(const ZarrArray& transport, const JobPlan& plan, int tile,
+                             std::span<const float> rows, TileStats& stats) {
+  std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
+  for (int g = 0; g < plan.groups; ++g) {
+    TransposeGroup(rows, plan, g, chunk);
+    const int64_t index[] = {g, tile};
+    if (absl::Status s = WriteChunkCounted(transport, index, chunk, stats); !s.ok()) return s;
+  }
+  return absl::OkStatus();
+}
+
+absl::Status WriteTileEnergy(const StagingArrays& staging, int tile, double energy,
+                             TileStats& stats) {
+  const float tile_energy[] = {static_cast<float>(energy)};
+  const int64_t index[] = {tile};
+  return WriteChunkCounted(staging.tile_energy, index, tile_energy, stats);
+}
+
+bool HasSamples(const BakeContext& ctx, const TileRect& r) {
+  for (int y = r.y0; y < r.y0 + r.height; ++y)
+    for (int x = r.x0; x < r.x0 + r.width; ++x)
+      if (ctx.samples.grid[size_t(y) * ctx.samples.width + x] >= 0) return true;
+  return false;
+}
+
+// Every group's chunk of the tile (or straight into its slot of an in-memory
+// staging), then the tile's energy.
+absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
+                       const JobPlan& plan, int tile, std::span<const float> rows, double energy,
+                       TileStats& stats) {
+  if (!memory) {
+    if (absl::Status s = WriteTileChunks(staging.transport, plan, tile, rows, stats); !s.ok())
+      return s;
+    return WriteTileEnergy(staging, tile, energy, stats);
+  }
+  for (int g = 0; g < plan.groups; ++g) {
+    const std::span<float> slot = memory->BeginWrite(g, tile);
+    if (slot.empty()) continue;  // written by an earlier attempt: the same values
+    TransposeGroup(rows, plan, g, slot);
+    memory->Publish(g, tile);
+  }
+  return WriteTileEnergy(staging, tile, energy, stats);
+}
+
+// Auxiliary tile `a` (core/bake/bake_gather.h): the direct rows of auxiliary
+// samples a·tile_cells.., the padding past the last one 0, into
+// staging/aux_transport. Not part of the matrix, so no tile energy.
+absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& store, int a,
+                         TileStats& local, const TaskSignals& signals) {
+  const JobPlan& plan = ctx.plan;
+  if (!ctx.bounce || ctx.bounce->aux.size() != plan.aux_samples)
+    return absl::FailedPreconditionError("bounces: the context has no auxiliary samples");
+  absl::StatusOr<ZarrArray> transport =
+      OpenChecked(store, store::kStagingAuxTransport, AuxTransportSpec(plan));
+  if (!transport.ok()) return transport.status();
+  const SampleSet& aux = ctx.bounce->aux;
+  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
+  RefineScratch scratch;
+  TransportStats traced;
+  for (int cell = 0; cell < plan.tile_cells(); ++cell) {
+    if (cell % 64 == 0 && signals.cancel && signals.cancel->load(std::memory_order_relaxed))
+      return absl::CancelledError(absl::StrCat("tile: ", plan.tiles() + a, " cancelled"));
+    const std::span<float> row = rows.subspan(cell * RowStride(plan), plan.columns);
+    const int id = a * plan.tile_cells() + cell;
+    if (id >= aux.size()) {
+      std::fill(row.begin(), row.end(), 0.0f);
+      continue;
+    }
+    TraceRow(ctx, aux.position[id], aux.normal[id], row, &traced, scratch);
+    RowTransform(ctx.params.row_filter, plan.light_res, row);
+    ++local.samples;
+    if (signals.rays_traced)
+      signals.rays_traced->store(traced.rays_traced, std::memory_order_relaxed);
+  }
+  local.rays_traced += traced.rays_traced;
+  return WriteTileChunks(*transport, plan, a, rows, local);
+}
+
+}  // namespace
+
+absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
+                      TileStats* stats, const TaskSignals& signals, MemoryStaging* memory) {
+  const JobPlan& plan = ctx.plan;
+  if (tile < 0 || tile >= plan.all_tiles()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("tile: ", tile, " is outside 0..", plan.all_tiles() - 1));
+  }
+  if (tile >= plan.tiles()) {
+    TileStats local;
+    absl::Status s = BakeAuxTile(ctx, store, tile - plan.tiles(), local, signals);
+    if (stats) {
+      stats->rays_traced += local.rays_traced;
+      stats->bytes_written += local.bytes_written;
+      stats->samples += local.samples;
+    }
+    return s;
+  }
+  absl::StatusOr<StagingArrays> staging = OpenStaging(plan, store);
+  if (!staging.ok()) return staging.status();
+
+  const TileRect rect = plan.Tile(tile);
+  const std::shared_ptr<MemoryStaging::Job> held =
+      memory != nullptr && !ctx.params.keep_staging && !ctx.reuse ? memory->Admit(store, plan)
+                                                                  : nullptr;
+  TileStats local;
+  if (held != nullptr && !HasSamples(ctx, rect)) {
+    // Every chunk of a tile without samples is zeros: in memory, pages never
+    // written read as zeros, and none is touched (the bunny at hilbert 64²
+    // covers 3 of its 4 tiles).
+    for (int g = 0; g < plan.groups; ++g)
+      if (!held->BeginWrite(g, tile).empty()) held->Publish(g, tile);
+    const absl::Status written = WriteTileEnergy(*staging, tile, 0.0, local);
+    if (stats) stats->bytes_written += local.bytes_written;
+    return written;
+  }
+  const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
+  double energy = 0;
+  RefineScratch scratch;
+  std::vector<uint8_t> reused;  // per cell of the tile: its row came from an old store
+  if (ctx.reuse) {
+    absl::StatusOr<int> n = FillReusedRows(*ctx.reuse, plan, tile, rows, RowStride(plan), reused);
+    if (!n.ok()) return n.status();
+    local.rows_reused = static_cast<uint64_t>(*n);
+  }
+  for (int cy = 0; cy < rect.height; ++cy) {
+    if (signals.cancel && signals.cancel->load(std::memory_order_relaxed))
+      return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
+    TraceTileRow(ctx, rect, cy, rows, reused, energy, local, scratch);
+    if (signals.rays_traced)
+      signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
+  }
+  absl::Status written = WriteTile(*staging, held.get(), plan, tile, rows, energy, local);
+  if (stats) {
+    stats->rays_traced += local.rays_traced;
+    stats->bytes_written += local.bytes_written;
+    stats->samples += local.samples;
+    stats->rows_reused += local.rows_reused;
+  }
+  return written;
+}
+
+}  // namespace wavebake
