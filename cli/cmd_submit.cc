@@ -1,6 +1,7 @@
-// `wavebake submit SCENE [bake flags] --coordinator ADDR [--wait]` (DESIGN.md
-// §4, §5): prints the new job's id on stdout; with --wait, follows the job
-// like `watch` and exits 0 only if it is DONE.
+// `wavebake submit SCENE [bake flags] [--update JOB [--update-exact]]
+// --coordinator ADDR [--wait]` (DESIGN.md §4, §5): prints the new job's id
+// on stdout; with --wait, follows the job like `watch` and exits 0 only if
+// it is DONE.
 #include <cstdio>
 
 #include "cli/bake_flags.h"
@@ -52,6 +53,14 @@ void AddSubmitCommand(CLI::App& app) {
   cmd->add_option("--max-attempts", f->max_attempts,
                   "failures and lease expiries a task may take before the job fails")
       ->capture_default_str();
+  CLI::Option* update = cmd->add_option(
+      "--update", f->bake.params.update_job,
+      "a DONE job of this coordinator (its id or output name), baked with --keep-staging and "
+      "the same flags: reuse its rows where the scene's edit cannot reach them");
+  cmd->add_flag("--update-exact", f->bake.params.update_exact,
+                "--update: rerun the whole column stage from the merged rows (the store is "
+                "byte-identical to a full bake but for .zattrs' \"update\" record)")
+      ->needs(update);
   cmd->add_flag("--wait", f->wait, "follow the job to its end (exit 0 only if DONE)");
   cmd->callback([f] { Run(*f); });
 }

@@ -150,10 +150,13 @@ PlanFn MakeJobPlanner(PlannerOptions options) {
     absl::StatusOr<BakeParams> params = ToBakeParams(request);
     if (!params.ok()) return params.status();
     // Input from a remote client never names a file of the server.
-    if (!params->update_from.empty() && !options.local_updates)
+    // An update's old store is a path only for the embedded bake; a
+    // coordinator's client names a job instead, which the service resolved
+    // into update_from and update_scene (coordinator/service/update_job.h).
+    if (!params->update_from.empty() && !options.local_updates && !request.has_update_scene())
       return absl::InvalidArgumentError(
-          "update_from: a coordinator takes no store path from a client; update with a local "
-          "`wavebake bake NEW --update OLD.wbk`");
+          "update_from: a coordinator takes no store path from a client; name the old job "
+          "with update_job (`wavebake submit NEW --update JOB_OR_STORE`)");
     absl::StatusOr<LayoutSpec> layout = ParseLayout(params->layout);
     if (!layout.ok()) return layout.status();
     absl::StatusOr<Scene> scene = LoadRequestScene(request, options);

@@ -32,7 +32,8 @@ struct PlannerOptions {
   std::map<std::string, std::string> local_scenes;
   // An update bake's old store (BakeRequest.update_from) is a path of this
   // machine: only the embedded bake, whose client is the machine's user,
-  // plans one.
+  // takes one from its client. Others take the one the service resolved
+  // from update_job (coordinator/service/update_job.h).
   bool local_updates = false;
 };
 

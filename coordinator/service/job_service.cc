@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "coordinator/scheduling/lease_id.h"
 #include "coordinator/service/proto_convert.h"
+#include "coordinator/service/update_job.h"
 #include "proto/bake_request.h"
 #include "storage/scene_files/scene_bundle.h"
 
@@ -36,6 +37,8 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Bake
     if (absl::Status s = CheckUploaded(*r.mutable_scene()->mutable_uploaded()); !s.ok())
       return Reply(s);
   }
+  if (absl::Status s = ResolveUpdateJob(*deps_.table, deps_.store_root, r); !s.ok())
+    return Reply(s);
   absl::StatusOr<JobInfo> info = PlanAndAdd(std::move(r));
   if (!info.ok()) return Reply(info.status());
   ToClient(*info, reply);

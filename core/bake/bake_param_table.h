@@ -259,6 +259,13 @@ void ForEach(Visit&& visit) {
   visit(Switch{
       {"update_exact", "", "an update reruns the whole column stage", S::kOutput, Record::kNever},
       &BakeParams::update_exact});
+  // `wavebake submit --update JOB_OR_STORE` (cli/cmd_submit.cc): the job a
+  // coordinator resolves into update_from.
+  visit(Spelled<std::string>{{"update_job", "", "the finished job whose store an update reuses",
+                              S::kOutput, Record::kNever},
+                             &BakeParams::update_job,
+                             ParseText,
+                             PrintLayout});
   visit(Number<int>{.info = {"tile_size", "--tile-size",
                              "spatial tile edge of one BAKE_TILE task (power of two)", S::kTrace},
                     .field = &BakeParams::tile_size,

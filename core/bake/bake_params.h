@@ -69,9 +69,13 @@ struct BakeParams {
   // either: the old store (baked with keep_staging, the same parameters)
   // whose staged rows are reused where the scene edit cannot reach them; ""
   // is a full bake. update_exact: the whole column stage runs from the
-  // merged rows (the store is byte-identical to a full bake's).
+  // merged rows (the store is byte-identical to a full bake's). A client
+  // of a coordinator names the old store by its job instead (update_job: an
+  // id or an output_name), and the coordinator sets update_from.
   std::string update_from;
   bool update_exact = false;
+  std::string update_job;
+  bool updates() const { return !update_from.empty() || !update_job.empty(); }
 
   // Whether the rows are traced by refinement: asked for, on the cube, for T.
   bool refines() const {

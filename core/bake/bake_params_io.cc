@@ -137,12 +137,13 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
                "--transport diffuse for bounces)");
   if (p.column_terms == 0 && p.target_error == 0)
     return bad("target_error", "0 keeps everything; give a positive target or --column-terms");
-  if (p.update_exact && p.update_from.empty())
-    return absl::InvalidArgumentError("update_exact: needs update_from (the store to update)");
+  if (p.update_exact && !p.updates())
+    return absl::InvalidArgumentError(
+        "update_exact: needs update_from or update_job (the store to update)");
   // A local edit reaches every sample's bounced light (the gather spans the
   // whole scene), while an update reuses direct rows where the edit cannot
   // reach them: bounce stores are baked whole.
-  if (!p.update_from.empty() && p.bounces != 0)
+  if (p.updates() && p.bounces != 0)
     return bad("bounces",
                "an update reuses direct rows only, and an edit reaches every sample's bounced "
                "light: bake a store with bounces in full");

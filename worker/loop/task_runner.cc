@@ -29,6 +29,23 @@ absl::Status Cancelled(const v1::Task& task) {
                                            " stopped: its lease was cancelled"));
 }
 
+// An update's old store: a relative update_from is under the store root, as
+// job stores are (a coordinator's job, whose scene comes as update_scene);
+// an absolute one is the embedded bake's, whose store names its scene.
+absl::StatusOr<OldStore> UpdateSource(const v1::BakeRequest& request, const TaskEnv& env) {
+  const std::filesystem::path from(request.update_from());
+  OldStore old;
+  old.path = from.is_absolute() ? from : env.store_root / from;
+  old.recorded = request.update_from();
+  if (request.has_update_scene()) {
+    absl::StatusOr<SceneSpec> scene = env.scenes->Resolve(request.update_scene(), env.fetch);
+    if (!scene.ok()) return scene.status();
+    old.scene = scene->load;
+    old.scene_files = scene->files;
+  }
+  return old;
+}
+
 // The job's context, built once per worker (worker/loop/context_cache.h). The
 // store records the scene as every worker would name it, not by where this
 // worker found it.
@@ -43,10 +60,11 @@ absl::StatusOr<ContextCache::Context> JobContext(const v1::Task& task, const Tas
         MakeBakeContext(scene->load, *params, scene->files.get());
     if (!ctx.ok()) return ctx;
     (*ctx)->scene_spec = scene->recorded;
-    if (!params->update_from.empty()) {  // relative: under the store root, as job stores are
-      const std::filesystem::path from = std::filesystem::path(params->update_from);
-      absl::StatusOr<std::shared_ptr<const RowReuse>> reuse = PlanRowReuse(
-          **ctx, from.is_absolute() ? from : env.store_root / from, params->update_exact);
+    if (!params->update_from.empty()) {
+      absl::StatusOr<OldStore> old = UpdateSource(task.request(), env);
+      if (!old.ok()) return old.status();
+      absl::StatusOr<std::shared_ptr<const RowReuse>> reuse =
+          PlanRowReuse(**ctx, *old, params->update_exact);
       if (!reuse.ok()) return reuse.status();
       (*ctx)->reuse = *std::move(reuse);
     }

@@ -55,8 +55,10 @@ std::vector<int64_t> StagingColumns(const SampleSet& s, const JobPlan& plan) {
   return column;
 }
 
-absl::StatusOr<Scene> OldScene(const StoreInfo& info, const std::filesystem::path& old_store) {
-  absl::StatusOr<Scene> scene = LoadScene(info.scene_spec);
+absl::StatusOr<Scene> OldScene(const StoreInfo& info, const OldStore& old) {
+  const std::filesystem::path& old_store = old.path;
+  const std::string& spec = old.scene.empty() ? info.scene_spec : old.scene;
+  absl::StatusOr<Scene> scene = LoadScene(spec, nullptr, old.scene_files.get());
   if (!scene.ok())
     return Refuse(old_store, "its scene '", info.scene_spec,
                   "' is needed (the old placement of what changed bounds the rows to rebake) "
@@ -175,7 +177,7 @@ void MarkTiles(const SampleSet& now, const SampleSet& old, const JobPlan& plan, 
 }  // namespace
 
 nlohmann::json RowReuse::Record() const {
-  nlohmann::json j = {{"from", old_store.string()},
+  nlohmann::json j = {{"from", from},
                       {"mode", exact ? "exact" : "local"},
                       {"rows", samples},
                       {"rows_reused", reused},
@@ -222,9 +224,9 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
   return absl::OkStatus();
 }
 
-absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx,
-                                                             const std::filesystem::path& old_store,
+absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, const OldStore& old,
                                                              bool exact) {
+  const std::filesystem::path& old_store = old.path;
   const auto start = std::chrono::steady_clock::now();
   if (absl::Status s = CheckUpdateSource(old_store, ctx.params); !s.ok()) return s;
   absl::StatusOr<StoreInfo> info = ReadStoreInfo(old_store);
@@ -239,11 +241,12 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx,
   if (!old_samples.ok()) return old_samples.status();
   absl::StatusOr<nlohmann::json> trace = ReadAttrs(store::Path(old_store, store::kStaging));
   if (!trace.ok()) return trace.status();
-  absl::StatusOr<Scene> old_scene = OldScene(*info, old_store);
+  absl::StatusOr<Scene> old_scene = OldScene(*info, old);
   if (!old_scene.ok()) return old_scene.status();
 
   auto r = std::make_shared<RowReuse>();
   r->old_store = old_store;
+  r->from = old.recorded;
   r->exact = exact;
   r->samples = ctx.samples.size();
   r->source.assign(ctx.samples.grid.size(), -1);

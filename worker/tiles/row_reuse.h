@@ -29,9 +29,24 @@
 namespace wavebake {
 
 struct BakeContext;
+class SceneFiles;
+
+// Where an update's old store and its scene are on this machine.
+struct OldStore {
+  std::filesystem::path path;
+  // What the new store's update record names it by: the path for a local
+  // bake, the store's name under the store root for a coordinator's job.
+  std::string recorded;
+  // The old scene as LoadScene reads it here (a coordinator's update_scene,
+  // resolved as a job's scene is) and the files it may read; empty: the scene
+  // the store names (storage/store/store_scene.h LocateStoreScene).
+  std::string scene;
+  std::shared_ptr<const SceneFiles> scene_files;
+};
 
 struct RowReuse {
   std::filesystem::path old_store;
+  std::string from;    // OldStore::recorded
   bool exact = false;  // --update-exact: the whole column stage runs from the merged rows
   // Per cell of the new grid (y·W + x): the old staging array's column
   // (JobPlan::StagingCell of the old cell) holding its row, or -1: traced.
@@ -83,8 +98,7 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
 // mesh stay in their old cells instead of re-sorting the whole curve, so
 // the reused rows stay in place and the columns can be kept
 // (worker/columns/local_columns.h). The store's layout then is the old one.
-absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx,
-                                                             const std::filesystem::path& old_store,
+absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, const OldStore& old,
                                                              bool exact);
 
 // Copies the old rows of tile `tile`'s reused cells into `rows` (cell c of
