@@ -69,8 +69,9 @@ nlohmann::json MessageJson(const Message& m) {
       nlohmann::json list = nlohmann::json::array();
       for (int k = 0; k < r.FieldSize(m, f); ++k) list.push_back(FieldJson(m, r, f, k));
       out[f->name()] = std::move(list);
-    } else if (f->containing_oneof() && !r.HasField(m, f)) {
-      continue;  // the unset branches of a oneof (scene source, seed presence)
+    } else if ((f->containing_oneof() || f->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) &&
+               !r.HasField(m, f)) {
+      continue;  // the unset branches of a oneof (scene source, seed presence), unset messages
     } else {
       out[f->name()] = FieldJson(m, r, f, 0);
     }
