@@ -38,17 +38,8 @@ absl::Status SameParameters(const v1::BakeRequest& old_request, const v1::BakeRe
   absl::StatusOr<BakeParams> before = ToBakeParams(old_request), now = ToBakeParams(request);
   if (!before.ok()) return before.status();
   if (!now.ok()) return now.status();
-  const nlohmann::json have = ToJson(*before), want = ToJson(*now);
-  for (const auto& [field, value] : want.items()) {
-    if (have.contains(field) && have[field] == value) continue;
-    return Bad("parameter ", field, " is ", have.value(field, nlohmann::json("(absent)")).dump(),
-               " there and ", value.dump(), " here: an update keeps every parameter but the scene");
-  }
-  for (const auto& [field, value] : have.items())
-    if (!want.contains(field))
-      return Bad("parameter ", field, " is ", value.dump(),
-                 " there and absent here: an update keeps every parameter but the scene");
-  return absl::OkStatus();
+  const std::string differs = FirstParameterDifference(ToJson(*before), ToJson(*now));
+  return differs.empty() ? absl::OkStatus() : Bad(differs);
 }
 
 }  // namespace

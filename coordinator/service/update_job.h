@@ -14,13 +14,14 @@
 namespace wavebake {
 
 // Resolves request.update_job ("42", or the output_name of a store under
-// store_root) against the jobs of `table`: the newest DONE job of that id or
-// store, baked with keep_staging, whose store still keeps its staged rows,
-// with every recorded parameter equal to the request's. Then sets
-// update_from (relative to store_root) and update_scene. Does nothing without
-// update_job. Refuses, naming the field: update_scene or update_from set by a
-// client beside update_job, an unknown or unfinished job, a store baked
-// without keep_staging or since removed, the first parameter that differs.
+// store_root) against the jobs of `table`: the job of that id, or the newest
+// whose store has that name (a second can exist only once the first's store
+// was removed). It must be DONE, baked with keep_staging, still keep its
+// staged rows and have every recorded parameter equal to the request's; then
+// update_from (relative to store_root) and update_scene are set. Does nothing
+// without update_job. Refuses, naming the field: update_scene or update_from
+// set by a client beside update_job, an unknown or unfinished job, a store
+// baked without keep_staging or since removed, the first parameter that differs.
 absl::Status ResolveUpdateJob(const LeaseTable& table, const std::filesystem::path& store_root,
                               v1::BakeRequest& request);
 

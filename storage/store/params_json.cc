@@ -111,4 +111,19 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const json& j) {
   return p;
 }
 
+std::string FirstParameterDifference(const nlohmann::json& have, const nlohmann::json& want) {
+  constexpr char kWhy[] = ": an update keeps every parameter but the scene";
+  for (const auto& [field, value] : want.items()) {
+    if (have.contains(field) && have[field] == value) continue;
+    return absl::StrCat("parameter ", field, " is ",
+                        have.value(field, nlohmann::json("(absent)")).dump(), " there and ",
+                        value.dump(), " here", kWhy);
+  }
+  for (const auto& [field, value] : have.items())
+    if (!want.contains(field))
+      return absl::StrCat("parameter ", field, " is ", value.dump(), " there and absent here",
+                          kWhy);
+  return "";
+}
+
 }  // namespace wavebake

@@ -18,4 +18,10 @@ nlohmann::json ToJson(const BakeParams& p, params::Stage stage);
 // with ValidateBakeParams.
 absl::StatusOr<BakeParams> BakeParamsFromJson(const nlohmann::json& j);
 
+// An update keeps every recorded parameter but the scene: the first that
+// differs between `have` (the old store's "params") and `want` (ToJson of
+// the new bake's), worded "parameter light_res is 8 there and 16 here: ...";
+// empty when they agree.
+std::string FirstParameterDifference(const nlohmann::json& have, const nlohmann::json& want);
+
 }  // namespace wavebake

@@ -209,18 +209,9 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
     return Refuse(old_store,
                   "keeps no staged rows to reuse; bake it with --keep-staging to update it later");
   // Every recorded parameter but the scene, in the record's (sorted) order.
-  const nlohmann::json want = ToJson(params);
-  const nlohmann::json& have = info->attrs["params"];
-  for (const auto& [field, value] : want.items()) {
-    if (have.contains(field) && have[field] == value) continue;
-    return Refuse(old_store, "parameter ", field, " is ",
-                  have.value(field, nlohmann::json("(absent)")).dump(), " there and ", value.dump(),
-                  " here: an update keeps every parameter but the scene");
-  }
-  for (const auto& [field, value] : have.items())
-    if (!want.contains(field))
-      return Refuse(old_store, "parameter ", field, " is ", value.dump(),
-                    " there and absent here: an update keeps every parameter but the scene");
+  if (const std::string differs = FirstParameterDifference(info->attrs["params"], ToJson(params));
+      !differs.empty())
+    return Refuse(old_store, differs);
   return absl::OkStatus();
 }
 
