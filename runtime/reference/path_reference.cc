@@ -13,6 +13,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "runtime/env/env_sampler.h"
+#include "runtime/reference/batch_means.h"
 #include "runtime/reference/path_scene.h"
 
 namespace wavebake {
@@ -61,17 +62,9 @@ Vec3 CosineSample(Vec3 n, double u, double v) {
                    b * static_cast<float>(r * std::sin(phi)) + n * static_cast<float>(z));
 }
 
-struct PathEstimate {
-  std::array<double, 3> sum{}, sum_sq{};  // of the batch means
-  int64_t batches = 0, rays = 0;
-
+struct PathEstimate : BatchMeans {
+  int64_t rays = 0;
   int64_t paths() const { return batches * kPathBatch; }
-  double Mean(int c) const { return batches ? sum[c] / batches : 0; }
-  double StdErr(int c) const {
-    if (batches < 2) return std::numeric_limits<double>::infinity();
-    const double var = std::max(0.0, (sum_sq[c] - sum[c] * sum[c] / batches) / (batches - 1));
-    return std::sqrt(var / batches);
-  }
 };
 
 struct PathSetup {
@@ -123,12 +116,7 @@ void TracePathBatch(const PathSetup& p, std::span<const double> receiver_cdf, Ve
       origin = hit->position + n * p.epsilon;
     }
   }
-  for (int c = 0; c < 3; ++c) {
-    const double mean = batch[c] / kPathBatch;
-    e.sum[c] += mean;
-    e.sum_sq[c] += mean * mean;
-  }
-  ++e.batches;
+  e.Add(batch, kPathBatch);
 }
 
 // fn(0..count−1) on `threads` threads, samples handed out one by one (each

@@ -14,6 +14,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/util/parallel_for.h"
 #include "runtime/env/env_sampler.h"
+#include "runtime/reference/batch_means.h"
 #include "runtime/reference/stream_rng.h"
 
 namespace wavebake {
@@ -32,18 +33,9 @@ class Rng : public StreamRng {
 // in the first uniform, is an unbiased estimate of B; batches are independent,
 // so their spread gives the standard error (stratified draws inside a batch
 // are not independent, so the per-draw variance would overstate it).
-struct Estimate {
-  std::array<double, 3> sum{}, sum_sq{};  // of the batch means
-  int64_t batches = 0;
+struct Estimate : BatchMeans {
   int64_t traced = 0;
-
   int64_t rays() const { return batches * kBatch; }
-  double Mean(int c) const { return batches ? sum[c] / batches : 0; }
-  double StdErr(int c) const {
-    if (batches < 2) return std::numeric_limits<double>::infinity();
-    const double var = std::max(0.0, (sum_sq[c] - sum[c] * sum[c] / batches) / (batches - 1));
-    return std::sqrt(var / batches);
-  }
 };
 
 struct Receiver {
@@ -72,12 +64,7 @@ struct RayBatch {
       if (occluded[i]) continue;
       for (int c = 0; c < 3; ++c) batch[c] += f[i][c];
     }
-    for (int c = 0; c < 3; ++c) {
-      const double mean = batch[c] / kBatch;
-      e.sum[c] += mean;
-      e.sum_sq[c] += mean * mean;
-    }
-    ++e.batches;
+    e.Add(batch, kBatch);
     e.traced += count;
   }
 };
