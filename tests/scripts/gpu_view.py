@@ -34,14 +34,13 @@ import pathlib
 import subprocess
 import sys
 import tempfile
-import time
 import urllib.error
 import urllib.request
 
 import numpy as np
 import zarr
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
+
+from browser_lib import SWIFTSHADER_FLAGS, chromium, wait_for
 
 WB = sys.argv[1]
 DATA = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "data"
@@ -53,16 +52,6 @@ def run(*args, ok=True):
     if ok and p.returncode != 0:
         raise SystemExit(f"FAIL: wavebake {' '.join(args)}: {p.stderr}")
     return p
-
-
-def wait_for(what, predicate, timeout=60):
-    end = time.time() + timeout
-    while time.time() < end:
-        v = predicate()
-        if v:
-            return v
-        time.sleep(0.05)
-    raise SystemExit(f"FAIL: timed out waiting for {what}")
 
 
 def get(url):
@@ -148,16 +137,7 @@ def main():
         try:
             wait_for("the view's address", lambda: addr.exists() and addr.read_text().strip(), 120)
             base = "http://" + addr.read_text().strip()
-            options = webdriver.ChromeOptions()
-            options.binary_location = "/usr/bin/chromium"
-            for flag in ("--headless", "--no-sandbox", "--use-angle=swiftshader",
-                         "--enable-unsafe-swiftshader", "--disable-gpu-sandbox",
-                         "--disable-background-networking", "--disable-component-update",
-                         "--disable-sync", "--no-first-run", "--disable-dev-shm-usage",
-                         f"--user-data-dir={tmp / 'chromium'}"):
-                options.add_argument(flag)
-            driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
-            driver.set_page_load_timeout(60)
+            driver = chromium(tmp / "chromium", SWIFTSHADER_FLAGS, page_load_timeout=60)
 
             def load(url):
                 driver.get(url)

@@ -19,23 +19,12 @@ import urllib.error
 import urllib.request
 from pathlib import Path
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
+
+from browser_lib import SWIFTSHADER_FLAGS, chromium, wait_for
 
 WB = sys.argv[1]
 TOKEN = "gpu-test-token"
-
-
-def wait_for(what, predicate, timeout=60, period=0.05):
-    deadline = time.time() + timeout
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.time() > deadline:
-            raise AssertionError(f"timed out after {timeout}s waiting for {what}")
-        time.sleep(period)
 
 
 def cli(*args):
@@ -79,15 +68,7 @@ def main():
                 body = e.read().decode()
                 assert e.code == 409 and "transport" in body, (e.code, body)
 
-            options = webdriver.ChromeOptions()
-            options.binary_location = "/usr/bin/chromium"
-            for flag in ("--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-                         "--disable-gpu-sandbox", "--no-first-run", "--disable-background-networking",
-                         "--disable-component-update", "--disable-sync", "--disable-dev-shm-usage",
-                         f"--user-data-dir={tmp / 'chromium'}"):
-                options.add_argument(flag)
-            driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
-            driver.set_page_load_timeout(30)
+            driver = chromium(tmp / "chromium", SWIFTSHADER_FLAGS)
             driver.get(base + "/")
             driver.find_element(By.ID, "token").send_keys(TOKEN)
             driver.find_element(By.ID, "signin").click()

@@ -24,28 +24,17 @@ import urllib.request
 from pathlib import Path
 
 from prometheus_client.parser import text_string_to_metric_families
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select
+
+from browser_lib import chromium, wait_for
 
 WB = sys.argv[1]
 BUILD = Path(os.environ.get("WB_BINARY_DIR", Path(WB).parent))
 SHOTS = BUILD / "web_screenshots"
 PROBES = Path(os.environ.get("WB_SHARED_DATA", "")) / "probes"
 TOKEN = "browser-test-token"
-
-
-def wait_for(what, predicate, timeout=60, period=0.1):
-    deadline = time.time() + timeout
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.time() > deadline:
-            raise AssertionError(f"timed out after {timeout}s waiting for {what}")
-        time.sleep(period)
 
 
 def http(url, token=None):
@@ -94,16 +83,10 @@ def main():
                    "--tile-size", "16", "--refine", "off", "--supersample", "16", *client).strip()
         queued = cli("submit", "builtin:sphere-plane", "--light-res", "8", "--layout", "camera:16x16", *client).strip()
 
-        options = webdriver.ChromeOptions()
-        options.binary_location = "/usr/bin/chromium"
         # No WebGL: the relight view falls back to the server's frames, which
         # this test watches (tests/scripts/job_gpu.py drives the GPU path).
-        for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-webgl", "--disable-quic", "--no-first-run",
-                     "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                     "--disable-dev-shm-usage", "--window-size=1280,760", f"--user-data-dir={tmp / 'chromium'}"):
-            options.add_argument(flag)
-        driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
-        driver.set_page_load_timeout(30)
+        driver = chromium(tmp / "chromium", ("--disable-gpu", "--disable-webgl", "--disable-quic",
+                                             "--window-size=1280,760"))
 
         # The login form a browser gets with its 401.
         driver.get(base + "/")
