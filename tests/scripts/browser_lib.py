@@ -1,5 +1,6 @@
 """What the browser tests (gpu_view.py, job_gpu.py, web_monitor.py) share:
 a bounded poll and Debian's headless chromium driven through chromedriver."""
+import subprocess
 import time
 
 from selenium import webdriver
@@ -33,3 +34,16 @@ def chromium(profile, flags, page_load_timeout=30):
     driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
     driver.set_page_load_timeout(page_load_timeout)
     return driver
+
+
+def stop(driver, procs):
+    """Quits the browser (if started), then ends `procs` newest first: SIGTERM, 20 s, SIGKILL."""
+    if driver:
+        driver.quit()
+    for p in reversed(procs):
+        p.terminate()
+    for p in procs:
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            p.kill()

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from selenium.webdriver.common.by import By
 
-from browser_lib import SWIFTSHADER_FLAGS, chromium, wait_for
+from browser_lib import SWIFTSHADER_FLAGS, chromium, stop, wait_for
 
 WB = sys.argv[1]
 TOKEN = "gpu-test-token"
@@ -118,15 +118,7 @@ def main():
             assert driver.execute_script("return document.getElementById('relight-gpu').hidden;")
             print("visibility store: server frames")
         finally:
-            if driver:
-                driver.quit()
-            for p in reversed(procs):
-                p.terminate()
-            for p in procs:
-                try:
-                    p.wait(timeout=20)
-                except subprocess.TimeoutExpired:
-                    p.kill()
+            stop(driver, procs)
     print("ok")
 
 

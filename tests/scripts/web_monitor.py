@@ -28,7 +28,7 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select
 
-from browser_lib import chromium, wait_for
+from browser_lib import chromium, stop, wait_for
 
 WB = sys.argv[1]
 BUILD = Path(os.environ.get("WB_BINARY_DIR", Path(WB).parent))
@@ -186,15 +186,7 @@ def main():
         print(f"/metrics: {len(families)} families; completed {completed:.0f} tasks "
               f"= status; screenshots in {SHOTS}")
     finally:
-        if driver:
-            driver.quit()
-        for p in reversed(procs):
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop(driver, procs)
         shutil.rmtree(tmp, ignore_errors=True)
 
 
