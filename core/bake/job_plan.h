@@ -45,6 +45,10 @@ struct JobPlan {
 
   int tiles() const { return tiles_x * tiles_y; }
   int aux_tiles() const { return (aux_samples + tile_cells() - 1) / tile_cells(); }
+  // The bounce energies a store records (worker/columns/bounce_record.h):
+  // Σ T_b² for b = 0..bounces, or with an auxiliary set its vertices' for
+  // b = 0..bounces−1, the light its pixels gather.
+  int bounce_energies() const { return aux_samples > 0 ? bounces : bounces + 1; }
   int all_tiles() const { return tiles() + aux_tiles(); }
   int tile_cells() const { return tile_w * tile_h; }
   TileRect Tile(int t) const {

@@ -104,18 +104,64 @@ void BounceGather::Apply(std::span<const float> in, std::span<float> out) const 
   }
 }
 
-void BounceGather::ApplyBlock(std::span<const float> in, std::span<float> out, int n) const {
-  double acc[kMaxBlock];
-  for (int c = 0; c < cells; ++c) {
+namespace {
+
+// The rows of G times an interleaved block of n vectors (BounceGather::
+// ApplyBlock). N > 0 fixes n at compile time, so the n sums stay in
+// registers; N = 0 takes n at run time. Inlined into the two clones below.
+template <int N>
+inline __attribute__((always_inline)) void ApplyRows(const BounceGather& g,
+                                                     std::span<const uint8_t> live,
+                                                     std::span<const float> in,
+                                                     std::span<float> out, int n) {
+  if constexpr (N > 0) n = N;
+  double acc[BounceGather::kMaxBlock];
+  for (int c = 0; c < g.cells; ++c) {
     std::fill_n(acc, n, 0.0);
-    for (int64_t e = offsets[c]; e < offsets[c + 1]; ++e) {
-      const double w = weight[e];
-      const float* src = in.data() + size_t(source[e]) * n;
+    for (int64_t e = g.offsets[c]; e < g.offsets[c + 1]; ++e) {
+      const int32_t j = g.source[e];
+      if (!live[j]) continue;
+      const double w = g.weight[e];
+      const float* src = in.data() + size_t(j) * n;
       for (int k = 0; k < n; ++k) acc[k] += w * src[k];
     }
     float* dst = out.data() + size_t(c) * n;
     for (int k = 0; k < n; ++k) dst[k] = static_cast<float>(acc[k]);
   }
+}
+
+// The AVX2 clones have no FMA (not in the avx2 target), so they multiply and
+// add as the default clones do: the same bits on every machine, 4 doubles at
+// a time instead of 2. (Clang clones no templates, hence two functions.)
+__attribute__((target_clones("avx2", "default"))) void ApplyFullBlock(const BounceGather& g,
+                                                                      std::span<const uint8_t> live,
+                                                                      std::span<const float> in,
+                                                                      std::span<float> out) {
+  ApplyRows<BounceGather::kMaxBlock>(g, live, in, out, BounceGather::kMaxBlock);
+}
+__attribute__((target_clones("avx2", "default"))) void ApplyPartialBlock(
+    const BounceGather& g, std::span<const uint8_t> live, std::span<const float> in,
+    std::span<float> out, int n) {
+  ApplyRows<0>(g, live, in, out, n);
+}
+
+}  // namespace
+
+void BounceGather::ApplyBlock(std::span<const float> in, std::span<float> out, int n) const {
+  // A source whose n values are all zero adds exactly +0 to each sum (the
+  // sums start at +0 and round to nearest, so none is ever −0), so its
+  // entries are skipped, to the bit. Haar-domain column images are mostly
+  // zero: on cubes-wall's auxiliary set (camera 128², N = 32) 70 % of the
+  // values and 51 % of the sources of a 32-column block.
+  std::vector<uint8_t> live(sources);
+  for (int j = 0; j < sources; ++j) {
+    const float* src = in.data() + size_t(j) * n;
+    live[j] = std::any_of(src, src + n, [](float v) { return v != 0; });
+  }
+  if (n == kMaxBlock)
+    ApplyFullBlock(*this, live, in, out);
+  else
+    ApplyPartialBlock(*this, live, in, out, n);
 }
 
 namespace {

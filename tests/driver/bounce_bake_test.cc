@@ -136,6 +136,12 @@ TEST(BounceBakeTest, CameraGathersFromTheVerticesAndWorkersAgree) {
   const nlohmann::json& aux = info->attrs.at("bounces").at("auxiliary");
   EXPECT_EQ(aux.at("samples"), 801);
   EXPECT_EQ(aux.at("kind"), "vertices");
+  // The record holds the vertices' bounces that the pixels gather, b < B
+  // (G_aa^B A₀ is never formed): two energies, decreasing (a(1 − f) = 0.4).
+  const nlohmann::json& energy = info->attrs.at("bounces").at("energy");
+  ASSERT_EQ(energy.size(), 2u);
+  EXPECT_GT(energy[1].get<double>(), 0);
+  EXPECT_LT(energy[1].get<double>(), energy[0].get<double>());
   ASSERT_TRUE(Bake(scene, p, dir.path() / "c3.wbk", 3).ok());
   EXPECT_TRUE(ReadTree(dir.path() / "c3.wbk") == ReadTree(dir.path() / "c1.wbk"));
 }

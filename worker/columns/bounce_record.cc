@@ -18,12 +18,12 @@ absl::StatusOr<std::vector<double>> ReadBounceEnergy(const JobPlan& plan,
   if (!SameSpec(a->spec(), BounceEnergySpec(plan)))
     return absl::FailedPreconditionError(
         absl::StrCat(a->dir().string(), ": does not match the job plan"));
-  std::vector<double> energy(plan.bounces + 1, 0.0);
+  std::vector<double> energy(plan.bounce_energies(), 0.0);
   for (int64_t g = 0; g < plan.groups; ++g) {
     const int64_t index[2] = {g, 0};
     absl::StatusOr<std::vector<float>> row = a->ReadChunk<float>(index);
     if (!row.ok()) return row.status();
-    for (int b = 0; b <= plan.bounces; ++b) energy[b] += (*row)[b];
+    for (size_t b = 0; b < energy.size(); ++b) energy[b] += (*row)[b];
   }
   return energy;
 }
@@ -60,7 +60,8 @@ absl::Status AddBounceRecord(const BakeContext& ctx, const std::filesystem::path
         {"convention",
          "the camera's pixels gather bounced light from every vertex of the scene's meshes, in "
          "mesh order, whose direct rows A_0 were baked beside theirs: T = T_0 + G_ca sum_{b<B} "
-         "G_aa^b A_0; bounces.energy[b] is then the vertices' sum of (G_aa^b A_0)^2, b = 0..B"}};
+         "G_aa^b A_0; bounces.energy[b] is then the vertices' sum of (G_aa^b A_0)^2, b = 0..B-1 "
+         "(the light the pixels gather)"}};
   }
   if (ctx.auto_bounces) {
     manifest["bounces"]["auto"] = {

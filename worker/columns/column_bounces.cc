@@ -113,9 +113,10 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
 
 // A camera layout: Σ_{b=1..B} T_b = G_ca Σ_{b<B} G_aa^b A₀ (core/bake/
 // bake_gather.h): the bounces run over the auxiliary set, and the pixels
-// gather their sum once, so a bounce costs one product with G_aa. energy[b]
-// is then that of the auxiliary set's bounce b, Σ (G_aa^b A₀)² (the record
-// says so), in blocks of columns as above.
+// gather their sum once, so B bounces cost B − 1 products with G_aa and one
+// with G_ca. energy[b] is then that of the auxiliary set's bounce b,
+// Σ (G_aa^b A₀)² for b < B (the record says so: G_aa^B A₀ is never formed),
+// in blocks of columns as above.
 absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
                            const std::filesystem::path& store, int group, std::span<float> images,
                            std::vector<double>& energy, const TaskSignals& signals) {
@@ -134,15 +135,14 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
       energy[0] += BounceSumOfSquares(aux.data() + size_t(first + k) * samples, samples);
     Interleave(aux, samples, first, n, previous);
     std::copy_n(previous.begin(), samples * n, sum.begin());
-    for (int b = 1; b <= plan.bounces; ++b) {
+    for (int b = 1; b < plan.bounces; ++b) {
       gathers.aux_gather->ApplyBlock(previous, next, n);
       for (int k = 0; k < n; ++k) {
         double e = 0;
         for (size_t i = 0; i < samples; ++i) e += double(next[i * n + k]) * next[i * n + k];
         energy[b] += e;
       }
-      if (b < plan.bounces)
-        for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
+      for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
       previous.swap(next);
     }
     gathers.gather.ApplyBlock(sum, bounce, n);
@@ -160,7 +160,7 @@ absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path
   if (plan.bounces <= 0) return absl::OkStatus();
   if (!ctx.bounce)
     return absl::FailedPreconditionError("bounces: the context has no gather operator");
-  std::vector<double> energy(plan.bounces + 1, 0.0);
+  std::vector<double> energy(plan.bounce_energies(), 0.0);
   absl::Status s = ctx.bounce->aux_gather
                        ? AddAuxBounces(*ctx.bounce, plan, store, group, images, energy, signals)
                        : AddOwnBounces(ctx.bounce->gather, plan, group, images, energy, signals);

@@ -15,7 +15,8 @@ namespace wavebake {
 
 // ctx.plan.bounces > 0: adds them to the group's column images (column c at
 // images[c·W·H, (c+1)·W·H)) and writes the group's row of
-// staging/bounce_energy (Σ T_b² over its columns, b = 0..B; worker/tiles/staging.h).
+// staging/bounce_energy (Σ T_b² over its columns, b = 0..B, or the auxiliary
+// set's for b < B; worker/tiles/staging.h).
 // Memory: two column images beyond the group's. Cancelled once signals.cancel
 // is seen (between columns; nothing is written then).
 absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path& store, int group,

@@ -33,8 +33,8 @@ ArraySpec AuxTransportSpec(const JobPlan& plan) {
 
 ArraySpec BounceEnergySpec(const JobPlan& plan) {
   ArraySpec spec;
-  spec.shape = {plan.groups, plan.bounces + 1};
-  spec.chunks = {1, plan.bounces + 1};
+  spec.shape = {plan.groups, plan.bounce_energies()};
+  spec.chunks = {1, plan.bounce_energies()};
   spec.dtype = DType::kFloat32;
   spec.fill_value = 0;
   return spec;

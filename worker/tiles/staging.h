@@ -25,9 +25,9 @@ ArraySpec TileEnergySpec(const JobPlan& plan);
 // a·tile_cells.. (the last one padded with zero rows): [M, aux_tiles·tile_cells].
 ArraySpec AuxTransportSpec(const JobPlan& plan);
 
-// staging/bounce_energy (plan.bounces > 0): float32 [groups, bounces+1]
-// chunked [1, bounces+1], fill 0: row g holds Σ T_b² over group g's columns
-// for b = 0..bounces, written by TRANSFORM_COLUMNS, summed by FINALIZE.
+// staging/bounce_energy (plan.bounces > 0): float32 [groups, E] chunked
+// [1, E], E = plan.bounce_energies(), fill 0: row g holds the energies of
+// group g's columns, written by TRANSFORM_COLUMNS, summed by FINALIZE.
 ArraySpec BounceEnergySpec(const JobPlan& plan);
 
 // Creates the store's root group, the staging group and both arrays, and,
