@@ -2,11 +2,12 @@
 // TRANSFORM_COLUMNS): whole bakes through the product path at B = 0..4, and
 // the time each bounce adds against the direct bake's.
 //
-//   build/bench_bounce_cost WORK_DIR [--quick] [--workers W] [--max-bounces B]
+//   build/bench_bounce_cost WORK_DIR [--quick] [--workers W] [--max-bounces B] [--case NAME]
 //
 // Cases: the bunny and spot on hilbert:64x64 (../shared/data) and cubes-wall
-// on camera:128x128, N = 32 (--quick: spot only, N = 16). Per case and B: wall and CPU seconds of
-// the bake, and of its transforming phase (where the bounces run), and
+// on camera:128x128, N = 32 (--quick: spot only, N = 16; --case: that one
+// only). Per case and B: wall and CPU seconds of the bake, and of its
+// transforming phase (where the bounces run), and
 //   per_bounce = (cpu(B) − cpu(0)) / B / cpu(0),
 // the ratio the goal "each bounce costs ≤ 1.0× the direct bake" is about.
 // The last line is one JSON object with every number.
@@ -32,10 +33,13 @@ namespace {
 
 int main(int argc, char** argv) {
   using namespace wavebake;
-  if (argc < 2) Die("usage: bench_bounce_cost WORK_DIR [--quick] [--workers W] [--max-bounces B]");
+  if (argc < 2)
+    Die("usage: bench_bounce_cost WORK_DIR [--quick] [--workers W] [--max-bounces B] [--case "
+        "NAME]");
   const std::filesystem::path work = argv[1];
   bool quick = false;
   int workers = 2, max_bounces = 4;
+  std::string only;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") {
@@ -44,6 +48,8 @@ int main(int argc, char** argv) {
       workers = std::atoi(argv[++i]);
     } else if (a == "--max-bounces" && i + 1 < argc) {
       max_bounces = std::atoi(argv[++i]);
+    } else if (a == "--case" && i + 1 < argc) {
+      only = argv[++i];
     } else {
       Die("unknown argument " + a);
     }
@@ -58,6 +64,10 @@ int main(int argc, char** argv) {
     cases.insert(cases.begin(), {"bunny", models + "bunny.obj", "hilbert:64x64"});
     // A camera's bounces add the auxiliary vertex set's rows (core/bake/bake_gather.h).
     cases.push_back({"cubes-wall", "builtin:cubes-wall", "camera:128x128"});
+  }
+  if (!only.empty()) {
+    std::erase_if(cases, [&](const Case& c) { return c.name != only; });
+    if (cases.empty()) Die("--case: no case named " + only);
   }
 
   nlohmann::json all = nlohmann::json::array();

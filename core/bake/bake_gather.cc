@@ -27,15 +27,38 @@ absl::StatusOr<BakeGathers> MakeBakeGathers(const Scene& scene, const RayCaster&
     g.gather = *std::move(gather);
     return g;
   }
-  g.aux = VertexSamples(scene);
-  absl::StatusOr<BounceGather> aux = MakeBounceGather(scene, caster, g.aux, options);
-  if (!aux.ok()) return aux.status();
-  g.aux_gather = *std::move(aux);
+  g.aux = VertexSamples(scene, epsilon);
+  if (params.bounces != 1) {
+    absl::StatusOr<BounceGather> aux = MakeBounceGather(scene, caster, g.aux, options);
+    if (!aux.ok()) return aux.status();
+    g.aux_gather = *std::move(aux);
+  }
   options.stream = 1;  // the pixels' rays: streams apart from the vertices'
   absl::StatusOr<BounceGather> pixels = MakeBounceGather(scene, caster, samples, g.aux, options);
   if (!pixels.ok()) return pixels.status();
   g.gather = *std::move(pixels);
   return g;
+}
+
+void MarkAuxRows(int bounces, BakeGathers& g) {
+  g.aux_rows.assign(g.uses_aux() ? g.aux.cells() : 0, 0);
+  if (!g.uses_aux() || bounces <= 0) return;
+  std::vector<int32_t> frontier;
+  const auto mark_sources = [&](const BounceGather& op, int row) {
+    for (int64_t e = op.offsets[row]; e < op.offsets[row + 1]; ++e) {
+      const int32_t j = op.source[e];
+      if (!g.aux_rows[j]) {
+        g.aux_rows[j] = 1;
+        frontier.push_back(j);
+      }
+    }
+  };
+  for (int c = 0; c < g.gather.cells; ++c) mark_sources(g.gather, c);
+  for (int b = 1; b < bounces && !frontier.empty(); ++b) {
+    std::vector<int32_t> rows;
+    rows.swap(frontier);
+    for (int32_t r : rows) mark_sources(*g.aux_gather, r);
+  }
 }
 
 AutoBounceChoice ResolveBounces(const BakeParams& params, const BakeGathers& gathers,

@@ -11,6 +11,8 @@
 //   T = T₀ + G_ca Σ_{b<B} G_aa^b A₀
 // with G_ca the pixels' gather from the auxiliary set and G_aa the set's
 // gather from itself (Sloan et al. 2002 §5 gathers over mesh vertices too).
+// The set's boundary vertices sit ε inside their meshes (VertexSamples'
+// inset: a vertex where one mesh meets another would read as black).
 #include <cstdint>
 #include <optional>
 
@@ -32,9 +34,14 @@ int AuxSampleCount(const Scene& scene, const BakeParams& params, const LayoutSpe
 struct BakeGathers {
   BounceGather gather;  // rows over the layout's cells
   // UsesAuxSamples: `gather` reads the auxiliary set (G_ca), `aux_gather` is
-  // G_aa over `aux`.
+  // G_aa over `aux`, built only when a bounce gathers the set's own bounced
+  // light (B ≥ 2, or auto): one bounce is G_ca A₀ alone.
   std::optional<BounceGather> aux_gather;
   SampleSet aux;
+  // Per auxiliary sample: whether B bounces read its direct row (MarkAuxRows);
+  // the rows of the others are never traced and stay zero.
+  std::vector<uint8_t> aux_rows;
+  bool uses_aux() const { return aux.size() > 0; }
 };
 
 // The operators for `samples` (the layout's, from MakeSampleSet) with
@@ -44,6 +51,14 @@ struct BakeGathers {
 absl::StatusOr<BakeGathers> MakeBakeGathers(const Scene& scene, const RayCaster& caster,
                                             const SampleSet& samples, const BakeParams& params,
                                             const LayoutSpec& layout, float epsilon);
+
+// The auxiliary samples whose direct rows B bounces of the camera read,
+// into g.aux_rows: G_ca Σ_{b<B} G_aa^b A₀ reads the sources of G_ca, then
+// the sources of G_aa's rows of those, B − 1 times. A vertex that no pixel's
+// gather reaches in B hops (the back of a wall, the underside of a floor)
+// adds nothing, so tracing its row would be wasted. Needs g.aux_gather when
+// bounces ≥ 2.
+void MarkAuxRows(int bounces, BakeGathers& g);
 
 // The bounce count a bake with `params` adds: params.bounces, or for auto
 // AutoBounces' choice (on the auxiliary set's G_aa when there is one) for the

@@ -1,5 +1,10 @@
 #include "core/layouts/vertex_samples.h"
 
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
+
 namespace wavebake {
 
 int64_t VertexCount(const Scene& scene) {
@@ -8,10 +13,49 @@ int64_t VertexCount(const Scene& scene) {
   return count;
 }
 
-SampleSet VertexSamples(const Scene& scene) {
+namespace {
+
+// Per vertex of m: the unit direction from it into its triangles (the mean
+// of the directions to their centroids, in the tangent plane) for vertices
+// on the mesh's boundary, zero for the others and where the mean vanishes.
+std::vector<Vec3> BoundaryInward(const Mesh& m) {
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+  std::vector<uint8_t> boundary(m.positions.size(), 0);
+  for (const auto& [edge, count] : uses)
+    if (count == 1) boundary[edge.first] = boundary[edge.second] = 1;
+  std::vector<Vec3> sum(m.positions.size(), Vec3{});
+  for (const auto& t : m.triangles) {
+    const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f;
+    for (uint32_t v : t)
+      if (boundary[v]) {
+        const Vec3 d = centroid - m.positions[v];
+        const float len = Length(d);
+        if (len > 0) sum[v] = sum[v] + d / len;
+      }
+  }
+  for (size_t v = 0; v < sum.size(); ++v) {
+    const Vec3 n = v < m.normals.size() ? m.normals[v] : Vec3{};
+    const Vec3 tangent = sum[v] - n * Dot(sum[v], n);
+    const float len = Length(tangent);
+    sum[v] = len > 1e-6f ? tangent / len : Vec3{};
+  }
+  return sum;
+}
+
+}  // namespace
+
+SampleSet VertexSamples(const Scene& scene, float inset) {
   SampleSet s;
   for (const Mesh& m : scene.meshes) {
-    s.position.insert(s.position.end(), m.positions.begin(), m.positions.end());
+    if (inset > 0) {
+      const std::vector<Vec3> inward = BoundaryInward(m);
+      for (size_t v = 0; v < m.positions.size(); ++v)
+        s.position.push_back(m.positions[v] + inward[v] * inset);
+    } else {
+      s.position.insert(s.position.end(), m.positions.begin(), m.positions.end());
+    }
     s.normal.insert(s.normal.end(), m.normals.begin(), m.normals.end());
     s.albedo.insert(s.albedo.end(), m.positions.size(), m.albedo);
   }

@@ -15,7 +15,15 @@ namespace wavebake {
 // id (samples.vertex the identity), the mesh's normals and albedo; a 1-row
 // grid (width S, height 1: no image, nothing transforms over it). The meshes
 // must have been through CheckAndRepairScene (normals).
-SampleSet VertexSamples(const Scene& scene);
+//
+// A vertex on the boundary of its mesh (an edge that one triangle uses) is
+// moved `inset` into its triangles: such a vertex is where a mesh rests on
+// or abuts another (a box on the floor, a wall on the ground's edge), so its
+// ray origin, offset along the normal only, lies on the other surface, and
+// every ray meets that surface at t = 0: the vertex would read as black.
+// Moved inward it sees the other surface where it stands and the sky
+// elsewhere, as the surface just beside it does. Interior vertices stay.
+SampleSet VertexSamples(const Scene& scene, float inset = 0);
 int64_t VertexCount(const Scene& scene);
 
 }  // namespace wavebake

@@ -62,7 +62,7 @@ struct BounceGather {
   std::vector<float> weight;
   uint64_t hits = 0;  // rays that reached a front face (statistics)
 
-  // out[c] = Σ_j G[c, j] in[j], summed in double in entry order (deterministic).
+  // out[c] = Σ_j G[c, j] in[j], summed in float in entry order (deterministic).
   // in has `sources` entries, out `cells`; they must not overlap.
   void Apply(std::span<const float> in, std::span<float> out) const;
   // Apply to n ≤ kMaxBlock vectors at once, interleaved: in[j·n + k] is

@@ -20,7 +20,7 @@ namespace {
 // Σ_{b=1..B} G_ca G_aa^{b−1} E_a from its irradiance `aux_rgb`.
 void AddBouncesToImage(const BakeGathers& gathers, int bounces, std::span<const float> aux_rgb,
                        std::vector<float>& rgb) {
-  const bool aux = gathers.aux_gather.has_value();
+  const bool aux = gathers.uses_aux();
   const std::span<const float> start = aux ? aux_rgb : std::span<const float>(rgb);
   const size_t cells = rgb.size() / 3, sources = start.size() / 3;
   std::vector<float> previous(sources), next(sources), bounce(cells);
@@ -32,6 +32,7 @@ void AddBouncesToImage(const BakeGathers& gathers, int bounces, std::span<const 
       gathers.gather.Apply(previous, bounce);
       for (size_t i = 0; i < cells; ++i) sum[i] += bounce[i];
       if (aux) {
+        if (b == bounces) break;  // G_aa is built only when a bounce reads it
         gathers.aux_gather->Apply(previous, next);
         previous.swap(next);
       } else {
@@ -109,7 +110,7 @@ absl::StatusOr<EvalReport> EvaluateBounces(OpenedStore& opened, const EnvMap& en
             MakeBakeGathers(*scene, *caster, *samples, info.params, *layout, eps);
         if (!gathers.ok()) return gathers.status();
         std::vector<float> aux_rgb;
-        if (gathers->aux_gather) {  // the auxiliary set's direct light, as the bake traced it
+        if (gathers->uses_aux()) {  // the auxiliary set's direct light, as the bake traced it
           SampleSet aux = gathers->aux;
           for (Vec3& albedo : aux.albedo) albedo = {1, 1, 1};
           absl::StatusOr<DenseTraceResult> a = TraceDenseRelight(*caster, aux, cube, trace);

@@ -45,7 +45,7 @@ std::unique_ptr<BakeContext> MemoryJobContext() {
 }
 
 uint64_t RawStagingBytes(const JobPlan& plan) {
-  return uint64_t(plan.groups) * plan.tiles() * plan.group_size * plan.tile_cells() * 4;
+  return uint64_t(plan.groups) * plan.all_tiles() * plan.group_size * plan.tile_cells() * 4;
 }
 
 // The tasks by hand; tiles listed in `in_memory` stage through `memory`.
@@ -136,6 +136,36 @@ TEST(MemoryStagingTest, ATileWithoutSamplesStagesTheSameZeros) {
   ASSERT_TRUE(
       BakeByHandWithMemory(ctx, held, &memory, tiles, std::vector<bool>(plan.tiles(), true), groups)
           .ok());
+  EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+}
+
+// A camera's bounces gather from its auxiliary vertices, whose direct rows
+// are tiles of their own (core/bake/bake_gather.h): they go to memory too,
+// and the store is still the store-staged one's; nothing of them is in the
+// store's staging.
+TEST(MemoryStagingTest, AuxiliaryRowsOfBouncesStageInMemoryToo) {
+  BakeParams p = MemoryJob();
+  p.bounces = 2;
+  p.gather_rays = 16;
+  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(kMemoryScene, p);
+  ASSERT_TRUE(made.ok()) << made.status();
+  const BakeContext& ctx = **made;
+  const JobPlan& plan = ctx.plan;
+  ASSERT_GT(plan.aux_tiles(), 0);
+  ScratchDir dir;
+  std::vector<int> tiles(plan.all_tiles()), groups(plan.groups);
+  std::iota(tiles.begin(), tiles.end(), 0);
+  std::iota(groups.begin(), groups.end(), 0);
+  const auto disk = dir.path() / "disk.wbk", held = dir.path() / "memory.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(ctx, disk, nullptr, tiles,
+                                   std::vector<bool>(plan.all_tiles(), false), groups)
+                  .ok());
+  MemoryStaging memory(RawStagingBytes(plan));
+  ASSERT_TRUE(CreateStaging(plan, held).ok());
+  for (int t : tiles) ASSERT_TRUE(BakeTile(ctx, held, t, nullptr, {}, &memory).ok());
+  EXPECT_FALSE(std::filesystem::exists(held / store::kStagingAuxTransport / "0.0"));
+  for (int g : groups) ASSERT_TRUE(TransformColumns(ctx, held, g, nullptr, {}, &memory).ok());
+  ASSERT_TRUE(Finalize(ctx, held, {.memory = &memory}).ok());
   EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
 }
 

@@ -1,5 +1,6 @@
 #include "worker/columns/bounce_record.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -52,16 +53,19 @@ absl::Status AddBounceRecord(const BakeContext& ctx, const std::filesystem::path
   } else if (ctx.auto_bounces) {
     manifest["bounces"] = {{"count", 0}};
   }
-  if (ctx.bounce && ctx.bounce->aux_gather) {
+  if (ctx.bounce && ctx.bounce->uses_aux()) {
+    const auto& rows = ctx.bounce->aux_rows;
     manifest["bounces"]["auxiliary"] = {
         {"kind", "vertices"},
         {"samples", plan.aux_samples},
-        {"gather_entries", ctx.bounce->aux_gather->entries()},
+        {"samples_traced", std::count(rows.begin(), rows.end(), uint8_t{1})},
+        {"gather_entries", ctx.bounce->aux_gather ? ctx.bounce->aux_gather->entries() : 0},
         {"convention",
          "the camera's pixels gather bounced light from every vertex of the scene's meshes, in "
          "mesh order, whose direct rows A_0 were baked beside theirs: T = T_0 + G_ca sum_{b<B} "
-         "G_aa^b A_0; bounces.energy[b] is then the vertices' sum of (G_aa^b A_0)^2, b = 0..B-1 "
-         "(the light the pixels gather)"}};
+         "G_aa^b A_0; only the samples_traced vertices that G_ca and B - 1 hops of G_aa reach "
+         "have their rows traced (the others' are 0); bounces.energy[b] is then the vertices' "
+         "sum of (G_aa^b A_0)^2, b = 0..B-1 (the light the pixels gather)"}};
   }
   if (ctx.auto_bounces) {
     manifest["bounces"]["auto"] = {

@@ -29,10 +29,10 @@ absl::Status WriteBounceEnergy(const JobPlan& plan, const std::filesystem::path&
 }
 
 // The group's columns of the auxiliary samples' direct rows A₀
-// (staging/aux_transport): column c at aux[c·S_a, (c+1)·S_a). A chunk not
-// written is a tile not baked, never zeros.
+// (staging/aux_transport, or the job's in-memory staging): column c at
+// aux[c·S_a, (c+1)·S_a). A chunk not written is a tile not baked, never zeros.
 absl::Status AssembleAuxColumns(const JobPlan& plan, const std::filesystem::path& store, int group,
-                                std::span<float> aux) {
+                                const MemoryStaging::Job* memory, std::span<float> aux) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingAuxTransport));
   if (!a.ok()) return a.status();
   if (!SameSpec(a->spec(), AuxTransportSpec(plan)))
@@ -41,17 +41,23 @@ absl::Status AssembleAuxColumns(const JobPlan& plan, const std::filesystem::path
   const size_t tile_cells = plan.tile_cells(), samples = plan.aux_samples;
   std::vector<float> chunk(size_t(plan.group_size) * tile_cells);
   for (int t = 0; t < plan.aux_tiles(); ++t) {
-    const int64_t index[2] = {group, t};
-    if (!std::filesystem::exists(a->ChunkPath(index)))
-      return absl::FailedPreconditionError(absl::StrCat(a->dir().string(), ": auxiliary tile ", t,
-                                                        " (tile ", plan.tiles() + t,
-                                                        ") has not been baked"));
-    if (absl::Status s = a->ReadChunkInto(index, std::as_writable_bytes(std::span(chunk))); !s.ok())
-      return s;
+    std::span<const float> held =
+        memory ? memory->Chunk(group, plan.tiles() + t) : std::span<const float>();
+    if (held.empty()) {
+      const int64_t index[2] = {group, t};
+      if (!std::filesystem::exists(a->ChunkPath(index)))
+        return absl::FailedPreconditionError(absl::StrCat(a->dir().string(), ": auxiliary tile ", t,
+                                                          " (tile ", plan.tiles() + t,
+                                                          ") has not been baked"));
+      if (absl::Status s = a->ReadChunkInto(index, std::as_writable_bytes(std::span(chunk)));
+          !s.ok())
+        return s;
+      held = chunk;
+    }
     const size_t first = size_t(t) * tile_cells;
     const size_t n = std::min(tile_cells, samples - first);
     for (int c = 0; c < plan.GroupCount(group); ++c)
-      std::copy_n(chunk.data() + size_t(c) * tile_cells, n, aux.data() + c * samples + first);
+      std::copy_n(held.data() + size_t(c) * tile_cells, n, aux.data() + c * samples + first);
   }
   return absl::OkStatus();
 }
@@ -118,12 +124,13 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
 // Σ (G_aa^b A₀)² for b < B (the record says so: G_aa^B A₀ is never formed),
 // in blocks of columns as above.
 absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
-                           const std::filesystem::path& store, int group, std::span<float> images,
+                           const std::filesystem::path& store, int group,
+                           const MemoryStaging::Job* memory, std::span<float> images,
                            std::vector<double>& energy, const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height, samples = plan.aux_samples;
   const int count = plan.GroupCount(group);
   std::vector<float> aux(size_t(count) * samples);
-  if (absl::Status s = AssembleAuxColumns(plan, store, group, aux); !s.ok()) return s;
+  if (absl::Status s = AssembleAuxColumns(plan, store, group, memory, aux); !s.ok()) return s;
   constexpr int kBlock = BounceGather::kMaxBlock;
   std::vector<float> previous(samples * kBlock), next(previous.size()), sum(previous.size()),
       bounce(cells * kBlock);
@@ -155,15 +162,17 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
 }  // namespace
 
 absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                             std::span<float> images, const TaskSignals& signals) {
+                             std::span<float> images, const TaskSignals& signals,
+                             const MemoryStaging::Job* memory) {
   const JobPlan& plan = ctx.plan;
   if (plan.bounces <= 0) return absl::OkStatus();
   if (!ctx.bounce)
     return absl::FailedPreconditionError("bounces: the context has no gather operator");
   std::vector<double> energy(plan.bounce_energies(), 0.0);
-  absl::Status s = ctx.bounce->aux_gather
-                       ? AddAuxBounces(*ctx.bounce, plan, store, group, images, energy, signals)
-                       : AddOwnBounces(ctx.bounce->gather, plan, group, images, energy, signals);
+  absl::Status s =
+      ctx.bounce->uses_aux()
+          ? AddAuxBounces(*ctx.bounce, plan, store, group, memory, images, energy, signals)
+          : AddOwnBounces(ctx.bounce->gather, plan, group, images, energy, signals);
   if (!s.ok()) return s;
   return WriteBounceEnergy(plan, store, group, energy);
 }

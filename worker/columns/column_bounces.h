@@ -10,6 +10,7 @@
 #include "absl/status/status.h"
 #include "worker/loop/task_signals.h"
 #include "worker/tiles/bake_context.h"
+#include "worker/tiles/memory_staging.h"
 
 namespace wavebake {
 
@@ -17,9 +18,12 @@ namespace wavebake {
 // images[c·W·H, (c+1)·W·H)) and writes the group's row of
 // staging/bounce_energy (Σ T_b² over its columns, b = 0..B, or the auxiliary
 // set's for b < B; worker/tiles/staging.h).
+// A camera's auxiliary rows are read from `memory` where the job's
+// in-memory staging holds them, else from staging/aux_transport.
 // Memory: two column images beyond the group's. Cancelled once signals.cancel
 // is seen (between columns; nothing is written then).
 absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                             std::span<float> images, const TaskSignals& signals);
+                             std::span<float> images, const TaskSignals& signals,
+                             const MemoryStaging::Job* memory = nullptr);
 
 }  // namespace wavebake

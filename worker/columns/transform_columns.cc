@@ -140,7 +140,8 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
       !s.ok())
     return s;
   // Diffuse interreflection, added to the column images before they are coded.
-  if (absl::Status s = AddGroupBounces(ctx, store, group, images, signals); !s.ok()) return s;
+  if (absl::Status s = AddGroupBounces(ctx, store, group, images, signals, held.get()); !s.ok())
+    return s;
 
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);

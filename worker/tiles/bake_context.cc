@@ -54,6 +54,7 @@ absl::StatusOr<std::unique_ptr<BakeContext>> MakeBakeContext(std::string_view sc
       ctx->auto_bounces = ResolveBounces(params, *gathers, ctx->samples);
     ctx->plan.bounces = ctx->auto_bounces ? ctx->auto_bounces->bounces : params.bounces;
     ctx->plan.aux_samples = gathers->aux.size();
+    MarkAuxRows(ctx->plan.bounces, *gathers);
     ctx->bounce = *std::move(gathers);
   }
   return ctx;

@@ -176,10 +176,11 @@ absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
 }
 
 // Auxiliary tile `a` (core/bake/bake_gather.h): the direct rows of auxiliary
-// samples a·tile_cells.., the padding past the last one 0, into
-// staging/aux_transport. Not part of the matrix, so no tile energy.
+// samples a·tile_cells.., into staging/aux_transport; the padding past the
+// last one and the rows no bounce reads (BakeGathers::aux_rows) are 0. Not
+// part of the matrix, so no tile energy.
 absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& store, int a,
-                         TileStats& local, const TaskSignals& signals) {
+                         TileStats& local, const TaskSignals& signals, MemoryStaging::Job* memory) {
   const JobPlan& plan = ctx.plan;
   if (!ctx.bounce || ctx.bounce->aux.size() != plan.aux_samples)
     return absl::FailedPreconditionError("bounces: the context has no auxiliary samples");
@@ -195,7 +196,7 @@ absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& st
       return absl::CancelledError(absl::StrCat("tile: ", plan.tiles() + a, " cancelled"));
     const std::span<float> row = rows.subspan(cell * RowStride(plan), plan.columns);
     const int id = a * plan.tile_cells() + cell;
-    if (id >= aux.size()) {
+    if (id >= aux.size() || !ctx.bounce->aux_rows[id]) {
       std::fill(row.begin(), row.end(), 0.0f);
       continue;
     }
@@ -206,7 +207,14 @@ absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& st
       signals.rays_traced->store(traced.rays_traced, std::memory_order_relaxed);
   }
   local.rays_traced += traced.rays_traced;
-  return WriteTileChunks(*transport, plan, a, rows, local);
+  if (!memory) return WriteTileChunks(*transport, plan, a, rows, local);
+  for (int g = 0; g < plan.groups; ++g) {
+    const std::span<float> slot = memory->BeginWrite(g, plan.tiles() + a);
+    if (slot.empty()) continue;  // written by an earlier attempt: the same values
+    TransposeGroup(rows, plan, g, slot);
+    memory->Publish(g, plan.tiles() + a);
+  }
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -218,9 +226,12 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     return absl::InvalidArgumentError(
         absl::StrCat("tile: ", tile, " is outside 0..", plan.all_tiles() - 1));
   }
+  const bool in_memory = memory != nullptr && !ctx.params.keep_staging && !ctx.reuse;
   if (tile >= plan.tiles()) {
     TileStats local;
-    absl::Status s = BakeAuxTile(ctx, store, tile - plan.tiles(), local, signals);
+    const std::shared_ptr<MemoryStaging::Job> held =
+        in_memory ? memory->Admit(store, plan) : nullptr;
+    absl::Status s = BakeAuxTile(ctx, store, tile - plan.tiles(), local, signals, held.get());
     if (stats) {
       stats->rays_traced += local.rays_traced;
       stats->bytes_written += local.bytes_written;
@@ -232,9 +243,7 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   if (!staging.ok()) return staging.status();
 
   const TileRect rect = plan.Tile(tile);
-  const std::shared_ptr<MemoryStaging::Job> held =
-      memory != nullptr && !ctx.params.keep_staging && !ctx.reuse ? memory->Admit(store, plan)
-                                                                  : nullptr;
+  const std::shared_ptr<MemoryStaging::Job> held = in_memory ? memory->Admit(store, plan) : nullptr;
   TileStats local;
   if (held != nullptr && !HasSamples(ctx, rect)) {
     // Every chunk of a tile without samples is zeros: in memory, pages never

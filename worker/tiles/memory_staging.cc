@@ -8,7 +8,8 @@ namespace {
 constexpr size_t kPage = size_t{4} << 10;
 
 uint64_t StagingBytes(const JobPlan& plan) {
-  return uint64_t(plan.groups) * plan.tiles() * plan.group_size * plan.tile_cells() * sizeof(float);
+  return uint64_t(plan.groups) * plan.all_tiles() * plan.group_size * plan.tile_cells() *
+         sizeof(float);
 }
 
 }  // namespace
@@ -24,8 +25,8 @@ std::shared_ptr<MemoryStaging::Job> MemoryStaging::Job::Map(const JobPlan& plan)
 }
 
 MemoryStaging::Job::Job(const JobPlan& plan, Mapping mapping)
-    : tiles_(plan.tiles()),
-      slots_(size_t(plan.groups) * plan.tiles()),
+    : tiles_(plan.all_tiles()),
+      slots_(size_t(plan.groups) * plan.all_tiles()),
       chunk_floats_(size_t(plan.group_size) * plan.tile_cells()),
       mapping_(mapping),
       state_(slots_, State::kEmpty) {}

@@ -30,7 +30,9 @@ namespace wavebake {
 
 class MemoryStaging {
  public:
-  // What one job holds: chunk (g, t) of staging/transport at slot g·tiles + t.
+  // What one job holds: chunk (g, t) of staging/transport at slot
+  // g·all_tiles + t, and for t ≥ tiles chunk (g, t − tiles) of
+  // staging/aux_transport (a camera's auxiliary rows, core/bake/bake_gather.h).
   class Job;
 
   explicit MemoryStaging(uint64_t budget_bytes) : budget_(budget_bytes) {}
@@ -82,7 +84,7 @@ class MemoryStaging::Job {
 
  private:
   enum class State : uint8_t { kEmpty, kWriting, kPublished };
-  size_t Slot(int g, int t) const { return size_t(g) * tiles_ + t; }
+  size_t Slot(int g, int t) const { return size_t(g) * tiles_ + t; }  // tiles_: all_tiles()
 
   mutable std::mutex mu_;
   int tiles_;
