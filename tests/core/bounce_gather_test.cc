@@ -110,7 +110,7 @@ TEST(BounceGatherTest, OpenPlaneHasNoBounce) {
   EXPECT_EQ(g->hits, 0u);
 }
 
-// The blocked product (TRANSFORM_COLUMNS applies G to 32 columns at once)
+// The blocked product (TRANSFORM_COLUMNS applies G to kMaxBlock columns at once)
 // gives every vector the bits of the one-vector product, also where it skips
 // the sources that are zero in every vector of the block (+0 and −0 alike;
 // values of both signs, so sums can cancel).

@@ -66,30 +66,46 @@ bool BounceStopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
 }
 
+// Cells per pass of the two loops below: a pass's slice of the interleaved
+// block (kSlice × n floats, 32 KB at n = 32) stays in L1 while each of the n
+// columns is streamed through it, instead of one strided sweep over the whole
+// block per column.
+constexpr size_t kSlice = 256;
+
 // Columns first..first+n of `images` (each `cells` long) into `block`,
 // interleaved (block[cell·n + k] = column first+k), and back, added.
 void Interleave(std::span<const float> images, size_t cells, int first, int n,
                 std::span<float> block) {
-  for (int k = 0; k < n; ++k) {
-    const float* src = images.data() + size_t(first + k) * cells;
-    for (size_t i = 0; i < cells; ++i) block[i * n + k] = src[i];
+  for (size_t i0 = 0; i0 < cells; i0 += kSlice) {
+    const size_t i1 = std::min(cells, i0 + kSlice);
+    for (int k = 0; k < n; ++k) {
+      const float* src = images.data() + size_t(first + k) * cells;
+      for (size_t i = i0; i < i1; ++i) block[i * n + k] = src[i];
+    }
   }
 }
 
-// energy[b] += Σ v² of each interleaved vector in column order; the image
-// columns += the block (the per-column sums of the unblocked loop, same bits).
+// The image columns += the block; with `energy`, *energy += Σ v² of each
+// interleaved vector, in column order (each column's sum over its cells in
+// order: the bits of one sweep per column).
 void AddBlock(std::span<const float> block, size_t cells, int first, int n, std::span<float> images,
-              double& energy) {
-  for (int k = 0; k < n; ++k) {
-    double sum = 0;
-    float* dst = images.data() + size_t(first + k) * cells;
-    for (size_t i = 0; i < cells; ++i) {
-      const float v = block[i * n + k];
-      sum += double(v) * v;
-      dst[i] += v;
+              double* energy) {
+  double sums[BounceGather::kMaxBlock] = {};
+  for (size_t i0 = 0; i0 < cells; i0 += kSlice) {
+    const size_t i1 = std::min(cells, i0 + kSlice);
+    for (int k = 0; k < n; ++k) {
+      float* dst = images.data() + size_t(first + k) * cells;
+      double sum = sums[k];
+      for (size_t i = i0; i < i1; ++i) {
+        const float v = block[i * n + k];
+        if (energy) sum += double(v) * v;
+        dst[i] += v;
+      }
+      sums[k] = sum;
     }
-    energy += sum;
   }
+  if (energy)
+    for (int k = 0; k < n; ++k) *energy += sums[k];
 }
 
 // Mesh and lightmap layouts: T_b = G T_{b−1} over the layout's own cells,
@@ -110,7 +126,7 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
     Interleave(images, cells, first, n, previous);
     for (int b = 1; b <= plan.bounces; ++b) {
       gather.ApplyBlock(previous, next, n);
-      AddBlock(next, cells, first, n, images, energy[b]);
+      AddBlock(next, cells, first, n, images, &energy[b]);
       previous.swap(next);
     }
   }
@@ -141,7 +157,7 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
     for (int k = 0; k < n; ++k)
       energy[0] += BounceSumOfSquares(aux.data() + size_t(first + k) * samples, samples);
     Interleave(aux, samples, first, n, previous);
-    std::copy_n(previous.begin(), samples * n, sum.begin());
+    if (plan.bounces > 1) std::copy_n(previous.begin(), samples * n, sum.begin());
     for (int b = 1; b < plan.bounces; ++b) {
       gathers.aux_gather->ApplyBlock(previous, next, n);
       for (int k = 0; k < n; ++k) {
@@ -152,9 +168,8 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
       for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
       previous.swap(next);
     }
-    gathers.gather.ApplyBlock(sum, bounce, n);
-    double pixels = 0;  // the pixels' bounced light: added, not recorded
-    AddBlock(bounce, cells, first, n, images, pixels);
+    gathers.gather.ApplyBlock(plan.bounces == 1 ? previous : sum, bounce, n);
+    AddBlock(bounce, cells, first, n, images, nullptr);  // added, not recorded
   }
   return absl::OkStatus();
 }
