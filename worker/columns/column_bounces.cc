@@ -67,10 +67,10 @@ bool BounceStopped(const TaskSignals& signals) {
 }
 
 // Cells per pass of the two loops below: a pass's slice of the interleaved
-// block (kSlice × n floats, 32 KB at n = 32) stays in L1 while each of the n
+// block (kSlice × n floats, 32 KB at n = 64) stays in L1 while each of the n
 // columns is streamed through it, instead of one strided sweep over the whole
 // block per column.
-constexpr size_t kSlice = 256;
+constexpr size_t kSlice = 128;
 
 // Columns first..first+n of `images` (each `cells` long) into `block`,
 // interleaved (block[cell·n + k] = column first+k), and back, added.
