@@ -13,7 +13,7 @@
 # Scenes (bench/update_scenes.py): bunny + spot on a ground grid with a
 # small cube moved (hilbert:128x128, N = 32) and cubes-wall-like geometry
 # with one corner cube moved (camera:256x256, N = 32). --quick: N = 16,
-# hilbert:64x64 and camera:128x128. Targets: --update <= 0.25x, --update-exact
+# hilbert:128x128 (the two models have 8128 vertices) and camera:128x128. Targets: --update <= 0.25x, --update-exact
 # <= 0.35x of the full bake's wall time.
 set -euo pipefail
 WB=$(realpath "${1:-build/wavebake}")
@@ -97,7 +97,7 @@ run_case() { # NAME SCENE_A SCENE_B FLAGS...
 }
 
 if [[ $quick == 1 ]]; then
-  run_case bunny_spot bunny_spot_a.json bunny_spot_b.json --layout hilbert:64x64 --light-res 16
+  run_case bunny_spot bunny_spot_a.json bunny_spot_b.json --layout hilbert:128x128 --light-res 16
   run_case wall_cubes wall_cubes_a.json wall_cubes_b.json --layout camera:128x128 --light-res 16
 else
   run_case bunny_spot bunny_spot_a.json bunny_spot_b.json --layout hilbert:128x128 --light-res 32
