@@ -13,8 +13,9 @@
 # Scenes (bench/update_scenes.py): bunny + spot on a ground grid with a
 # small cube moved (hilbert:128x128, N = 32) and cubes-wall-like geometry
 # with one corner cube moved (camera:256x256, N = 32). --quick: N = 16,
-# hilbert:128x128 (the two models have 8128 vertices) and camera:128x128. Targets: --update <= 0.25x, --update-exact
-# <= 0.35x of the full bake's wall time.
+# hilbert:128x128 (the two models have 8128 vertices) and camera:128x128.
+# Targets: --update <= 0.25x, --update-exact <= 0.35x of the full bake's wall
+# time.
 set -euo pipefail
 WB=$(realpath "${1:-build/wavebake}")
 WORK=${2:-$(mktemp -d "${TMPDIR:-/tmp}/wb_update.XXXXXX")}
