@@ -69,7 +69,7 @@ void AddExportCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--bits", flags->bits,
                   "code bits per coefficient: auto (4 at the finest level, 5 and 6 at the next "
-                  "two, 8 above), B at every level, or one per level, level 0 first (2..9)")
+                  "two, 9 above), B at every level, or one per level, level 0 first (2..9)")
       ->capture_default_str();
   cmd->add_option("--jump-nodes", flags->jump_nodes,
                   "a node gets a jump record when at least this many kept nodes lie below it")

@@ -333,7 +333,7 @@ def export(store: Store | _Path, out: _Path, format: Literal["wavelet-tree"] = "
     target_error: the relative L2 error of the pruned rows (default 0.035).
         Give one of them at most.
     bits: code bits per coefficient: None or "auto" (4 at the finest level,
-        5 and 6 at the next two, 8 above), an int (every level) or one int
+        5 and 6 at the next two, 9 above), an int (every level) or one int
         per level, level 0 first; each in 2..9.
     jump_nodes: a node gets a jump record when at least this many kept
         nodes lie below it.

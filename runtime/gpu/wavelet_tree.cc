@@ -284,7 +284,7 @@ void BuildTree(const TreeParams& p, const std::vector<float>& row, FaceSquares& 
 }  // namespace
 
 std::vector<int> DefaultCodeBits(int levels) {
-  std::vector<int> bits(levels, 8);
+  std::vector<int> bits(levels, 9);
   const int finest[3] = {4, 5, 6};
   for (int k = 0; k < 3 && k < levels; ++k) bits[levels - 1 - k] = finest[k];
   return bits;
@@ -297,7 +297,7 @@ absl::StatusOr<std::vector<int>> ParseCodeBits(const std::string& spec) {
     int b = 0;
     if (!absl::SimpleAtoi(part, &b))
       return absl::InvalidArgumentError(absl::StrCat(
-          "bits: '", spec, "' is not auto, a number of bits or one per level (8,8,6,5,4)"));
+          "bits: '", spec, "' is not auto, a number of bits or one per level (9,9,6,5,4)"));
     bits.push_back(b);
   }
   return bits;

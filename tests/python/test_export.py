@@ -45,7 +45,7 @@ def test_equals_the_command_line(stores, tmp_path, options, flags):
     bits = options.get("bits")
     levels = header["levels"]
     assert header["code_bits"] == ([bits] * levels if isinstance(bits, int) else bits or
-                                   {5: [8, 8, 6, 5, 4], 3: [6, 5, 4]}.get(levels)), header
+                                   {5: [9, 9, 6, 5, 4], 3: [6, 5, 4]}.get(levels)), header
     assert header["settings"]["jump_nodes"] == options.get("jump_nodes", 16)
 
 

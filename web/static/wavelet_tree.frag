@@ -9,10 +9,12 @@
 // only the environment holds is skipped with its subtree size, one only the
 // transfer tree holds is skipped with its jump record when it has one, and
 // otherwise read through without products (its subtree is short: the
-// exporter gives jumps to long subtrees only). I = S_A·S_B +
-// Σ_{i ∈ A∩B} C_A^i · C_B^i per channel, then × albedo. Masked cells come
-// out with alpha 0, sampled ones with alpha 1 + the transfer nodes read
-// (the per-pixel work the page reports).
+// exporter gives jumps to long subtrees only; a leaf is skipped unread and
+// a node whose children are leaves by its child count, records of a level
+// having one size). I = S_A·S_B + Σ_{i ∈ A∩B} C_A^i · C_B^i per channel,
+// then × albedo. Masked cells come out with alpha 0, sampled ones with
+// alpha 1 + the transfer records read (the per-pixel work the page
+// reports).
 precision highp float;
 precision highp int;
 precision highp sampler2D;
@@ -41,11 +43,13 @@ uint wordAt(int w) {
   uvec4 t = texelFetch(u_line, ivec2(w % u_row, w / u_row), 0);
   return t.r | (t.g << 8) | (t.b << 16) | (t.a << 24);
 }
-// 32 bits of the unit stream from unit u (bits 4u .. 4u + 31).
-uint fieldAt(int u) {
+// n ≤ 8 units of the stream from unit u (bits 4u .. 4u + 4n − 1) in the low
+// bits (the bits above are what follows in the stream, or zero: callers
+// mask). One texel fetch when the n units lie in one texel, else two.
+uint fieldAt(int u, int n) {
   int s = (u & 7) * 4;
   uint lo = wordAt(u >> 3) >> uint(s);
-  if (s == 0) return lo;
+  if (s == 0 || (u & 7) + n <= 8) return lo;
   return lo | (wordAt((u >> 3) + 1) << uint(32 - s));
 }
 vec4 envAt(int k) { return texelFetch(u_env, ivec2(k % u_row, k / u_row), 0); }
@@ -71,12 +75,15 @@ vec3 faceProduct(int face, uvec2 block, inout int visited) {
   vec3 sum = uintBitsToFloat(block.y) * u_env_scaling[face];
   if (block.x == 0xFFFFFFFFu || u_env_count[face] == 0) return sum;
   int q = int(block.x);       // transfer unit
+  // The step codes: 8 bits a level, four levels a 32-bit read.
   float steps[8];
-  for (int l = 0; l < 8; ++l) steps[l] = l < u_levels ? stepOf(fieldAt(q + 2 * l) & 255u) : 0.0;
+  uint codes = fieldAt(q, 8), more = u_levels > 4 ? fieldAt(q + 8, 8) : 0u;
+  for (int l = 0; l < 8; ++l)
+    steps[l] = l < u_levels ? stepOf(((l < 4 ? codes : more) >> uint(8 * (l & 3))) & 255u) : 0.0;
   q += 2 * u_levels;
   int b = u_env_offset[face];  // environment node
   // The roots: both trees have one.
-  uint rec = fieldAt(q);
+  uint rec = fieldAt(q, u_units[0]);
   int bits = u_bits[0];
   sum += product(rec, bits, steps[0], b);
   ++visited;
@@ -103,16 +110,25 @@ vec3 faceProduct(int face, uvec2 block, inout int visited) {
       b += int(envAt(3 * b + 1).a + 0.5);
       continue;
     }
-    rec = fieldAt(q);
+    bool both = (rb & bit) != 0u;
+    if (!both && cl == u_levels - 1) {  // the transfer tree's only, a leaf: fixed size
+      q += u_units[cl];
+      continue;
+    }
+    rec = fieldAt(q, u_units[cl]);
+    ++visited;
     bits = u_bits[cl];
     uint mask = cl < u_levels - 1 ? (rec >> uint(3 * bits)) & 15u : 0u;
     jump = cl < u_levels - 2 && ((rec >> uint(3 * bits + 4)) & 1u) != 0u;
-    bool both = (rb & bit) != 0u;
     if (!both && jump) {  // the transfer tree's only, a long subtree: jump over it
-      q += int(fieldAt(q + u_units[cl]) & 0xFFFFu);
+      q += int(fieldAt(q + u_units[cl], 4) & 0xFFFFu);
       continue;
     }
-    ++visited;
+    if (!both && cl == u_levels - 2) {  // its children are leaves: their count sizes it
+      int leaves = int((mask & 1u) + ((mask >> 1) & 1u) + ((mask >> 2) & 1u) + (mask >> 3));
+      q += u_units[cl] + leaves * u_units[cl + 1];
+      continue;
+    }
     uint maskB = 0u;
     if (both) {
       sum += product(rec, bits, steps[cl], b);
