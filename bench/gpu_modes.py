@@ -14,7 +14,7 @@ window.wavebakeGpuBench(F): F frames of the same lighting, each waited for,
 the lighting's download excluded. The CPU relighter (Relighter::Relight,
 Eq. 8, one core) relights the same store under the same lights: the
 median of the X-Frame-Ms of F frames of /api/view/oracle4d. Printed per
-mode: the device, ms and frames/s, the per-pixel work (tree: nodes visited
+mode: the device, ms and frames/s, the per-pixel work (tree: transfer records read
 per sampled cell, read from the shader's own count; 4d and CPU:
 coefficients scattered per grid cell, plus the inverse steps' full-frame
 passes), bytes on the GPU, and frames/s against the CPU relighter's.

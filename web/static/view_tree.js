@@ -69,12 +69,12 @@ window.WavebakeTreeMode = async function (gl, ctx) {
     terms: () => (env ? env.terms : 0),
     // The line, block and environment textures; the common frame and cells are view.js's.
     bytesOnGpu: () => line.buffer.byteLength + blocks.buffer.byteLength + envBytes,
-    // Work per sampled cell: the nodes wavelet_tree.frag visited (alpha − 1).
+    // Work per sampled cell: the transfer records wavelet_tree.frag read (alpha − 1).
     work(rgba) {
-      let nodes = 0, cells = 0;
+      let records = 0, cells = 0;
       for (let i = 3; i < rgba.length; i += 4)
-        if (rgba[i] > 0) { nodes += rgba[i] - 1; ++cells; }
-      return { unit: "nodes visited", perPixel: cells ? nodes / cells : 0, passes: 1 };
+        if (rgba[i] > 0) { records += rgba[i] - 1; ++cells; }
+      return { unit: "records read", perPixel: cells ? records / cells : 0, passes: 1 };
     },
   };
 };
