@@ -111,7 +111,8 @@ void Run(const Lab& lab, const Variant& v) {
           for (int sx = 0; sx < (1 << l); ++sx) {
             const int s = haar::SquareId(l, sx, sy);
             for (int k = 0; k < 4; ++k)
-              if (live[ChildId(l, sx, sy, k)]) live[s] = 1, below[s] += 1 + below[ChildId(l, sx, sy, k)];
+              if (live[ChildId(l, sx, sy, k)])
+                live[s] = 1, below[s] += 1 + below[ChildId(l, sx, sy, k)];
           }
       std::fill(keep.begin(), keep.end(), 0);
       keep[0] = live[0];
@@ -184,11 +185,12 @@ void Run(const Lab& lab, const Variant& v) {
   }
   const double bytes = units / 2 + 48.0 * sampled + 16.0 * lab.cells;
   auto e = CompareFinite(image, lab.reference, "the variant's relighting");
-  std::printf("%-22s cut-off %-8.3g %-6s %-6s kept %8lld (%5.2f%%)  ~%6.3f MB  pruned %.4f  "
-              "rel_rms %.4f%%\n",
-              v.name.c_str(), v.cut_off, v.prune.c_str(), v.quant.c_str(), (long long)kept,
-              100.0 * kept / (double(squares) * 6 * sampled), bytes / 1e6,
-              std::sqrt(pruned / total), e.ok() ? 100 * e->rel_rms : -1.0);
+  std::printf(
+      "%-22s cut-off %-8.3g %-6s %-6s kept %8lld (%5.2f%%)  ~%6.3f MB  pruned %.4f  "
+      "rel_rms %.4f%%\n",
+      v.name.c_str(), v.cut_off, v.prune.c_str(), v.quant.c_str(), (long long)kept,
+      100.0 * kept / (double(squares) * 6 * sampled), bytes / 1e6, std::sqrt(pruned / total),
+      e.ok() ? 100 * e->rel_rms : -1.0);
   std::fflush(stdout);
 }
 

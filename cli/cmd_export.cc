@@ -39,10 +39,9 @@ void Run(const ExportFlags& f) {
       "%s: %lld trees, %.2f%% of nodes kept (%lld jumps), cut-off %.3g, rows' relative L2 "
       "error pruned %.4f, quantized %.4f, %.2f MB, %.1f s\n",
       f.out.c_str(), static_cast<long long>(s["trees"].get<int64_t>()), 100 * kept,
-      static_cast<long long>(s["jumps"].get<int64_t>()),
-      (*h)["settings"]["cut_off"].get<double>(), s["rel_error_pruned"].get<double>(),
-      s["rel_error_quantized"].get<double>(), s["bytes"].get<double>() / 1e6,
-      s["seconds"].get<double>());
+      static_cast<long long>(s["jumps"].get<int64_t>()), (*h)["settings"]["cut_off"].get<double>(),
+      s["rel_error_pruned"].get<double>(), s["rel_error_quantized"].get<double>(),
+      s["bytes"].get<double>() / 1e6, s["seconds"].get<double>());
 }
 
 }  // namespace

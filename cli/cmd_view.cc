@@ -67,7 +67,8 @@ void AddViewCommand(CLI::App& app) {
   auto* cut = cmd->add_option("--cut-off", flags->cut_off, "as for export --format wavelet-tree")
                   ->check(CLI::NonNegativeNumber);
   auto* target =
-      cmd->add_option("--target-error", flags->target_error, "as for export (default " + absl::StrCat(kDefaultTreeTargetError) + ")")
+      cmd->add_option("--target-error", flags->target_error,
+                      "as for export (default " + absl::StrCat(kDefaultTreeTargetError) + ")")
           ->check(CLI::NonNegativeNumber);
   cut->excludes(target);
   cmd->add_option("--bits", flags->bits, "as for export: auto, B or one per level")

@@ -92,10 +92,9 @@ absl::StatusOr<TreeEvalReport> EvaluateTrees(const std::filesystem::path& store,
          .rel_error_pruned = t->stats.energy_total > 0
                                  ? std::sqrt(t->stats.energy_pruned / t->stats.energy_total)
                                  : 0.0,
-         .rel_error_quantized =
-             t->stats.energy_total > 0
-                 ? std::sqrt(t->stats.energy_quantized / t->stats.energy_total)
-                 : 0.0,
+         .rel_error_quantized = t->stats.energy_total > 0
+                                    ? std::sqrt(t->stats.energy_quantized / t->stats.energy_total)
+                                    : 0.0,
          .error = *e});
   }
   return out;
@@ -134,8 +133,7 @@ std::string TreeEvalText(const TreeEvalReport& r) {
         "trees cut-off %.4g @%g (bits %s): rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %lld bytes  "
         "%.2f%% of nodes kept\n",
         t.cut_off, t.asked.level_weight, absl::StrJoin(t.code_bits, ","), t.error.rel_rms,
-        t.error.max_abs,
-        t.error.psnr, static_cast<long long>(t.bytes),
+        t.error.max_abs, t.error.psnr, static_cast<long long>(t.bytes),
         t.nodes_total > 0 ? 100.0 * double(t.nodes_kept) / double(t.nodes_total) : 0.0);
   return text;
 }

@@ -19,12 +19,12 @@ namespace wavebake::driver {
 
 struct TreeEvalRow {
   WaveletTreeOptions asked;
-  double cut_off = 0;  // the one used
+  double cut_off = 0;          // the one used
   std::vector<int> code_bits;  // per level, as used
   int64_t bytes = 0, trees = 0, nodes_kept = 0, nodes_total = 0, jumps = 0;
   double rel_error_pruned = 0;     // of the rows' energy
   double rel_error_quantized = 0;  // the kept coefficients' rounding, of the rows' energy
-  ErrorStats error;             // against the reference
+  ErrorStats error;                // against the reference
 };
 
 struct TreeEvalReport {

@@ -23,10 +23,10 @@
 namespace wavebake {
 
 struct TreeNode {
-  int32_t square = 0;      // core/products/haar_tree.h SquareId
+  int32_t square = 0;  // core/products/haar_tree.h SquareId
   int32_t level = 0, sx = 0, sy = 0;
-  uint8_t child_mask = 0;  // bit k: child k is kept (and follows in the order)
-  int32_t descendants = 0; // kept nodes below this one
+  uint8_t child_mask = 0;   // bit k: child k is kept (and follows in the order)
+  int32_t descendants = 0;  // kept nodes below this one
 };
 
 // Squares of a face of edge n (a power of two ≥ 2) that are significant or

@@ -186,6 +186,7 @@ struct TreeOut {
   float scaling = 0;
   int64_t kept = 0, jumps = 0;
   double pruned = 0, quantized = 0;
+  bool jump_overflow = false;  // a subtree of 2^16 units or more (N > 256)
 };
 
 void Put(std::vector<uint8_t>& units, uint64_t value, int count) {
@@ -275,8 +276,11 @@ void BuildTree(const TreeParams& p, const std::vector<float>& row, FaceSquares& 
     Put(out.units, record, p.nibbles[node.level]);
     if (jump[i]) {
       ++out.jumps;
-      // From the node's first unit to the first unit past its subtree.
-      Put(out.units, static_cast<uint64_t>(prefix[i + 1 + node.descendants] - prefix[i]), 4);
+      // From the node's first unit to the first unit past its subtree: a
+      // level-1 subtree at N = 256 with 9-bit codes is under 41 000 units.
+      const int64_t span = prefix[i + 1 + node.descendants] - prefix[i];
+      out.jump_overflow |= span > 0xFFFF;
+      Put(out.units, static_cast<uint64_t>(span), 4);
     }
   }
 }
@@ -336,8 +340,8 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
                                                    " levels (give one, or one per level)"));
   for (int b : bits)
     if (b < kMinCodeBits || b > kMaxCodeBits)
-      return absl::InvalidArgumentError(absl::StrCat("bits: ", b, " is not in [", kMinCodeBits,
-                                                     ", ", kMaxCodeBits, "]"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("bits: ", b, " is not in [", kMinCodeBits, ", ", kMaxCodeBits, "]"));
 
   WaveletTreeTextures t;
   t.width = rows.width();
@@ -395,7 +399,12 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
   for (int cell = 0; cell < cells; ++cell) {
     if (samples.grid[cell] < 0) continue;
     ++t.sampled;
-    for (int face = 0; face < 6; ++face) units += static_cast<int64_t>(trees[cell][face].units.size());
+    for (int face = 0; face < 6; ++face) {
+      units += static_cast<int64_t>(trees[cell][face].units.size());
+      if (trees[cell][face].jump_overflow)
+        return absl::InvalidArgumentError(absl::StrCat(
+            "light_res: ", n, " gives subtrees a 16-bit jump cannot span; raise jump_nodes"));
+    }
   }
   if (units >= (int64_t{1} << 31))
     return absl::ResourceExhaustedError(
@@ -543,9 +552,8 @@ nlohmann::json WaveletTreeHeader(const WaveletTreeTextures& t, const nlohmann::j
       {"jumps", t.stats.jumps},
       {"rel_error_pruned",
        t.stats.energy_total > 0 ? std::sqrt(t.stats.energy_pruned / t.stats.energy_total) : 0.0},
-      {"rel_error_quantized", t.stats.energy_total > 0
-                                  ? std::sqrt(t.stats.energy_quantized / t.stats.energy_total)
-                                  : 0.0},
+      {"rel_error_quantized",
+       t.stats.energy_total > 0 ? std::sqrt(t.stats.energy_quantized / t.stats.energy_total) : 0.0},
       {"bytes", t.bytes()},
       {"seconds", t.stats.seconds}};
   return h;

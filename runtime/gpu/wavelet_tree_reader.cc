@@ -54,8 +54,7 @@ absl::StatusOr<ArraySpec> ArrayField(const json& h, const std::string& key, cons
     return Bad(key + ".type", absl::StrCat("not ", type));
   absl::StatusOr<int64_t> ch = IntField(a, "channels", key + ".channels", channels, channels);
   if (!ch.ok()) return ch.status();
-  absl::StatusOr<int64_t> texels =
-      IntField(a, "texels", key + ".texels", min_texels, max_texels);
+  absl::StatusOr<int64_t> texels = IntField(a, "texels", key + ".texels", min_texels, max_texels);
   if (!texels.ok()) return texels.status();
   absl::StatusOr<int64_t> w = IntField(a, "width", key + ".width", 1, 16384);
   if (!w.ok()) return w.status();
@@ -103,7 +102,8 @@ int UnitsOf(int level, int levels, int bits) {
 
 absl::StatusOr<Header> CheckHeader(const json& h) {
   if (!h.is_object()) return Bad("header", "not a JSON object");
-  if (!h.contains("format") || h["format"] != kFormat) return Bad("format", "not " + std::string(kFormat));
+  if (!h.contains("format") || h["format"] != kFormat)
+    return Bad("format", "not " + std::string(kFormat));
   Header r;
   absl::StatusOr<int64_t> w = IntField(h, "width", "width", 1, 65536);
   if (!w.ok()) return w.status();
@@ -182,7 +182,8 @@ absl::StatusOr<WaveletTreeReader> WaveletTreeReader::Open(const std::filesystem:
   if (h.is_discarded()) return Bad("header", "not valid JSON");
   absl::StatusOr<Header> s = CheckHeader(h);
   if (!s.ok()) return s.status();
-  absl::StatusOr<std::vector<uint8_t>> line = ReadAll(dir / s->line.file, BytesOf(s->line, 1), "line");
+  absl::StatusOr<std::vector<uint8_t>> line =
+      ReadAll(dir / s->line.file, BytesOf(s->line, 1), "line");
   if (!line.ok()) return line.status();
   absl::StatusOr<std::vector<uint8_t>> blocks =
       ReadAll(dir / s->blocks.file, BytesOf(s->blocks, 4), "blocks");
@@ -287,9 +288,9 @@ absl::Status WaveletTreeReader::Walk(int64_t b, int64_t limit, float* row,
   std::vector<float> step(levels_);
   for (int l = 0; l < levels_; ++l) {
     const int code = static_cast<int>(Field(u + 2 * l, 8));
-    step[l] = code == 0 ? 0.0f
-                        : static_cast<float>(std::ldexp(1.0 + (code % 8) / 8.0,
-                                                        code / 8 - step_bias_));
+    step[l] = code == 0
+                  ? 0.0f
+                  : static_cast<float>(std::ldexp(1.0 + (code % 8) / 8.0, code / 8 - step_bias_));
   }
   if (steps) *steps = step;
   u += 2 * levels_;
@@ -336,7 +337,8 @@ absl::Status WaveletTreeReader::Walk(int64_t b, int64_t limit, float* row,
           return s;
       }
       if (jump && target != u)
-        return fail(at, absl::StrCat("the jump lands at unit ", target, ", its subtree ends at ", u));
+        return fail(at,
+                    absl::StrCat("the jump lands at unit ", target, ", its subtree ends at ", u));
       return absl::OkStatus();
     }
   } walker{*this, step, row, present, limit, bad};

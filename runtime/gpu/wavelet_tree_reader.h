@@ -60,17 +60,17 @@ class WaveletTreeReader {
   // Walks tree `b` (a block index) up to unit `limit`, writing its
   // coefficients into row (N²) and its steps if given, and where it ends
   // into end; checks every record.
-  absl::Status Walk(int64_t b, int64_t limit, float* row, std::vector<float>* steps,
-                    int64_t* end, uint8_t* present = nullptr) const;
+  absl::Status Walk(int64_t b, int64_t limit, float* row, std::vector<float>* steps, int64_t* end,
+                    uint8_t* present = nullptr) const;
   uint64_t Field(int64_t unit, int bits) const;
 
   int width_ = 0, height_ = 0, n_ = 0, levels_ = 0, step_bias_ = 0;
   int64_t sampled_ = 0, units_ = 0;
   std::vector<int> bits_, record_units_;
   std::vector<uint8_t> line_;
-  std::vector<uint32_t> blocks_;  // 2 a block
-  std::vector<int64_t> tree_end_; // per block: the unit past its tree
-  std::vector<float> cells_;      // 4 a cell
+  std::vector<uint32_t> blocks_;   // 2 a block
+  std::vector<int64_t> tree_end_;  // per block: the unit past its tree
+  std::vector<float> cells_;       // 4 a cell
 };
 
 }  // namespace wavebake

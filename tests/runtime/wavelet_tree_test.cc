@@ -173,8 +173,8 @@ TEST_F(WaveletTreeFixture, TruncatedRelightMatchesWithinTheQuantizationBound) {
     ASSERT_TRUE(t.ok()) << t.status();
     EXPECT_LT(t->stats.nodes_kept, t->stats.nodes_total);
     EXPECT_GT(t->stats.jumps, 0);
-    const std::vector<int> code_bits = bits.empty() ? DefaultCodeBits(kLevels)
-                                                    : std::vector<int>(kLevels, bits[0]);
+    const std::vector<int> code_bits =
+        bits.empty() ? DefaultCodeBits(kLevels) : std::vector<int>(kLevels, bits[0]);
     EXPECT_EQ(t->code_bits, code_bits);
     auto r = Read(Export(*t));
     ASSERT_TRUE(r.ok()) << r.status();
@@ -272,7 +272,8 @@ TEST_F(WaveletTreeFixture, BadOptionsAreRefusedByName) {
 class WaveletTreeHostile : public WaveletTreeFixture {
  protected:
   void SetUp() override {
-    auto t = BuildWaveletTrees(*rows_, bake_->samples, {.cut_off = 1e-4, .bits = {}, .jump_nodes = 1});
+    auto t =
+        BuildWaveletTrees(*rows_, bake_->samples, {.cut_off = 1e-4, .bits = {}, .jump_nodes = 1});
     ASSERT_TRUE(t.ok());
     ASSERT_GT(t->stats.jumps, 0);
     good_ = Export(*t);
@@ -307,7 +308,10 @@ TEST_F(WaveletTreeHostile, HeaderFieldsAreRefusedByName) {
       {"levels", [](auto& h) { h["levels"] = 3; }},
       {"sampled", [](auto& h) { h["sampled"] = 100000; }},
       {"step_bias", [](auto& h) { h["step_bias"] = 200; }},
-      {"code_bits", [](auto& h) { h["code_bits"] = {8, 8}; }},
+      {"code_bits",
+       [](auto& h) {
+         h["code_bits"] = {8, 8};
+       }},
       {"code_bits[0]", [](auto& h) { h["code_bits"][0] = 10; }},
       {"record_units[2]", [](auto& h) { h["record_units"][2] = 9; }},
       {"record_units", [](auto& h) { h.erase("record_units"); }},
@@ -372,8 +376,8 @@ TEST_F(WaveletTreeHostile, CorruptRecordsAreFoundByTheWalk) {
     return (u & 1) ? line[u / 2] >> 4 : line[u / 2] & 15;
   };
   auto set_unit = [](std::vector<uint8_t>& line, int64_t u, int v) {
-    line[u / 2] = (u & 1) ? uint8_t((line[u / 2] & 0x0F) | (v << 4))
-                          : uint8_t((line[u / 2] & 0xF0) | v);
+    line[u / 2] =
+        (u & 1) ? uint8_t((line[u / 2] & 0x0F) | (v << 4)) : uint8_t((line[u / 2] & 0xF0) | v);
   };
   auto field = [&](const std::vector<uint8_t>& line, int64_t u, int units) {
     uint64_t v = 0;
