@@ -4,8 +4,8 @@ lighting (run by bench/gpu_modes.sh; the numbers of chart 11 in
 docs/RESULTS.md).
 
     /usr/bin/python3 bench/gpu_modes.py WAVEBAKE STORE [--probes DIR]
-        [--probe NAME] [--terms K] [--frames F] [--cut-off C]... [--real-gpu]
-        [--eval-json FILE] [--csv OUT]
+        [--probe NAME] [--terms K] [--frames F] [--cut-off C]... [--jump-nodes J]
+        [--real-gpu] [--eval-json FILE] [--csv OUT]
 
 For each tree cut-off ("default": the export's default setting) it serves
 the store with `wavebake view --cut-off C`, loads /view?mode=tree and, once,
@@ -14,12 +14,13 @@ window.wavebakeGpuBench(F): F frames of the same lighting, each waited for,
 the lighting's download excluded. The CPU relighter (Relighter::Relight,
 Eq. 8, one core) relights the same store under the same lights: the
 median of the X-Frame-Ms of F frames of /api/view/oracle4d. Printed per
-mode: the device, ms and frames/s, the per-pixel work (tree: nodes visited
+mode: the device, ms and frames/s, the per-pixel work (tree: transfer records read
 per sampled cell, read from the shader's own count; 4d and CPU:
 coefficients scattered per grid cell, plus the inverse steps' full-frame
 passes), bytes on the GPU, and frames/s against the CPU relighter's.
 
---real-gpu drops the SwiftShader flags (ANGLE picks the machine's GPU);
+--jump-nodes J serves every tree setting with `wavebake view --jump-nodes J`
+(default: the export's). --real-gpu drops the SwiftShader flags (ANGLE picks the machine's GPU);
 --eval-json adds each setting's error against the reference from
 `wavebake eval STORE --env ENV --tree-cut-off ... --json`.
 """
@@ -68,7 +69,7 @@ def browser(tmp, real_gpu):
 class View:
     """`wavebake view STORE` with one tree setting, for the length of a with."""
 
-    def __init__(self, wb, store, cut_off, probes, tmp):
+    def __init__(self, wb, store, cut_off, probes, tmp, jump_nodes=None):
         self.addr = pathlib.Path(tmp) / f"addr-{cut_off}"
         args = [wb, "view", str(store), "--http", "127.0.0.1:0", "--http-address-file",
                 str(self.addr)]
@@ -76,6 +77,8 @@ class View:
             args += ["--cut-off", str(cut_off)]
         if probes:
             args += ["--probes", probes]
+        if jump_nodes:
+            args += ["--jump-nodes", str(jump_nodes)]
         self.p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
 
     def __enter__(self):
@@ -120,6 +123,7 @@ def main():
     ap.add_argument("--terms", type=int, default=256)
     ap.add_argument("--frames", type=int, default=20)
     ap.add_argument("--cut-off", action="append", dest="cut_offs")
+    ap.add_argument("--jump-nodes", type=int, default=0)
     ap.add_argument("--real-gpu", action="store_true")
     ap.add_argument("--eval-json", default="")
     ap.add_argument("--csv", default="")
@@ -137,7 +141,7 @@ def main():
         driver = browser(pathlib.Path(tmp) / "chromium", a.real_gpu)
         try:
             for i, c in enumerate(cut_offs):
-                with View(a.wavebake, a.store, c, a.probes, tmp) as v:
+                with View(a.wavebake, a.store, c, a.probes, tmp, a.jump_nodes) as v:
                     stores = json.loads(urllib.request.urlopen(f"{v.base}/api/view/stores").read())
                     s = stores[0]
                     if i == 0:

@@ -26,7 +26,7 @@ wb="$(cd "$build" && pwd)/wavebake"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 data="$here/../shared/data"
-cuts=(default 5e-5 1e-4 2e-4 4e-4 8e-4)
+cuts=(default 4e-5 5e-5 6e-5 7e-5 1e-4 2e-4 4e-4)
 if [[ -n "$quick" ]]; then
   out="$build/charts-quick"
   mkdir -p "$out"

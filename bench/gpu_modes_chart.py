@@ -6,7 +6,7 @@
 Left: error against the reference by bytes on the GPU (the tree export at
 each cut-off, a line; the 4D store, a point; the CPU relighter's arrays in
 RAM, a point at the same error). Middle: time per frame by bytes. Right:
-per-pixel work by bytes (tree: nodes visited per sampled cell; 4D and CPU:
+per-pixel work by bytes (tree: transfer records read per sampled cell; 4D and CPU:
 coefficients scattered per cell). Matplotlib's Agg backend.
 """
 import csv
@@ -27,10 +27,11 @@ def main():
               ("ms", 1, "time per frame (ms)"), ("work", 1, "work per pixel")]
     style = {"gpu 4d": ("tab:red", "s"), "cpu relighter": ("tab:gray", "D")}
     for ax, (key, scale, label) in zip(axes, panels):
-        pts = [(float(r["bytes"]) / 1e6, float(r[key]) * scale, r["cut_off"]) for r in trees if r[key]]
+        pts = sorted((float(r["bytes"]) / 1e6, float(r[key]) * scale, r["cut_off"])
+                     for r in trees if r[key])
         if pts:
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color="tab:blue",
-                    label="GPU tree (Boulton), by cut-off")
+                    label="GPU tree (Boulton), by setting")
             for x, y, c in pts:
                 ax.annotate(c, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
         for r in others:

@@ -29,7 +29,7 @@ struct EvalFlags {
   driver::AreaLightCommand area;
   GlossyFlags glossy;
   std::vector<std::string> tree_cut_offs;  // SETTING[@LEVEL_WEIGHT] each
-  int tree_bits = 8;
+  std::string tree_bits = "auto";
 };
 
 // --tree-cut-off SETTING[@W]: SETTING "default" (the export's), a cut-off
@@ -38,7 +38,9 @@ std::vector<WaveletTreeOptions> TreeSettings(const EvalFlags& f) {
   std::vector<WaveletTreeOptions> out;
   for (const std::string& spec : f.tree_cut_offs) {
     WaveletTreeOptions o;
-    o.bits = f.tree_bits;
+    absl::StatusOr<std::vector<int>> bits = ParseCodeBits(f.tree_bits);
+    if (!bits.ok()) Fail("eval", "--tree-" + std::string(bits.status().message()), kExitBadInput);
+    o.bits = *bits;
     std::string c = spec;
     const size_t at = c.find('@');
     bool ok = true;
@@ -162,8 +164,9 @@ void AddEvalCommand(CLI::App& app) {
                   "also relight the store's wavelet-tree export at each setting given, "
                   "against the same reference (no dense retrace): 'default' (the export's), "
                   "a cut-off C or tE (a target error E), each optionally @W (level weight)");
-  cmd->add_option("--tree-bits", flags->tree_bits, "bits of the --tree-cut-off exports")
-      ->check(CLI::IsMember({8, 16}))
+  cmd->add_option("--tree-bits", flags->tree_bits,
+                  "code bits of the --tree-cut-off exports: auto, B (every level) or one per "
+                  "level, level 0 first (as export --bits)")
       ->capture_default_str();
   cmd->callback([flags] { Run(*flags); });
 }

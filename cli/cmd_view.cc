@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "absl/strings/str_cat.h"
 #include "cli/command_error.h"
 #include "cli/commands.h"
 #include "driver/process/coordinator_run.h"
@@ -19,7 +20,8 @@ struct ViewFlags {
   std::vector<std::string> stores;
   std::string listen = "127.0.0.1:8765", address_file, probes;
   double cut_off = -1, target_error = -1;
-  int bits = 8;
+  std::string bits = "auto";
+  int jump_nodes = WaveletTreeOptions{}.jump_nodes;
 };
 
 void Run(const ViewFlags& f) {
@@ -28,7 +30,10 @@ void Run(const ViewFlags& f) {
   web::GpuViewOptions options;
   options.listen = f.listen;
   for (const std::string& s : f.stores) options.stores.emplace_back(s);
-  options.trees.bits = f.bits;
+  absl::StatusOr<std::vector<int>> bits = ParseCodeBits(f.bits);
+  if (!bits.ok()) Fail("view", "--" + std::string(bits.status().message()), kExitBadInput);
+  options.trees.bits = *bits;
+  options.trees.jump_nodes = f.jump_nodes;
   if (f.cut_off >= 0) options.trees.cut_off = f.cut_off;
   if (f.target_error >= 0) options.trees.target_error = f.target_error;
   if (!f.probes.empty()) {
@@ -62,11 +67,14 @@ void AddViewCommand(CLI::App& app) {
   auto* cut = cmd->add_option("--cut-off", flags->cut_off, "as for export --format wavelet-tree")
                   ->check(CLI::NonNegativeNumber);
   auto* target =
-      cmd->add_option("--target-error", flags->target_error, "as for export (default 0.02)")
+      cmd->add_option("--target-error", flags->target_error,
+                      "as for export (default " + absl::StrCat(kDefaultTreeTargetError) + ")")
           ->check(CLI::NonNegativeNumber);
   cut->excludes(target);
-  cmd->add_option("--bits", flags->bits, "bits per quantized coefficient")
-      ->check(CLI::IsMember({8, 16}))
+  cmd->add_option("--bits", flags->bits, "as for export: auto, B or one per level")
+      ->capture_default_str();
+  cmd->add_option("--jump-nodes", flags->jump_nodes, "as for export")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([flags] { Run(*flags); });
 }

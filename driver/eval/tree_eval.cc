@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "driver/relight/tree_export.h"
 #include "runtime/gpu/wavelet_tree_reader.h"
 #include "runtime/relight/lighting.h"
@@ -82,13 +83,18 @@ absl::StatusOr<TreeEvalReport> EvaluateTrees(const std::filesystem::path& store,
     out.trees.push_back(
         {.asked = o,
          .cut_off = t->cut_off,
+         .code_bits = t->code_bits,
          .bytes = static_cast<int64_t>(t->bytes()),
          .trees = t->stats.trees,
          .nodes_kept = t->stats.nodes_kept,
          .nodes_total = t->stats.nodes_total,
+         .jumps = t->stats.jumps,
          .rel_error_pruned = t->stats.energy_total > 0
                                  ? std::sqrt(t->stats.energy_pruned / t->stats.energy_total)
                                  : 0.0,
+         .rel_error_quantized = t->stats.energy_total > 0
+                                    ? std::sqrt(t->stats.energy_quantized / t->stats.energy_total)
+                                    : 0.0,
          .error = *e});
   }
   return out;
@@ -100,12 +106,14 @@ nlohmann::json TreeEvalJson(const TreeEvalReport& r) {
   for (const TreeEvalRow& t : r.trees) {
     nlohmann::json row = {{"cut_off", t.cut_off},
                           {"level_weight", t.asked.level_weight},
-                          {"bits", t.asked.bits},
+                          {"code_bits", t.code_bits},
                           {"bytes", t.bytes},
                           {"trees", t.trees},
                           {"nodes_kept", t.nodes_kept},
                           {"nodes_total", t.nodes_total},
+                          {"jumps", t.jumps},
                           {"rel_error_pruned", t.rel_error_pruned},
+                          {"rel_error_quantized", t.rel_error_quantized},
                           {"rel_rms", t.error.rel_rms},
                           {"max_abs", t.error.max_abs},
                           {"psnr", std::isfinite(t.error.psnr) ? nlohmann::json(t.error.psnr)
@@ -122,10 +130,10 @@ std::string TreeEvalText(const TreeEvalReport& r) {
   std::string text = EvalReportText(r.store);
   for (const TreeEvalRow& t : r.trees)
     text += absl::StrFormat(
-        "trees cut-off %.4g @%g (%d bits): rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %lld bytes  "
+        "trees cut-off %.4g @%g (bits %s): rel_rms %.5f  max_abs %.5g  psnr %6.2f dB  %lld bytes  "
         "%.2f%% of nodes kept\n",
-        t.cut_off, t.asked.level_weight, t.asked.bits, t.error.rel_rms, t.error.max_abs,
-        t.error.psnr, static_cast<long long>(t.bytes),
+        t.cut_off, t.asked.level_weight, absl::StrJoin(t.code_bits, ","), t.error.rel_rms,
+        t.error.max_abs, t.error.psnr, static_cast<long long>(t.bytes),
         t.nodes_total > 0 ? 100.0 * double(t.nodes_kept) / double(t.nodes_total) : 0.0);
   return text;
 }

@@ -19,10 +19,12 @@ namespace wavebake::driver {
 
 struct TreeEvalRow {
   WaveletTreeOptions asked;
-  double cut_off = 0;  // the one used
-  int64_t bytes = 0, trees = 0, nodes_kept = 0, nodes_total = 0;
-  double rel_error_pruned = 0;  // of the rows' energy
-  ErrorStats error;             // against the reference
+  double cut_off = 0;          // the one used
+  std::vector<int> code_bits;  // per level, as used
+  int64_t bytes = 0, trees = 0, nodes_kept = 0, nodes_total = 0, jumps = 0;
+  double rel_error_pruned = 0;     // of the rows' energy
+  double rel_error_quantized = 0;  // the kept coefficients' rounding, of the rows' energy
+  ErrorStats error;                // against the reference
 };
 
 struct TreeEvalReport {
@@ -37,8 +39,9 @@ absl::StatusOr<TreeEvalReport> EvaluateTrees(const std::filesystem::path& store,
                                              const std::vector<WaveletTreeOptions>& settings);
 
 // EvalReportJson of the store plus "trees": [{"cut_off", "target_error"
-// (null when a cut-off was given), "bits", "bytes", "trees", "nodes_kept",
-// "nodes_total", "rel_error_pruned", "rel_rms", "max_abs", "psnr"}].
+// (null when a cut-off was given), "level_weight", "code_bits", "bytes",
+// "trees", "nodes_kept", "nodes_total", "jumps", "rel_error_pruned",
+// "rel_error_quantized", "rel_rms", "max_abs", "psnr"}].
 nlohmann::json TreeEvalJson(const TreeEvalReport& r);
 std::string TreeEvalText(const TreeEvalReport& r);
 

@@ -319,7 +319,7 @@ def eval(store: Store | _Path, env: _Path | ArrayLike | None = None, reference: 
 
 def export(store: Store | _Path, out: _Path, format: Literal["wavelet-tree"] = "wavelet-tree",
            cut_off: float | None = None, target_error: float | None = None,
-           bits: int = 8) -> dict[str, Any]:
+           bits: int | Sequence[int] | str | None = None, jump_nodes: int = 16) -> dict[str, Any]:
     """A diffuse store's transport rows as GPU wavelet-tree textures
     (Boulton 4.4-4.5), as `wavebake export` writes them: out/header.json and
     the raw arrays it names (line.bin, blocks.bin, cells.bin).
@@ -330,15 +330,19 @@ def export(store: Store | _Path, out: _Path, format: Literal["wavelet-tree"] = "
     out: the directory to write (created).
     format: "wavelet-tree", the one format.
     cut_off: the absolute cut-off of a node's largest |coefficient|; or
-    target_error: the relative L2 error of the pruned rows (default 0.02).
+    target_error: the relative L2 error of the pruned rows (default 0.035).
         Give one of them at most.
-    bits: bits per quantized coefficient, 8 or 16.
+    bits: code bits per coefficient: None or "auto" (4 at the finest level,
+        5 and 6 at the next two, 9 above), an int (every level) or one int
+        per level, level 0 first; each in 2..9.
+    jump_nodes: a node gets a jump record when at least this many kept
+        nodes lie below it.
 
     Returns the header written (header.json) as a dict.
     """
     path = store.path if isinstance(store, _wavebake.Store) else _path(store)
     return _wavebake.export(store=path, out=_path(out), format=format, cut_off=cut_off,
-                            target_error=target_error, bits=bits)
+                            target_error=target_error, bits=bits, jump_nodes=jump_nodes)
 
 
 def bake(scene: _Path, out: _Path, workers: int = 0, **params: Any) -> dict[str, Any]:

@@ -31,25 +31,16 @@ EnvTrees BuildEnvTrees(const WaveletLights& lights) {
           for (int t = 0; t < 3; ++t)
             significant[haar::SquareId(l, sx, sy)] |=
                 selected[base + haar::FaceIndex(n, l, t, sx, sy)];
-    const std::vector<TreeRecord> line = DepthFirstLine(n, KeepSiblingGroups(n, significant));
-    for (const TreeRecord& r : line) {
+    for (const TreeNode& node : DepthFirstNodes(n, KeepLive(n, significant))) {
       float rec[12] = {};
-      if (r.jump) {
-        rec[0] = static_cast<float>(r.offset);
-        rec[1] = static_cast<float>(r.next_code);
-      } else {
-        // Square id → (level, sx, sy): the line knows the level; find sx, sy.
-        const int first = ((1 << (2 * r.level)) - 1) / 3;
-        const int local = r.square - first;
-        const int sx = local & ((1 << r.level) - 1), sy = local >> r.level;
-        for (int t = 0; t < 3; ++t) {
-          const auto& c = dense[base + haar::FaceIndex(n, r.level, t, sx, sy)];
-          rec[4 * t] = c[0];
-          rec[4 * t + 1] = c[1];
-          rec[4 * t + 2] = c[2];
-        }
-        rec[3] = static_cast<float>(r.next_code);
+      for (int t = 0; t < 3; ++t) {
+        const auto& c = dense[base + haar::FaceIndex(n, node.level, t, node.sx, node.sy)];
+        rec[4 * t] = c[0];
+        rec[4 * t + 1] = c[1];
+        rec[4 * t + 2] = c[2];
       }
+      rec[3] = static_cast<float>(node.child_mask);
+      rec[7] = static_cast<float>(1 + node.descendants);
       e.records.insert(e.records.end(), rec, rec + 12);
     }
     e.count[face] = static_cast<int32_t>(e.records.size() / 12) - e.offset[face];

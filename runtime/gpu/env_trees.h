@@ -2,11 +2,12 @@
 // The lighting side of Boulton §4.5's double product on a GPU: the n-term
 // lighting approximation (runtime/relight/lighting.h SelectWaveletLights — the same
 // terms the CPU relighter uses) as one pruned Haar tree per cube face, RGB
-// per coefficient, in the depth-first line with jump records of
-// runtime/gpu/tree_stream.h. A node is significant when one of its three
-// wavelets is a selected light; the four children of a node go together, so
-// the shader's parallel walk of a transfer tree and an environment tree
-// visits only their intersection (Eq. 3). A few KB per frame of lighting.
+// per coefficient, depth first as in runtime/gpu/tree_stream.h. A node is
+// kept when one of its three wavelets, or one of a descendant's, is a
+// selected light; each node records its child mask and its subtree's size,
+// so the shader's parallel walk of a transfer tree and an environment tree
+// visits only their intersection (Eq. 3) and skips an environment branch
+// in one step. A few KB per frame of lighting.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -19,10 +20,9 @@ namespace wavebake {
 struct EnvTrees {
   int light_res = 0;
   int terms = 0;  // selected lights
-  // 3 RGBA float texels a record. Node: (c0.rgb, level+1 of the next node
-  // or 0), (c1.rgb, 0), (c2.rgb, 0). Jump (after a node whose children
-  // follow): (records from the node to the one past its subtree, level+1 of
-  // that record or 0, 0, 0), then two zero texels.
+  // 3 RGBA float texels a node, depth first: (c0.rgb, child mask: bit k =
+  // child k follows), (c1.rgb, nodes in its subtree, itself included),
+  // (c2.rgb, 0).
   std::vector<float> records;
   std::array<int32_t, 6> offset{}, count{};  // per face, in records
   std::array<std::array<float, 3>, 6> scaling{};

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "core/products/haar_tree.h"
 #include "core/util/parallel_for.h"
 #include "runtime/gpu/tree_stream.h"
@@ -27,17 +29,16 @@ void FaceRow(const SampleRows& rows, int cell, int face, std::vector<float>& out
 }
 
 // The three coefficients of every square of a face, each square's largest
-// magnitude (the quantization window), and its significance: what §4.4
-// compares with the cut-off, the magnitude × 2^(−level_weight·l) (the
-// importance-weighted variant; 0: Boulton's rule as written).
+// magnitude, and its significance: what §4.4 compares with the cut-off, the
+// magnitude × 2^(−level_weight·l) (the importance-weighted variant; 0:
+// Boulton's rule as written).
 struct FaceSquares {
   std::vector<std::array<float, 3>> c;
-  std::vector<float> max_abs, significance;
+  std::vector<float> significance;
 };
 void SquaresOfFace(int n, const std::vector<float>& row, double level_weight, FaceSquares& out) {
   const int squares = haar::SquaresOf(n);
   out.c.resize(squares);
-  out.max_abs.resize(squares);
   out.significance.resize(squares);
   for (int l = 0; l < haar::LevelsOf(n); ++l) {
     const float weight = static_cast<float>(std::exp2(-level_weight * l));
@@ -49,7 +50,6 @@ void SquaresOfFace(int n, const std::vector<float>& row, double level_weight, Fa
           out.c[id][t] = row[haar::FaceIndex(n, l, t, sx, sy)];
           m = std::max(m, std::fabs(out.c[id][t]));
         }
-        out.max_abs[id] = m;
         out.significance[id] = m * weight;
       }
     }
@@ -70,8 +70,14 @@ double BinEdge(int b) { return std::exp2(double(b - kBinZero) / kBinsPerOctave);
 // on the number of threads.
 constexpr int kChunks = 64;
 
-// Energy of the nodes §4.4's rule prunes at `cut_off`, the sibling rule
-// included (a node below the cut-off whose sibling group survives is kept).
+std::vector<uint8_t> Kept(int n, const FaceSquares& sq, double cut_off) {
+  std::vector<uint8_t> significant(sq.c.size());
+  for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.significance[s] >= cut_off;
+  return KeepLive(n, significant);
+}
+
+// Energy of the nodes the rule prunes at `cut_off` (a node below the
+// cut-off with a significant descendant is kept).
 double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut_off,
                     double level_weight) {
   const int n = rows.light_res(), cells = rows.cells();
@@ -79,15 +85,12 @@ double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut
   ParallelFor(kChunks, [&](int chunk) {
     std::vector<float> row;
     FaceSquares sq;
-    std::vector<uint8_t> significant;
     for (int cell = chunk * cells / kChunks; cell < (chunk + 1) * cells / kChunks; ++cell) {
       if (samples.grid[cell] < 0) continue;
       for (int face = 0; face < 6; ++face) {
         FaceRow(rows, cell, face, row);
         SquaresOfFace(n, row, level_weight, sq);
-        significant.resize(sq.c.size());
-        for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.significance[s] >= cut_off;
-        const std::vector<uint8_t> kept = KeepSiblingGroups(n, significant);
+        const std::vector<uint8_t> kept = Kept(n, sq, cut_off);
         for (size_t s = 0; s < sq.c.size(); ++s)
           if (!kept[s])
             for (float v : sq.c[s]) lost[chunk] += double{v} * v;
@@ -99,12 +102,13 @@ double PrunedEnergy(const SampleRows& rows, const SampleSet& samples, double cut
   return sum;
 }
 
-// The largest bin edge whose pruning, sibling rule included, loses at most
-// target² of the rows' energy: the histogram gives a cut-off that is safe
-// without the sibling rule (which only keeps more), then bisection over the
-// bins above it, since the pruned energy grows with the cut-off.
+// The largest bin edge whose pruning loses at most target² of the rows'
+// energy: the histogram gives a cut-off that is safe counting only
+// significance (ancestors kept for a descendant only keep more), then
+// bisection over the bins above it, since the pruned energy grows with the
+// cut-off.
 double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target,
-                 double level_weight, double& energy_total) {
+                 double level_weight) {
   const int n = rows.light_res();
   std::vector<std::vector<double>> hist(kChunks, std::vector<double>(kBins, 0.0));
   std::vector<double> total(kChunks, 0.0);
@@ -128,7 +132,7 @@ double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target
     }
   });
   std::vector<double> merged(kBins, 0.0);
-  energy_total = 0;
+  double energy_total = 0;
   for (int c = 0; c < kChunks; ++c) {
     energy_total += total[c];
     for (int b = 0; b < kBins; ++b) merged[b] += hist[c][b];
@@ -151,90 +155,230 @@ double CutOffFor(const SampleRows& rows, const SampleSet& samples, double target
   return BinEdge(lo);
 }
 
-// One tree's texels (RGBA codes) and its block entry.
+// The step minifloat (header "conventions.steps"): code 0 is a zero step,
+// code s > 0 is (1 + (s mod 8)/8) · 2^(s div 8 − bias).
+float StepOf(int code, int bias) {
+  if (code == 0) return 0.0f;
+  return static_cast<float>(std::ldexp(1.0 + (code & 7) / 8.0, (code >> 3) - bias));
+}
+// The smallest code whose step is ≥ s (> 0), at least 1, at most 255.
+int StepCodeAtLeast(float s, int bias) {
+  int lo = 1, hi = 255;
+  if (StepOf(hi, bias) < s) return hi;
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (StepOf(mid, bias) >= s)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return lo;
+}
+
+int Quantize(float c, float step, int max_code) {
+  const float q = std::nearbyint(c / step);
+  return static_cast<int>(std::clamp(q, -float(max_code), float(max_code)));
+}
+
+// One tree's units (one 4-bit value a byte) and its block entry.
 struct TreeOut {
-  std::vector<uint16_t> codes;  // 4 per texel
-  float scaling = 0, step = 0;
+  std::vector<uint8_t> units;
+  float scaling = 0;
   int64_t kept = 0, jumps = 0;
-  double pruned = 0;
+  double pruned = 0, quantized = 0;
+  bool jump_overflow = false;  // a subtree of 2^16 units or more (N > 256)
 };
 
-void BuildTree(int n, const std::vector<float>& row, double cut_off, double level_weight,
-               int max_code, int bias, int bits, FaceSquares& sq, TreeOut& out) {
-  SquaresOfFace(n, row, level_weight, sq);
-  std::vector<uint8_t> significant(sq.c.size());
-  for (size_t s = 0; s < sq.c.size(); ++s) significant[s] = sq.significance[s] >= cut_off;
-  const std::vector<uint8_t> kept = KeepSiblingGroups(n, significant);
-  const std::vector<TreeRecord> line = DepthFirstLine(n, kept);
-  float max_abs = 0;
-  for (size_t s = 0; s < sq.c.size(); ++s) {
-    if (kept[s]) {
-      max_abs = std::max(max_abs, sq.max_abs[s]);
-      ++out.kept;
-    } else {
-      for (float v : sq.c[s]) out.pruned += double{v} * v;
-    }
-  }
-  // Per-tree window (§4.4 quantizes "windowed" coefficients): the largest
-  // kept magnitude maps to the largest code.
+void Put(std::vector<uint8_t>& units, uint64_t value, int count) {
+  for (int k = 0; k < count; ++k) units.push_back(static_cast<uint8_t>((value >> (4 * k)) & 15u));
+}
+
+struct TreeParams {
+  int n = 0, levels = 0, bias = 0, jump_nodes = 0;
+  double cut_off = 0, level_weight = 0;
+  std::vector<int> bits, nibbles;
+};
+
+void BuildTree(const TreeParams& p, const std::vector<float>& row, FaceSquares& sq, TreeOut& out) {
+  SquaresOfFace(p.n, row, p.level_weight, sq);
+  const std::vector<uint8_t> kept = Kept(p.n, sq, p.cut_off);
   out.scaling = row[0];
-  out.step = max_abs > 0 ? max_abs / static_cast<float>(max_code) : 0.0f;
-  out.codes.clear();
-  const uint32_t mask = (1u << bits) - 1;
-  for (const TreeRecord& r : line) {
-    if (r.jump) {
-      ++out.jumps;
-      const uint32_t off = static_cast<uint32_t>(r.offset);
-      out.codes.insert(out.codes.end(),
-                       {uint16_t(off & mask), uint16_t(off >> bits), uint16_t(r.next_code), 0});
-      continue;
+  for (size_t s = 0; s < sq.c.size(); ++s)
+    if (!kept[s])
+      for (float v : sq.c[s]) out.pruned += double{v} * v;
+  const std::vector<TreeNode> nodes = DepthFirstNodes(p.n, kept);
+  if (nodes.empty()) return;
+  out.kept = static_cast<int64_t>(nodes.size());
+
+  // One step per level: among the steps of the minifloat at and below the
+  // window's (largest kept |c| / max code), spanning three octaves, the one
+  // with the least squared error over the level's kept coefficients (a few
+  // large coefficients may clamp when that lets the many small ones round
+  // finer).
+  std::vector<int> step_code(p.levels, 0);
+  std::vector<float> step(p.levels, 0.0f);
+  for (int l = 0; l < p.levels; ++l) {
+    const int max_code = (1 << (p.bits[l] - 1)) - 1;
+    float window = 0;
+    for (const TreeNode& node : nodes)
+      if (node.level == l)
+        for (float v : sq.c[node.square]) window = std::max(window, std::fabs(v));
+    if (!(window > 0)) continue;
+    auto error = [&](float s) {
+      double e = 0;
+      for (const TreeNode& node : nodes)
+        if (node.level == l)
+          for (float v : sq.c[node.square]) {
+            const double d = double{Quantize(v, s, max_code) * s} - v;
+            e += d * d;
+          }
+      return e;
+    };
+    const int first = StepCodeAtLeast(window / static_cast<float>(max_code), p.bias);
+    int best = first;
+    double best_error = error(StepOf(first, p.bias));
+    for (int code = first - 1; code >= std::max(1, first - 24); --code) {
+      const double e = error(StepOf(code, p.bias));
+      if (e < best_error) best_error = e, best = code;
     }
+    step_code[l] = best;
+    step[l] = StepOf(best, p.bias);
+  }
+
+  // Units of each node (record and jump), then its subtree's, by prefix sums
+  // over the depth-first order.
+  const size_t count = nodes.size();
+  std::vector<uint8_t> jump(count, 0);
+  std::vector<int64_t> prefix(count + 1, 0);
+  for (size_t i = 0; i < count; ++i) {
+    const TreeNode& node = nodes[i];
+    jump[i] = node.level >= 1 && node.level <= p.levels - 3 && node.child_mask != 0 &&
+              node.descendants >= p.jump_nodes;
+    prefix[i + 1] = prefix[i] + p.nibbles[node.level] + (jump[i] ? 4 : 0);
+  }
+  out.units.reserve(2 * p.levels + prefix[count]);
+  for (int l = 0; l < p.levels; ++l) Put(out.units, static_cast<uint64_t>(step_code[l]), 2);
+  for (size_t i = 0; i < count; ++i) {
+    const TreeNode& node = nodes[i];
+    const int b = p.bits[node.level];
+    const int max_code = (1 << (b - 1)) - 1;
+    uint64_t record = 0;
     for (int t = 0; t < 3; ++t) {
-      const float q = out.step > 0 ? std::nearbyint(sq.c[r.square][t] / out.step) : 0.0f;
-      const int code = static_cast<int>(std::clamp(q, -float(max_code), float(max_code)));
-      out.codes.push_back(static_cast<uint16_t>(code + bias));
+      const float v = sq.c[node.square][t];
+      int q = 0;
+      if (step[node.level] > 0) q = Quantize(v, step[node.level], max_code);
+      const double d = double{q * step[node.level]} - v;
+      out.quantized += d * d;
+      record |= static_cast<uint64_t>(q + (1 << (b - 1))) << (t * b);
     }
-    out.codes.push_back(static_cast<uint16_t>(r.next_code));
+    if (node.level < p.levels - 1) record |= uint64_t{node.child_mask} << (3 * b);
+    if (jump[i]) record |= uint64_t{1} << (3 * b + 4);
+    Put(out.units, record, p.nibbles[node.level]);
+    if (jump[i]) {
+      ++out.jumps;
+      // From the node's first unit to the first unit past its subtree: a
+      // level-1 subtree at N = 256 with 9-bit codes is under 41 000 units.
+      const int64_t span = prefix[i + 1 + node.descendants] - prefix[i];
+      out.jump_overflow |= span > 0xFFFF;
+      Put(out.units, static_cast<uint64_t>(span), 4);
+    }
   }
 }
 
 }  // namespace
 
+std::vector<int> DefaultCodeBits(int levels) {
+  std::vector<int> bits(levels, 9);
+  const int finest[3] = {4, 5, 6};
+  for (int k = 0; k < 3 && k < levels; ++k) bits[levels - 1 - k] = finest[k];
+  return bits;
+}
+
+absl::StatusOr<std::vector<int>> ParseCodeBits(const std::string& spec) {
+  std::vector<int> bits;
+  if (spec == "auto") return bits;
+  for (absl::string_view part : absl::StrSplit(spec, ',')) {
+    int b = 0;
+    if (!absl::SimpleAtoi(part, &b))
+      return absl::InvalidArgumentError(absl::StrCat(
+          "bits: '", spec, "' is not auto, a number of bits or one per level (9,9,6,5,4)"));
+    bits.push_back(b);
+  }
+  return bits;
+}
+
+int RecordNibbles(int level, int levels, int bits) {
+  const int b = 3 * bits + (level < levels - 1 ? 4 : 0) + (level < levels - 2 ? 1 : 0);
+  return (b + 3) / 4;
+}
+
 absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
                                                       const SampleSet& samples,
                                                       const WaveletTreeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.bits != 8 && options.bits != 16)
-    return absl::InvalidArgumentError(absl::StrCat("bits: ", options.bits, " is not 8 or 16"));
   if (options.cut_off < 0 && !(options.target_error >= 0))
     return absl::InvalidArgumentError("target_error: must be ≥ 0 when no cut-off is given");
   if (!std::isfinite(options.cut_off))
     return absl::InvalidArgumentError("cut_off: not a finite number");
   if (!(options.level_weight >= -4 && options.level_weight <= 8))
     return absl::InvalidArgumentError("level_weight: not in [-4, 8]");
+  if (options.jump_nodes < 1)
+    return absl::InvalidArgumentError(
+        absl::StrCat("jump_nodes: ", options.jump_nodes, " is not ≥ 1"));
   if (rows.width() != samples.width || rows.height() != samples.height ||
       static_cast<int>(samples.grid.size()) != rows.cells())
     return absl::InvalidArgumentError("samples: grid differs from the transport's");
   if (rows.light_res() < 2)
     return absl::InvalidArgumentError(
         absl::StrCat("light_res: ", rows.light_res(), " has no wavelet level"));
+  const int n = rows.light_res(), levels = haar::LevelsOf(n);
+  std::vector<int> bits = options.bits;
+  if (bits.empty()) bits = DefaultCodeBits(levels);
+  if (bits.size() == 1) bits.assign(levels, bits[0]);
+  if (static_cast<int>(bits.size()) != levels)
+    return absl::InvalidArgumentError(absl::StrCat("bits: ", bits.size(), " values for ", levels,
+                                                   " levels (give one, or one per level)"));
+  for (int b : bits)
+    if (b < kMinCodeBits || b > kMaxCodeBits)
+      return absl::InvalidArgumentError(
+          absl::StrCat("bits: ", b, " is not in [", kMinCodeBits, ", ", kMaxCodeBits, "]"));
 
   WaveletTreeTextures t;
   t.width = rows.width();
   t.height = rows.height();
-  t.light_res = rows.light_res();
-  t.bits = options.bits;
+  t.light_res = n;
+  t.levels = levels;
+  t.code_bits = bits;
+  t.default_bits = options.bits.empty();
+  for (int l = 0; l < levels; ++l) t.record_nibbles.push_back(RecordNibbles(l, levels, bits[l]));
   t.level_weight = options.level_weight;
-  const int n = t.light_res;
+  t.jump_nodes = options.jump_nodes;
   if (options.cut_off >= 0) {
     t.cut_off = options.cut_off;
   } else {
     t.target_error = options.target_error;
-    t.cut_off =
-        CutOffFor(rows, samples, options.target_error, options.level_weight, t.stats.energy_total);
+    t.cut_off = CutOffFor(rows, samples, options.target_error, options.level_weight);
   }
 
+  // The step bias: every step is at most the largest |c| (a window over the
+  // smallest max code, 1), and the largest step of the minifloat with this
+  // bias, 1.875 · 2^(31 − bias), exceeds it.
   const int cells = rows.cells();
+  float largest = 0;
+  for (int cell = 0; cell < cells; ++cell)
+    if (samples.grid[cell] >= 0)
+      for (int face = 0; face < 6; ++face)
+        for (float v : rows.values(cell, face)) largest = std::max(largest, std::fabs(v));
+  t.step_bias = largest > 0 ? std::clamp(30 - std::ilogb(largest), -96, 126) : 0;
+
+  TreeParams p{.n = n,
+               .levels = levels,
+               .bias = t.step_bias,
+               .jump_nodes = options.jump_nodes,
+               .cut_off = t.cut_off,
+               .level_weight = options.level_weight,
+               .bits = bits,
+               .nibbles = t.record_nibbles};
   std::vector<std::array<TreeOut, 6>> trees(cells);
   std::vector<double> chunk_energy(kChunks, 0.0);
   ParallelFor(kChunks, [&](int chunk) {
@@ -245,57 +389,61 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
       for (int face = 0; face < 6; ++face) {
         FaceRow(rows, cell, face, row);
         for (float v : row) chunk_energy[chunk] += double{v} * v;
-        BuildTree(n, row, t.cut_off, options.level_weight, t.max_code(), t.bias(), t.bits, sq,
-                  trees[cell][face]);
+        BuildTree(p, row, sq, trees[cell][face]);
       }
     }
   });
 
-  // Pack: trees in (cell, face) order.
-  const int64_t blocks = int64_t{cells} * 6;
-  t.blocks.assign(4 * WaveletTreeTextures::RowsFor(blocks) * kTreeLineWidth, 0u);
-  t.cells.assign(4 * static_cast<size_t>(cells), 0.0f);
-  int64_t texels = 0;
+  // Pack: trees in (sampled cell, face) order, each right after the last.
+  int64_t units = 0;
   for (int cell = 0; cell < cells; ++cell) {
-    for (int face = 0; face < 6; ++face) texels += trees[cell][face].codes.size() / 4;
+    if (samples.grid[cell] < 0) continue;
+    ++t.sampled;
+    for (int face = 0; face < 6; ++face) {
+      units += static_cast<int64_t>(trees[cell][face].units.size());
+      if (trees[cell][face].jump_overflow)
+        return absl::InvalidArgumentError(absl::StrCat(
+            "light_res: ", n, " gives subtrees a 16-bit jump cannot span; raise jump_nodes"));
+    }
   }
-  t.line_texels = texels;
-  const int bytes_per = t.bits / 8;
-  t.line.assign(4 * bytes_per * WaveletTreeTextures::RowsFor(texels) * kTreeLineWidth, 0);
-  int64_t at = 0;
+  if (units >= (int64_t{1} << 31))
+    return absl::ResourceExhaustedError(
+        absl::StrCat("line: ", units, " units exceed 2^31; raise the cut-off"));
+  t.line_nibbles = units;
+  t.line_texels = (units + 7) / 8 + 1;  // one spare texel: the shader reads two at a time
+  t.line.assign(4 * WaveletTreeTextures::RowsFor(t.line_texels) * kTreeLineWidth, 0);
+  const int64_t blocks = 6 * t.sampled;
+  t.blocks.assign(2 * WaveletTreeTextures::RowsFor(blocks) * kTreeLineWidth, 0u);
+  t.cells.assign(4 * static_cast<size_t>(cells), 0.0f);
   double energy = 0;
   for (int c = 0; c < kChunks; ++c) energy += chunk_energy[c];
   t.stats.energy_total = energy;
+  int64_t at = 0, rank = 0;
   for (int cell = 0; cell < cells; ++cell) {
     const int32_t sample = samples.grid[cell];
-    if (sample >= 0) {
-      const Vec3 a = samples.albedo[sample];
-      std::copy_n(std::array<float, 4>{a.x, a.y, a.z, 1.0f}.data(), 4, &t.cells[4 * size_t(cell)]);
-    }
+    if (sample < 0) continue;
+    const Vec3 a = samples.albedo[sample];
+    std::copy_n(std::array<float, 4>{a.x, a.y, a.z, static_cast<float>(1 + rank)}.data(), 4,
+                &t.cells[4 * size_t(cell)]);
     for (int face = 0; face < 6; ++face) {
       TreeOut& tree = trees[cell][face];
-      const int64_t len = static_cast<int64_t>(tree.codes.size() / 4);
-      uint32_t* b = &t.blocks[4 * (size_t(cell) * 6 + face)];
-      b[0] = static_cast<uint32_t>(at);
-      b[1] = static_cast<uint32_t>(len);
-      b[2] = std::bit_cast<uint32_t>(tree.scaling);
-      b[3] = std::bit_cast<uint32_t>(tree.step);
-      if (bytes_per == 1) {
-        for (size_t k = 0; k < tree.codes.size(); ++k)
-          t.line[4 * at + k] = static_cast<uint8_t>(tree.codes[k]);
-      } else if (!tree.codes.empty()) {  // memcpy from an empty vector's null data() is UB
-        std::memcpy(&t.line[8 * at], tree.codes.data(), tree.codes.size() * 2);
+      uint32_t* b = &t.blocks[2 * size_t(6 * rank + face)];
+      b[0] = tree.units.empty() ? 0xFFFFFFFFu : static_cast<uint32_t>(at);
+      b[1] = std::bit_cast<uint32_t>(tree.scaling);
+      for (uint8_t u : tree.units) {
+        t.line[at / 2] |= static_cast<uint8_t>(u << (4 * (at & 1)));
+        ++at;
       }
-      at += len;
-      if (sample >= 0) {
-        ++t.stats.trees;
-        t.stats.nodes_total += haar::SquaresOf(n);
-        t.stats.nodes_kept += tree.kept;
-        t.stats.jumps += tree.jumps;
-        t.stats.energy_pruned += tree.pruned;
-      }
-      std::vector<uint16_t>().swap(tree.codes);
+      ++t.stats.trees;
+      t.stats.empty_trees += tree.units.empty();
+      t.stats.nodes_total += haar::SquaresOf(n);
+      t.stats.nodes_kept += tree.kept;
+      t.stats.jumps += tree.jumps;
+      t.stats.energy_pruned += tree.pruned;
+      t.stats.energy_quantized += tree.quantized;
+      std::vector<uint8_t>().swap(tree.units);
     }
+    ++rank;
   }
   t.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return t;
@@ -303,42 +451,52 @@ absl::StatusOr<WaveletTreeTextures> BuildWaveletTrees(const SampleRows& rows,
 
 nlohmann::json WaveletTreeHeader(const WaveletTreeTextures& t, const nlohmann::json& source) {
   using nlohmann::json;
-  const int64_t blocks = int64_t{t.width} * t.height * 6;
-  const char* line_type = t.bits == 8 ? "uint8" : "uint16";
+  const int64_t blocks = 6 * t.sampled;
   json h;
   h["format"] = kWaveletTreeFormat;
   h["source"] = source;
   h["width"] = t.width;
   h["height"] = t.height;
   h["light_res"] = t.light_res;
-  h["levels"] = haar::LevelsOf(t.light_res);
-  h["bits"] = t.bits;
-  h["bias"] = t.bias();
-  h["cut_off"] = t.cut_off;
-  if (t.target_error >= 0) h["target_error"] = t.target_error;
-  h["level_weight"] = t.level_weight;
+  h["levels"] = t.levels;
+  h["sampled"] = t.sampled;
+  h["code_bits"] = t.code_bits;
+  h["record_units"] = t.record_nibbles;
+  h["step_bias"] = t.step_bias;
+  h["settings"] = {{"cut_off", t.cut_off},
+                   {"target_error", t.target_error >= 0 ? json(t.target_error) : json(nullptr)},
+                   {"bits", t.default_bits ? json("auto") : json(t.code_bits)},
+                   {"level_weight", t.level_weight},
+                   {"jump_nodes", t.jump_nodes}};
   h["line"] = {{"file", "line.bin"},
+               {"units", t.line_nibbles},
                {"texels", t.line_texels},
                {"width", kTreeLineWidth},
                {"height", WaveletTreeTextures::RowsFor(t.line_texels)},
-               {"type", line_type},
+               {"type", "uint8"},
                {"channels", 4},
-               {"webgl", t.bits == 8 ? "RGBA8UI / RGBA_INTEGER / UNSIGNED_BYTE"
-                                     : "RGBA16UI / RGBA_INTEGER / UNSIGNED_SHORT"},
+               {"webgl", "RGBA8UI / RGBA_INTEGER / UNSIGNED_BYTE"},
                {"meaning",
-                "the trees' records, texel k at (k mod width, k div width); rows past "
-                "`texels` are zero padding"}};
+                "the trees as one stream of 4-bit units: unit u is the low half of byte "
+                "u div 2 when u is even, its high half when odd; a field of k bits at unit u "
+                "is bits 4u .. 4u+k-1 of the stream read as one little-endian number "
+                "(a texel's R, G, B, A are bytes 4k .. 4k+3: texel k holds units 8k .. "
+                "8k+7, bits 0-31 of the word R | G<<8 | B<<16 | A<<24). Texel k at "
+                "(k mod width, k div width); units past `units` are zero (padding, and "
+                "at least one spare texel so a reader may fetch two texels at a time)"}};
   h["blocks"] = {{"file", "blocks.bin"},
                  {"texels", blocks},
                  {"width", kTreeLineWidth},
                  {"height", WaveletTreeTextures::RowsFor(blocks)},
                  {"type", "uint32"},
-                 {"channels", 4},
-                 {"webgl", "RGBA32UI / RGBA_INTEGER / UNSIGNED_INT"},
+                 {"channels", 2},
+                 {"webgl", "RG32UI / RG_INTEGER / UNSIGNED_INT"},
                  {"meaning",
-                  "texel b = cell·6 + face (cell = y·width + x): R first line texel of the "
-                  "tree, G its texels (0: no wavelet node), B the scaling coefficient "
-                  "(float32 bits), A the quantization step (float32 bits)"}};
+                  "texel b = 6 r + face for the sampled cell of rank r (cells: A = 1 + r): "
+                  "R the unit of the line where the tree starts, 4294967295 when the tree "
+                  "has no wavelet node; G the face's scaling coefficient (float32 bits). "
+                  "Trees lie in block order, each starting where the previous non-empty "
+                  "one ends; texels past `texels` are zero"}};
   h["cells"] = {{"file", "cells.bin"},
                 {"texels", int64_t{t.width} * t.height},
                 {"width", t.width},
@@ -347,44 +505,55 @@ nlohmann::json WaveletTreeHeader(const WaveletTreeTextures& t, const nlohmann::j
                 {"channels", 4},
                 {"webgl", "RGBA32F / RGBA / FLOAT"},
                 {"meaning",
-                 "texel (x, y) = cell y·width + x, row 0 = the grid's row 0 (the top "
-                 "of the image): albedo RGB, A 1 sampled / 0 masked"}};
+                 "texel (x, y) = cell y·width + x, row 0 = the grid's row 0 (the top of the "
+                 "image): albedo RGB; A = 0 masked, else 1 + r where r counts the sampled "
+                 "cells before this one in cell order (its blocks are 6 r .. 6 r + 5)"}};
   h["conventions"] = {
       {"faces", "+X -X +Y -Y +Z -Z, OpenGL cube map orientation, N x N texels each"},
       {"row",
-       "per face the 2D non-standard orthonormal Haar transform of the N x N row "
-       "of T, full depth, Mallat layout (scaling coefficient at (0,0))"},
+       "per face the 2D non-standard orthonormal Haar transform of the N x N row of T, "
+       "full depth, Mallat layout (scaling coefficient at (0,0))"},
       {"node",
-       "square (l, sx, sy), 0 <= sx, sy < 2^l, l = 0..levels-1: its coefficients "
-       "type 0 at Mallat (2^l+sx, sy), type 1 at (sx, 2^l+sy), type 2 at "
-       "(2^l+sx, 2^l+sy)"},
+       "square (l, sx, sy), 0 <= sx, sy < 2^l, l = 0..levels-1: its coefficients type 0 "
+       "at Mallat (2^l+sx, sy), type 1 at (sx, 2^l+sy), type 2 at (2^l+sx, 2^l+sy); its "
+       "children k = 0..3 are (l+1, 2sx + (k mod 2), 2sy + (k div 2))"},
       {"pruning",
-       "Boulton 4.4, importance-weighted by level: a node of level l is significant "
-       "when max |c| * 2^(-level_weight * l) >= cut_off (level_weight 0: the rule "
-       "as written); a node is kept when it or a descendant is significant, and the "
-       "four children of a node are kept together"},
-      {"order",
-       "depth first from the root (0,0,0); children (2sx,2sy), (2sx+1,2sy), "
-       "(2sx,2sy+1), (2sx+1,2sy+1)"},
-      {"node_texel",
-       "R, G, B = codes of types 0, 1, 2; A = level+1 of the next node of the "
-       "tree in line order (0: the tree ends)"},
-      {"jump_texel",
-       "follows every node whose A-1 is greater than its level (its children "
-       "follow): offset = R + G * 2^bits texels from the node to the first "
-       "texel after its subtree; B = level+1 of the node there (0: the tree "
-       "ends); A = 0"},
-      {"decode", "c = (code - bias) * step; step and the scaling coefficient from the block"},
+       "Boulton 4.4 without sibling groups: a node of level l is significant when "
+       "max |c| * 2^(-level_weight * l) >= cut_off; a node is kept when it or a "
+       "descendant is significant"},
+      {"tree",
+       "at the tree's first unit: levels step codes of 8 bits (level 0 first), then the "
+       "kept nodes depth first from the root (0,0,0), each node's record followed by "
+       "its jump record if its jump flag is set, then its kept children in order k"},
+      {"steps",
+       "step code s of a level: 0 means step 0; else step = (1 + (s mod 8)/8) * "
+       "2^(s div 8 - step_bias) (exactly: the float32 with exponent field s div 8 - "
+       "step_bias + 127 and mantissa (s mod 8) << 20)"},
+      {"record",
+       "a node of level l is record_units[l] units (4 bits each): with b = "
+       "code_bits[l], bits 0..b-1, b..2b-1, 2b..3b-1 the codes of types 0, 1, 2; "
+       "below the finest level (l < levels-1) bits 3b..3b+3 the child mask (bit k: child "
+       "k is kept and follows); for l < levels-2 bit 3b+4 the jump flag; other bits 0"},
+      {"jump",
+       "16 bits (4 units) right after a record whose jump flag is set: units from the "
+       "node's first unit to the first unit past its subtree (its record, jump and all "
+       "its descendants). Only nodes of levels 1..levels-3 with children carry one"},
+      {"decode",
+       "c = (code - 2^(b-1)) * step of the node's level; codes 1 .. 2^b-1 (code 0 "
+       "never occurs)"},
       {"relight",
-       "B(cell) = albedo * sum over faces of (S_face * L_scaling + sum over kept "
-       "nodes of c . L) with L the lighting's coefficients in the same basis"}};
+       "B(cell) = albedo * sum over faces of (S_face * L_scaling + sum over kept nodes "
+       "of c . L) with L the lighting's coefficients in the same basis"}};
   h["stats"] = {
       {"trees", t.stats.trees},
+      {"empty_trees", t.stats.empty_trees},
       {"nodes_total", t.stats.nodes_total},
       {"nodes_kept", t.stats.nodes_kept},
       {"jumps", t.stats.jumps},
       {"rel_error_pruned",
        t.stats.energy_total > 0 ? std::sqrt(t.stats.energy_pruned / t.stats.energy_total) : 0.0},
+      {"rel_error_quantized",
+       t.stats.energy_total > 0 ? std::sqrt(t.stats.energy_quantized / t.stats.energy_total) : 0.0},
       {"bytes", t.bytes()},
       {"seconds", t.stats.seconds}};
   return h;

@@ -14,6 +14,9 @@ namespace {
 
 using nlohmann::json;
 
+constexpr char kFormat[] = "wavebake-wavelet-tree/2";
+constexpr uint32_t kNoTree = 0xFFFFFFFFu;
+
 absl::Status Bad(const std::string& field, const std::string& why) {
   return absl::InvalidArgumentError(absl::StrCat("header: ", field, ": ", why));
 }
@@ -32,13 +35,13 @@ absl::StatusOr<int64_t> IntField(const json& j, const std::string& key, const st
 }
 
 // One array's entry: a plain file name in the directory, its texture shape,
-// its element type; returns the byte size it must have.
+// its element type and channels.
 struct ArraySpec {
   std::string file;
-  int64_t texels = 0, width = 0, height = 0;
+  int64_t texels = 0, width = 0, height = 0, channels = 0;
 };
 absl::StatusOr<ArraySpec> ArrayField(const json& h, const std::string& key, const char* type,
-                                     int64_t texels_expected) {
+                                     int channels, int64_t min_texels, int64_t max_texels) {
   if (!h.contains(key) || !h[key].is_object()) return Bad(key, "missing");
   const json& a = h[key];
   ArraySpec s;
@@ -49,12 +52,10 @@ absl::StatusOr<ArraySpec> ArrayField(const json& h, const std::string& key, cons
     return Bad(key + ".file", "not a plain file name");
   if (!a.contains("type") || a["type"] != type)
     return Bad(key + ".type", absl::StrCat("not ", type));
-  absl::StatusOr<int64_t> ch = IntField(a, "channels", key + ".channels", 4, 4);
+  absl::StatusOr<int64_t> ch = IntField(a, "channels", key + ".channels", channels, channels);
   if (!ch.ok()) return ch.status();
-  absl::StatusOr<int64_t> texels = IntField(a, "texels", key + ".texels", 0, int64_t{1} << 31);
+  absl::StatusOr<int64_t> texels = IntField(a, "texels", key + ".texels", min_texels, max_texels);
   if (!texels.ok()) return texels.status();
-  if (texels_expected >= 0 && *texels != texels_expected)
-    return Bad(key + ".texels", absl::StrCat(*texels, " != ", texels_expected));
   absl::StatusOr<int64_t> w = IntField(a, "width", key + ".width", 1, 16384);
   if (!w.ok()) return w.status();
   absl::StatusOr<int64_t> hgt = IntField(a, "height", key + ".height", 0, 1 << 20);
@@ -65,6 +66,7 @@ absl::StatusOr<ArraySpec> ArrayField(const json& h, const std::string& key, cons
   s.texels = *texels;
   s.width = *w;
   s.height = *hgt;
+  s.channels = channels;
   return s;
 }
 
@@ -83,21 +85,32 @@ absl::StatusOr<std::vector<uint8_t>> ReadAll(const std::filesystem::path& p, uin
   return bytes;
 }
 
-struct Shapes {
+struct Header {
+  int width = 0, height = 0, n = 0, levels = 0, step_bias = 0;
+  int64_t sampled = 0, units = 0;
+  std::vector<int> bits, record_units;
   ArraySpec line, blocks, cells;
-  int bits = 0;
 };
 
-absl::StatusOr<Shapes> CheckHeader(const json& h, int& width, int& height, int& n, int& levels,
-                                   int& bits, int& bias) {
+// Units of a record as the header's "record" convention sizes it.
+int UnitsOf(int level, int levels, int bits) {
+  int b = 3 * bits;
+  if (level < levels - 1) b += 4;  // child mask
+  if (level < levels - 2) b += 1;  // jump flag
+  return (b + 3) / 4;
+}
+
+absl::StatusOr<Header> CheckHeader(const json& h) {
   if (!h.is_object()) return Bad("header", "not a JSON object");
-  if (!h.contains("format") || h["format"] != "wavebake-wavelet-tree/1")
-    return Bad("format", "not wavebake-wavelet-tree/1");
+  if (!h.contains("format") || h["format"] != kFormat)
+    return Bad("format", "not " + std::string(kFormat));
+  Header r;
   absl::StatusOr<int64_t> w = IntField(h, "width", "width", 1, 65536);
   if (!w.ok()) return w.status();
   absl::StatusOr<int64_t> hh = IntField(h, "height", "height", 1, 65536);
   if (!hh.ok()) return hh.status();
-  if (*w * *hh > (int64_t{1} << 26)) return Bad("width", "width × height exceeds 2^26 cells");
+  // Cells' A holds 1 + a rank as a float32: exact below 2^24.
+  if (*w * *hh > (int64_t{1} << 24)) return Bad("width", "width × height exceeds 2^24 cells");
   absl::StatusOr<int64_t> nn = IntField(h, "light_res", "light_res", 2, 256);
   if (!nn.ok()) return nn.status();
   if (!std::has_single_bit(static_cast<uint64_t>(*nn)))
@@ -105,35 +118,57 @@ absl::StatusOr<Shapes> CheckHeader(const json& h, int& width, int& height, int& 
   absl::StatusOr<int64_t> lv = IntField(h, "levels", "levels", 1, 8);
   if (!lv.ok()) return lv.status();
   if ((int64_t{1} << *lv) != *nn) return Bad("levels", "is not log2(light_res)");
-  absl::StatusOr<int64_t> b = IntField(h, "bits", "bits", 8, 16);
-  if (!b.ok()) return b.status();
-  if (*b != 8 && *b != 16) return Bad("bits", "not 8 or 16");
-  absl::StatusOr<int64_t> bi = IntField(h, "bias", "bias", 0, 65535);
-  if (!bi.ok()) return bi.status();
-  if (*bi != (int64_t{1} << (*b - 1))) return Bad("bias", "is not 2^(bits-1)");
-  width = static_cast<int>(*w);
-  height = static_cast<int>(*hh);
-  n = static_cast<int>(*nn);
-  levels = static_cast<int>(*lv);
-  bits = static_cast<int>(*b);
-  bias = static_cast<int>(*bi);
-  Shapes s;
-  s.bits = bits;
-  absl::StatusOr<ArraySpec> line = ArrayField(h, "line", bits == 8 ? "uint8" : "uint16", -1);
+  absl::StatusOr<int64_t> sampled = IntField(h, "sampled", "sampled", 0, *w * *hh);
+  if (!sampled.ok()) return sampled.status();
+  absl::StatusOr<int64_t> bias = IntField(h, "step_bias", "step_bias", -96, 126);
+  if (!bias.ok()) return bias.status();
+  r.width = static_cast<int>(*w);
+  r.height = static_cast<int>(*hh);
+  r.n = static_cast<int>(*nn);
+  r.levels = static_cast<int>(*lv);
+  r.sampled = *sampled;
+  r.step_bias = static_cast<int>(*bias);
+  for (const char* key : {"code_bits", "record_units"}) {
+    if (!h.contains(key) || !h[key].is_array()) return Bad(key, "missing");
+    if (static_cast<int64_t>(h[key].size()) != *lv)
+      return Bad(key, absl::StrCat(h[key].size(), " values, not one per level"));
+  }
+  for (int l = 0; l < r.levels; ++l) {
+    const std::string at = absl::StrCat("[", l, "]");
+    const json& b = h["code_bits"][l];
+    if (!b.is_number_integer() || b.get<int64_t>() < 2 || b.get<int64_t>() > 9)
+      return Bad("code_bits" + at, "not an integer in [2, 9]");
+    r.bits.push_back(b.get<int>());
+    const json& u = h["record_units"][l];
+    if (!u.is_number_integer() || u.get<int64_t>() != UnitsOf(l, r.levels, r.bits[l]))
+      return Bad("record_units" + at, absl::StrCat("is not ", UnitsOf(l, r.levels, r.bits[l]),
+                                                   " for ", r.bits[l], "-bit codes"));
+    r.record_units.push_back(u.get<int>());
+  }
+  if (!h.contains("line") || !h["line"].is_object()) return Bad("line", "missing");
+  absl::StatusOr<int64_t> units =
+      IntField(h["line"], "units", "line.units", 0, (int64_t{1} << 31) - 1);
+  if (!units.ok()) return units.status();
+  r.units = *units;
+  // Whole texels of units and a spare one: a reader may fetch two at a time.
+  absl::StatusOr<ArraySpec> line =
+      ArrayField(h, "line", "uint8", 4, (*units + 7) / 8 + 1, int64_t{1} << 31);
   if (!line.ok()) return line.status();
-  absl::StatusOr<ArraySpec> blocks = ArrayField(h, "blocks", "uint32", *w * *hh * 6);
+  absl::StatusOr<ArraySpec> blocks =
+      ArrayField(h, "blocks", "uint32", 2, 6 * *sampled, 6 * *sampled);
   if (!blocks.ok()) return blocks.status();
-  absl::StatusOr<ArraySpec> cells = ArrayField(h, "cells", "float32", *w * *hh);
+  absl::StatusOr<ArraySpec> cells = ArrayField(h, "cells", "float32", 4, *w * *hh, *w * *hh);
   if (!cells.ok()) return cells.status();
   if (cells->width != *w) return Bad("cells.width", "differs from width");
-  s.line = *line;
-  s.blocks = *blocks;
-  s.cells = *cells;
-  return s;
+  r.line = *line;
+  r.blocks = *blocks;
+  r.cells = *cells;
+  return r;
 }
 
 uint64_t BytesOf(const ArraySpec& a, int bytes_per_channel) {
-  return uint64_t(a.width) * uint64_t(a.height) * 4 * uint64_t(bytes_per_channel);
+  return uint64_t(a.width) * uint64_t(a.height) * uint64_t(a.channels) *
+         uint64_t(bytes_per_channel);
 }
 
 }  // namespace
@@ -145,11 +180,10 @@ absl::StatusOr<WaveletTreeReader> WaveletTreeReader::Open(const std::filesystem:
         absl::StrCat("header: cannot read ", (dir / "header.json").string()));
   json h = json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (h.is_discarded()) return Bad("header", "not valid JSON");
-  int w, hh, n, levels, bits, bias;
-  absl::StatusOr<Shapes> s = CheckHeader(h, w, hh, n, levels, bits, bias);
+  absl::StatusOr<Header> s = CheckHeader(h);
   if (!s.ok()) return s.status();
   absl::StatusOr<std::vector<uint8_t>> line =
-      ReadAll(dir / s->line.file, BytesOf(s->line, bits / 8), "line");
+      ReadAll(dir / s->line.file, BytesOf(s->line, 1), "line");
   if (!line.ok()) return line.status();
   absl::StatusOr<std::vector<uint8_t>> blocks =
       ReadAll(dir / s->blocks.file, BytesOf(s->blocks, 4), "blocks");
@@ -164,132 +198,173 @@ absl::StatusOr<WaveletTreeReader> WaveletTreeReader::Parse(const json& header,
                                                            std::vector<uint8_t> line,
                                                            std::vector<uint8_t> blocks,
                                                            std::vector<uint8_t> cells) {
-  WaveletTreeReader r;
-  absl::StatusOr<Shapes> s =
-      CheckHeader(header, r.width_, r.height_, r.n_, r.levels_, r.bits_, r.bias_);
+  absl::StatusOr<Header> s = CheckHeader(header);
   if (!s.ok()) return s.status();
-  if (line.size() != BytesOf(s->line, r.bits_ / 8))
-    return Bad("line", "size differs from its shape");
+  if (line.size() != BytesOf(s->line, 1)) return Bad("line", "size differs from its shape");
   if (blocks.size() != BytesOf(s->blocks, 4)) return Bad("blocks", "size differs from its shape");
   if (cells.size() != BytesOf(s->cells, 4)) return Bad("cells", "size differs from its shape");
-  r.line_texels_ = s->line.texels;
-  r.line_.resize(line.size() / (r.bits_ / 8));
-  if (r.bits_ == 8) {
-    for (size_t i = 0; i < line.size(); ++i) r.line_[i] = line[i];
-  } else {
-    for (size_t i = 0; i < r.line_.size(); ++i)
-      r.line_[i] = uint16_t(line[2 * i] | line[2 * i + 1] << 8);
-  }
+  WaveletTreeReader r;
+  r.width_ = s->width;
+  r.height_ = s->height;
+  r.n_ = s->n;
+  r.levels_ = s->levels;
+  r.step_bias_ = s->step_bias;
+  r.sampled_ = s->sampled;
+  r.units_ = s->units;
+  r.bits_ = s->bits;
+  r.record_units_ = s->record_units;
+  r.line_ = std::move(line);
+  auto word = [](const std::vector<uint8_t>& v, size_t i) {
+    return uint32_t(v[4 * i]) | uint32_t(v[4 * i + 1]) << 8 | uint32_t(v[4 * i + 2]) << 16 |
+           uint32_t(v[4 * i + 3]) << 24;
+  };
   r.blocks_.resize(blocks.size() / 4);
-  for (size_t i = 0; i < r.blocks_.size(); ++i)
-    r.blocks_[i] = uint32_t(blocks[4 * i]) | uint32_t(blocks[4 * i + 1]) << 8 |
-                   uint32_t(blocks[4 * i + 2]) << 16 | uint32_t(blocks[4 * i + 3]) << 24;
+  for (size_t i = 0; i < r.blocks_.size(); ++i) r.blocks_[i] = word(blocks, i);
   r.cells_.resize(cells.size() / 4);
-  for (size_t i = 0; i < r.cells_.size(); ++i)
-    r.cells_[i] =
-        std::bit_cast<float>(uint32_t(cells[4 * i]) | uint32_t(cells[4 * i + 1]) << 8 |
-                             uint32_t(cells[4 * i + 2]) << 16 | uint32_t(cells[4 * i + 3]) << 24);
-  // Every block's range inside the line, every value finite.
-  const int64_t nblocks = int64_t{r.width_} * r.height_ * 6;
-  for (int64_t b = 0; b < nblocks; ++b) {
-    const uint32_t* e = &r.blocks_[4 * b];
-    if (int64_t{e[0]} + e[1] > r.line_texels_)
-      return Bad("blocks", absl::StrCat("block ", b, " reaches past the line's texels"));
-    if (!std::isfinite(std::bit_cast<float>(e[2])) || !std::isfinite(std::bit_cast<float>(e[3])) ||
-        std::bit_cast<float>(e[3]) < 0)
-      return Bad("blocks", absl::StrCat("block ", b, " has a non-finite scaling or step"));
-  }
+  for (size_t i = 0; i < r.cells_.size(); ++i) r.cells_[i] = std::bit_cast<float>(word(cells, i));
+  // Padding: units past `units` are zero.
+  for (int64_t u = r.units_; u < int64_t(r.line_.size()) * 2; ++u)
+    if (r.Field(u, 4) != 0)
+      return Bad("line", absl::StrCat("unit ", u, " past the trees is not zero"));
+  // Cells: A is 0 or 1 + the running rank of sampled cells.
+  int64_t rank = 0;
   for (int64_t c = 0; c < int64_t{r.width_} * r.height_; ++c) {
     const float a = r.cells_[4 * c + 3];
-    if (a != 0 && a != 1) return Bad("cells", absl::StrCat("cell ", c, ": A is not 0 or 1"));
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(r.cells_[4 * c + k]))
         return Bad("cells", absl::StrCat("cell ", c, ": albedo not finite"));
+    if (a == 0) continue;
+    if (a != static_cast<float>(1 + rank))
+      return Bad("cells", absl::StrCat("cell ", c, ": A is ", a, ", not 0 or ", 1 + rank));
+    ++rank;
   }
+  if (rank != r.sampled_)
+    return Bad("cells", absl::StrCat(rank, " sampled cells, the header says ", r.sampled_));
+  // Blocks: finite scaling coefficients; trees in block order, back to back.
+  const int64_t nblocks = 6 * r.sampled_;
+  r.tree_end_.assign(nblocks, 0);
+  int64_t expect = 0, last = -1;
+  for (int64_t b = 0; b < nblocks; ++b) {
+    const uint32_t start = r.blocks_[2 * b];
+    if (!std::isfinite(std::bit_cast<float>(r.blocks_[2 * b + 1])))
+      return Bad("blocks", absl::StrCat("block ", b, " has a non-finite scaling coefficient"));
+    if (start == kNoTree) continue;
+    if (start != expect)
+      return Bad("blocks", absl::StrCat("block ", b, " starts at unit ", start, ", not ", expect,
+                                        " where the previous tree ends"));
+    last = b;
+    int64_t end = 0;
+    if (absl::Status st = r.Walk(b, r.units_, nullptr, nullptr, &end); !st.ok()) return st;
+    r.tree_end_[b] = end;
+    expect = end;
+  }
+  if (last >= 0 && expect != r.units_)
+    return Bad("line", absl::StrCat("the last tree ends at unit ", expect, ", not at ", r.units_));
+  if (last < 0 && r.units_ != 0) return Bad("line", "units but no tree");
   return r;
 }
 
-float WaveletTreeReader::step(int cell, int face) const {
-  return std::bit_cast<float>(blocks_[4 * (size_t(cell) * 6 + face) + 3]);
+uint64_t WaveletTreeReader::Field(int64_t unit, int bits) const {
+  // Bits 4·unit .. 4·unit + bits − 1 of the little-endian stream.
+  uint64_t v = 0;
+  for (int k = 0; k < (bits + 3) / 4; ++k) {
+    const int64_t u = unit + k;
+    const uint8_t byte = line_[size_t(u / 2)];
+    v |= uint64_t((u & 1) ? byte >> 4 : byte & 15) << (4 * k);
+  }
+  return bits >= 64 ? v : v & ((uint64_t{1} << bits) - 1);
 }
 
-absl::Status WaveletTreeReader::DecodeRow(int cell, int face, std::span<float> row) const {
-  const int n = n_;
-  if (row.size() != size_t(n) * n) return absl::InvalidArgumentError("row: not N² floats");
-  std::fill(row.begin(), row.end(), 0.0f);
-  const uint32_t* block = &blocks_[4 * (size_t(cell) * 6 + face)];
-  const int64_t first = block[0], count = block[1];
-  const float step = std::bit_cast<float>(block[3]);
-  row[0] = std::bit_cast<float>(block[2]);
-  if (count == 0) return absl::OkStatus();
-  auto bad = [&](int64_t p, const std::string& why) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("line: tree of cell ", cell, " face ", face, ", record ", p, ": ", why));
+absl::Status WaveletTreeReader::Walk(int64_t b, int64_t limit, float* row,
+                                     std::vector<float>* steps, int64_t* end,
+                                     uint8_t* present) const {
+  const int64_t cell_block = b;
+  auto bad = [&](int64_t u, const std::string& why) {
+    return absl::InvalidArgumentError(absl::StrCat("line: tree of block ", cell_block, " (face ",
+                                                   b % 6, "), unit ", u, ": ", why));
   };
-  // One frame per open level ≥ 1: which child of its parent the current
-  // square is, the parent's square, and the parent's jump record.
-  struct Frame {
-    int child = 0, psx = 0, psy = 0;
-    int64_t parent_at = 0, jump_offset = 0;
-    int jump_code = 0;
-  };
-  std::vector<Frame> frames(levels_);
-  int level = 0, sx = 0, sy = 0;
-  const int max_code = (1 << (bits_ - 1)) - 1;
-  // Closes level L (≥ 1) when the line moves to `p` with level code `code`.
-  auto close = [&](int l, int64_t p, int code) -> absl::Status {
-    const Frame& f = frames[l];
-    if (f.child != 3) return bad(p, "a group of four siblings is incomplete");
-    if (f.parent_at + f.jump_offset != p || f.jump_code != code)
-      return bad(p, "a jump does not land past its subtree");
-    return absl::OkStatus();
-  };
-  for (int64_t p = 0;;) {
-    if (p >= count) return bad(p, "the line ends inside the tree");
-    const uint16_t* t = &line_[4 * (first + p)];
-    const int half = 1 << level;
-    for (int k = 0; k < 3; ++k) {
-      const int q = int(t[k]) - bias_;
-      if (q < -max_code || q > max_code) return bad(p, "a code outside the window");
-      const int x = k == 1 ? sx : half + sx;
-      const int y = k == 0 ? sy : half + sy;
-      row[size_t(y) * n + x] = float(q) * step;
-    }
-    const int a = t[3];
-    if (a > levels_) return bad(p, "a level past the finest");
-    if (a != 0 && a - 1 > level) {
-      if (a - 1 != level + 1) return bad(p, "the next node skips a level");
-      if (p + 1 >= count) return bad(p, "a jump record is missing");
-      const uint16_t* j = &line_[4 * (first + p + 1)];
-      Frame& f = frames[level + 1];
-      f = {.child = 0,
-           .psx = sx,
-           .psy = sy,
-           .parent_at = p,
-           .jump_offset = int64_t{j[0]} + (int64_t{j[1]} << bits_),
-           .jump_code = j[2]};
-      ++level;
-      sx = 2 * sx;
-      sy = 2 * sy;
-      p += 2;
-      continue;
-    }
-    ++p;
-    const int next = a - 1;  // −1: the tree ends
-    for (int l = level; l > std::max(next, 0); --l) {
-      if (absl::Status s = close(l, p, a); !s.ok()) return s;
-    }
-    if (next < 0) {
-      if (p != count) return bad(p, "records after the end of the tree");
+  int64_t u = blocks_[2 * b];
+  if (u + 2 * levels_ > limit) return bad(u, "the step codes run past the line");
+  std::vector<float> step(levels_);
+  for (int l = 0; l < levels_; ++l) {
+    const int code = static_cast<int>(Field(u + 2 * l, 8));
+    step[l] = code == 0
+                  ? 0.0f
+                  : static_cast<float>(std::ldexp(1.0 + (code % 8) / 8.0, code / 8 - step_bias_));
+  }
+  if (steps) *steps = step;
+  u += 2 * levels_;
+  // Depth first, recursively: a node of `level` at unit u.
+  struct Walker {
+    const WaveletTreeReader& r;
+    const std::vector<float>& step;
+    float* row;
+    uint8_t* present;
+    int64_t limit;
+    decltype(bad)& fail;
+    absl::Status Node(int level, int sx, int sy, int64_t& u) {
+      const int units = r.record_units_[level], b = r.bits_[level];
+      if (u + units > limit) return fail(u, "the tree runs past its end");
+      const uint64_t rec = r.Field(u, 4 * units);
+      const int64_t at = u;
+      u += units;
+      const int half = 1 << level;
+      for (int t = 0; t < 3; ++t) {
+        const int code = static_cast<int>((rec >> (t * b)) & ((1u << b) - 1));
+        if (code == 0) return fail(at, "a code outside the window");
+        const int x = t == 1 ? sx : half + sx;
+        const int y = t == 0 ? sy : half + sy;
+        if (row) row[size_t(y) * r.n_ + x] = float(code - (1 << (b - 1))) * step[level];
+        if (present) present[size_t(y) * r.n_ + x] = 1;
+      }
+      int used = 3 * b;
+      uint32_t mask = 0;
+      bool jump = false;
+      if (level < r.levels_ - 1) mask = uint32_t(rec >> used) & 15u, used += 4;
+      if (level < r.levels_ - 2) jump = ((rec >> used) & 1u) != 0, used += 1;
+      if ((rec >> used) != 0) return fail(at, "bits set past the record's fields");
+      int64_t target = 0;
+      if (jump) {
+        if (level == 0) return fail(at, "a jump at the root");
+        if (mask == 0) return fail(at, "a jump on a node without children");
+        if (u + 4 > limit) return fail(u, "the jump runs past the tree's end");
+        target = at + static_cast<int64_t>(r.Field(u, 16));
+        u += 4;
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (!(mask & (1u << k))) continue;
+        if (absl::Status s = Node(level + 1, 2 * sx + (k & 1), 2 * sy + (k >> 1), u); !s.ok())
+          return s;
+      }
+      if (jump && target != u)
+        return fail(at,
+                    absl::StrCat("the jump lands at unit ", target, ", its subtree ends at ", u));
       return absl::OkStatus();
     }
-    if (next == 0) return bad(p, "a second root");
-    level = next;
-    Frame& f = frames[level];
-    if (++f.child > 3) return bad(p, "more than four siblings");
-    sx = 2 * f.psx + (f.child & 1);
-    sy = 2 * f.psy + (f.child >> 1);
+  } walker{*this, step, row, present, limit, bad};
+  if (absl::Status s = walker.Node(0, 0, 0, u); !s.ok()) return s;
+  if (end) *end = u;
+  return absl::OkStatus();
+}
+
+absl::Status WaveletTreeReader::DecodeRow(int cell, int face, std::span<float> row,
+                                          std::vector<float>* steps,
+                                          std::vector<uint8_t>* present) const {
+  if (row.size() != size_t(n_) * n_) return absl::InvalidArgumentError("row: not N² floats");
+  if (cell < 0 || cell >= width_ * height_ || !sampled(cell))
+    return absl::InvalidArgumentError(absl::StrCat("cell: ", cell, " is not a sampled cell"));
+  std::fill(row.begin(), row.end(), 0.0f);
+  if (present) {
+    present->assign(row.size(), 0);
+    (*present)[0] = 1;
   }
+  const int64_t b = 6 * (static_cast<int64_t>(cells_[4 * size_t(cell) + 3]) - 1) + face;
+  row[0] = std::bit_cast<float>(blocks_[2 * b + 1]);
+  if (blocks_[2 * b] == kNoTree) {
+    if (steps) steps->assign(levels_, 0.0f);
+    return absl::OkStatus();
+  }
+  return Walk(b, tree_end_[b], row.data(), steps, nullptr, present ? present->data() : nullptr);
 }
 
 absl::StatusOr<std::vector<float>> WaveletTreeReader::Relight(std::span<const float> L,

@@ -3,13 +3,15 @@
 // only from the header's documented conventions (runtime/gpu/wavelet_tree.h's
 // WaveletTreeHeader), sharing no code with the exporter's tree walk
 // (runtime/gpu/tree_stream.h) nor with the shader: the oracle the round-trip and
-// GPU tests compare against. It rebuilds each tree's row coefficients from
-// its depth-first line, checking the line's structure as it goes (sibling
-// groups complete, jump offsets landing past their subtrees, levels in
-// range), and relights by a dense dot product per face.
+// GPU tests compare against. Opening it checks every field of the header,
+// every cell and block, and walks every tree's records (codes in range,
+// child masks only below the finest level, no bits past a record's fields,
+// jumps landing past their subtrees, each tree ending where the next
+// begins); it rebuilds a tree's row coefficients from its records and
+// relights by a dense dot product per face.
 //
 // Hostile input is refused with an error naming the field: the header's
-// values and shapes, the files' sizes, every block's range, every record.
+// values and shapes, the files' sizes, every cell, block and record.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -34,15 +36,18 @@ class WaveletTreeReader {
   int width() const { return width_; }
   int height() const { return height_; }
   int light_res() const { return n_; }
-  int bits() const { return bits_; }
+  int levels() const { return levels_; }
+  const std::vector<int>& code_bits() const { return bits_; }
   bool sampled(int cell) const { return cells_[4 * size_t(cell) + 3] != 0; }
-  // Quantization step of tree (cell, face): every decoded coefficient is
-  // within step/2 of the value it was made from.
-  float step(int cell, int face) const;
 
-  // The row of (cell, face): N² coefficients, Mallat layout (y·N + x), zero
-  // where pruned. Parsed on every call.
-  absl::Status DecodeRow(int cell, int face, std::span<float> row) const;
+  // The row of (cell, face) of a sampled cell: N² coefficients, Mallat
+  // layout (y·N + x), zero where pruned. steps (optional): the tree's
+  // quantization step per level (every decoded coefficient of level l is a
+  // whole multiple of steps[l]). present (optional): N² flags, 1 where the
+  // tree holds the coefficient (the scaling one always).
+  absl::Status DecodeRow(int cell, int face, std::span<float> row,
+                         std::vector<float>* steps = nullptr,
+                         std::vector<uint8_t>* present = nullptr) const;
 
   // B per cell = albedo · Σ_face row · L_face, lighting as
   // LightingCoefficients::rgb ([3·6N²], row basis); [W·H·3], NaN masked.
@@ -52,11 +57,20 @@ class WaveletTreeReader {
                                              std::vector<float>* magnitude = nullptr) const;
 
  private:
-  int width_ = 0, height_ = 0, n_ = 0, levels_ = 0, bits_ = 8, bias_ = 128;
-  int64_t line_texels_ = 0;
-  std::vector<uint16_t> line_;    // 4 codes a texel
-  std::vector<uint32_t> blocks_;  // 4 a block
-  std::vector<float> cells_;      // 4 a cell
+  // Walks tree `b` (a block index) up to unit `limit`, writing its
+  // coefficients into row (N²) and its steps if given, and where it ends
+  // into end; checks every record.
+  absl::Status Walk(int64_t b, int64_t limit, float* row, std::vector<float>* steps, int64_t* end,
+                    uint8_t* present = nullptr) const;
+  uint64_t Field(int64_t unit, int bits) const;
+
+  int width_ = 0, height_ = 0, n_ = 0, levels_ = 0, step_bias_ = 0;
+  int64_t sampled_ = 0, units_ = 0;
+  std::vector<int> bits_, record_units_;
+  std::vector<uint8_t> line_;
+  std::vector<uint32_t> blocks_;   // 2 a block
+  std::vector<int64_t> tree_end_;  // per block: the unit past its tree
+  std::vector<float> cells_;       // 4 a cell
 };
 
 }  // namespace wavebake

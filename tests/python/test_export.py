@@ -27,8 +27,9 @@ def without_timing(header):
 
 @pytest.mark.parametrize("options, flags", [
     ({}, ()),
-    ({"target_error": 0.05, "bits": 16}, ("--target-error", 0.05, "--bits", 16)),
-    ({"cut_off": 0.001}, ("--cut-off", 0.001)),
+    ({"target_error": 0.05, "bits": 9}, ("--target-error", 0.05, "--bits", 9)),
+    ({"cut_off": 0.001, "bits": [8, 6, 5], "jump_nodes": 2},
+     ("--cut-off", 0.001, "--bits", "8,6,5", "--jump-nodes", 2)),
 ])
 def test_equals_the_command_line(stores, tmp_path, options, flags):
     ours_dir, theirs_dir = tmp_path / "py", tmp_path / "cli"
@@ -40,7 +41,12 @@ def test_equals_the_command_line(stores, tmp_path, options, flags):
     for name in ARRAYS:
         ours, cli = (ours_dir / name).read_bytes(), (theirs_dir / name).read_bytes()
         assert len(ours) > 0 and ours == cli, name
-    assert header["stats"]["nodes_kept"] > 0 and header["bits"] == options.get("bits", 8)
+    assert header["stats"]["nodes_kept"] > 0
+    bits = options.get("bits")
+    levels = header["levels"]
+    assert header["code_bits"] == ([bits] * levels if isinstance(bits, int) else bits or
+                                   {5: [9, 9, 6, 5, 4], 3: [6, 5, 4]}.get(levels)), header
+    assert header["settings"]["jump_nodes"] == options.get("jump_nodes", 16)
 
 
 def test_errors_name_the_argument(stores, tmp_path):
@@ -53,8 +59,11 @@ def test_errors_name_the_argument(stores, tmp_path):
         wavebake.export(store, tmp_path / "a", cut_off=float("nan"))
     with pytest.raises(wavebake.InvalidArgument, match="^target_error: "):
         wavebake.export(store, tmp_path / "a", target_error=-1)
-    with pytest.raises(wavebake.InvalidArgument, match="^bits: "):
-        wavebake.export(store, tmp_path / "a", bits=12)
+    for bits in (12, [8, 8], "x", [1.5]):
+        with pytest.raises(wavebake.InvalidArgument, match="^bits: "):
+            wavebake.export(store, tmp_path / "a", bits=bits)  # type: ignore[arg-type]
+    with pytest.raises(wavebake.InvalidArgument, match="^jump_nodes: "):
+        wavebake.export(store, tmp_path / "a", jump_nodes=0)
     with pytest.raises(wavebake.NotFound):
         wavebake.export(tmp_path / "missing.wbk", tmp_path / "a")
     assert not (tmp_path / "a").exists()

@@ -1,7 +1,9 @@
 """The GPU relight view end to end (run by gpu_view.sh).
 
-Three tiny diffuse stores (camera, uv, hilbert; N = 8, 32x32 cells) are
-exported and served by `wavebake view`; headless Debian chromium with
+Four tiny diffuse stores (camera, uv, hilbert; N = 8, 32x32 cells; and a
+camera store at N = 16, whose level-1 nodes carry jump records: the view
+runs with --jump-nodes 2, so both the jump and the read-through of a branch
+the environment lacks are drawn) are exported and served by `wavebake view`; headless Debian chromium with
 SwiftShader (WebGL2, EXT_color_buffer_float, EXT_float_blend) draws each
 under a probe, rotation and term count in both modes, and
 window.wavebakeGpuFrame() is compared with the server's CPU frame of the
@@ -9,13 +11,17 @@ same lights.
 
 mode=tree against /api/view/oracle, the C++ decoder's frame of the same
 exported bytes (runtime/gpu/wavelet_tree_reader.h, sharing no code with the
-shader). The bound: both sum the same float products of the same decoded
-coefficients and lighting weights; the shader in float32 over at most
-K = 6·N² terms per channel (the scaling coefficient and three wavelets per
-node, six faces), the oracle in double. Recursive float summation is off by
-at most K·u·Σ|terms| (u = 2^-24), the albedo product and the oracle's final
-rounding add 2·u·Σ|terms|: |gpu - cpu| <= (K + 2)·u·Σ|terms|, with Σ|terms|
-(× albedo) returned by the oracle per cell and channel.
+shader). The bound: both decode the same coefficients exactly — a code of
+at most 9 bits times a step with a 4-bit mantissa (header "steps") has at
+most 13 significant bits, so (code - 2^(b-1))·step is exact in float32 on
+the GPU and in the reader — and sum the same float products of them and
+the lighting weights; the shader in float32 over at most K = 6·N² terms
+per channel (the scaling coefficient and three wavelets per node, six
+faces; the walk visits each node pair once), the oracle in double.
+Recursive float summation is off by at most K·u·Σ|terms| (u = 2^-24), the
+albedo product and the oracle's final rounding add 2·u·Σ|terms|:
+|gpu - cpu| <= (K + 2)·u·Σ|terms|, with Σ|terms| (× albedo) returned by the
+oracle per cell and channel.
 
 mode=4d against /api/view/oracle4d, the CPU relighter (Relighter::Relight,
 Eq. 8) of the same store and lights. Both evaluate
@@ -76,45 +82,55 @@ def write_bump(path, n=24):
 
 def check_export(tmp, store):
     out = tmp / "trees"
-    run("export", str(store), "--format", "wavelet-tree", "--out", str(out), "--bits", "16",
+    run("export", str(store), "--format", "wavelet-tree", "--out", str(out), "--bits", "9",
         "--cut-off", "0")
     h = json.loads((out / "header.json").read_text())
-    assert h["format"] == "wavebake-wavelet-tree/1", h["format"]
+    assert h["format"] == "wavebake-wavelet-tree/2", h["format"]
     sizes = {"uint8": 1, "uint16": 2, "uint32": 4, "float32": 4}
     for key in ("line", "blocks", "cells"):
         a = h[key]
         want = a["width"] * a["height"] * a["channels"] * sizes[a["type"]]
         got = (out / a["file"]).stat().st_size
         assert got == want, (key, got, want)
-    # Cut-off 0 keeps every node: (N²-1)/3 per tree.
+    # Cut-off 0 keeps every node: (N²-1)/3 per tree, 9-bit codes at every level.
     n = h["light_res"]
     assert h["stats"]["nodes_kept"] == h["stats"]["trees"] * (n * n - 1) // 3, h["stats"]
-    blocks = np.fromfile(out / "blocks.bin", dtype="<u4").reshape(-1, 4)[: h["blocks"]["texels"]]
-    grid = zarr.open(str(store), mode="r")["samples/grid"][:]
-    sampled = np.repeat(grid.reshape(-1) >= 0, 6)
-    assert (blocks[sampled, 1] > 0).all() and (blocks[~sampled, 1] == 0).all()
-    assert blocks[:, 0].max() + 0 <= h["line"]["texels"]
+    assert h["code_bits"] == [9] * h["levels"] and h["settings"]["bits"] == [9] * h["levels"], h
+    grid = zarr.open(str(store), mode="r")["samples/grid"][:].reshape(-1)
+    sampled = grid >= 0
+    assert h["sampled"] == sampled.sum() and h["stats"]["trees"] == 6 * sampled.sum(), h
+    # Cells: A = 1 + the rank of a sampled cell, 0 on masked ones.
+    cells = np.fromfile(out / "cells.bin", dtype="<f4").reshape(-1, 4)
+    assert (cells[~sampled, 3] == 0).all()
+    assert (cells[sampled, 3] == np.arange(1, sampled.sum() + 1)).all()
+    # Blocks: every tree present, back to back from unit 0 in block order.
+    blocks = np.fromfile(out / "blocks.bin", dtype="<u4").reshape(-1, 2)[: h["blocks"]["texels"]]
+    starts = blocks[:, 0].astype(np.int64)
+    assert starts[0] == 0 and (np.diff(starts) > 2 * h["levels"]).all(), starts[:8]
+    assert starts[-1] < h["line"]["units"] <= 8 * (h["line"]["texels"] - 1), h["line"]
     # Refusals by name: the format, a bad --bits.
     p = run("export", str(store), "--format", "png", "--out", str(tmp / "x"), ok=False)
     assert p.returncode == 2 and "--format" in p.stderr, p.stderr
-    p = run("export", str(store), "--format", "wavelet-tree", "--out", str(tmp / "x"),
-            "--bits", "12", ok=False)
-    assert p.returncode != 0 and "bits" in p.stderr, p.stderr
+    for bits in ("12", "8,8", "x"):
+        p = run("export", str(store), "--format", "wavelet-tree", "--out", str(tmp / "x"),
+                "--bits", bits, ok=False)
+        assert p.returncode != 0 and "bits" in p.stderr, (bits, p.stderr)
 
 
 def main():
     with tempfile.TemporaryDirectory() as d:
         tmp = pathlib.Path(d)
         stores = {
-            "camera": ("builtin:disk-over-plane", "camera:32x32"),
-            "uv": (str(DATA / "models" / "spot.obj"), "uv:32x32"),
-            "hilbert": (str(tmp / "bump.obj"), "hilbert:32x32"),
+            "camera": ("builtin:disk-over-plane", "camera:32x32", 8),
+            "uv": (str(DATA / "models" / "spot.obj"), "uv:32x32", 8),
+            "hilbert": (str(tmp / "bump.obj"), "hilbert:32x32", 8),
+            "camera16": ("builtin:cubes-wall", "camera:32x32", 16),
         }
         write_bump(tmp / "bump.obj")
         paths = []
-        for name, (scene, layout) in stores.items():
+        for name, (scene, layout, n) in stores.items():
             path = tmp / f"{name}.wbk"
-            run("bake", scene, "--layout", layout, "--light-res", "8", "--quiet", "--out", str(path))
+            run("bake", scene, "--layout", layout, "--light-res", str(n), "--quiet", "--out", str(path))
             paths.append(path)
         check_export(tmp, paths[0])
         vis = tmp / "vis.wbk"
@@ -131,7 +147,7 @@ def main():
         # The uv store's scene is found by name on WAVEBAKE_SCENE_PATH (its 3D mesh).
         env = dict(os.environ, WAVEBAKE_SCENE_PATH=str(DATA / "models"))
         server = subprocess.Popen([WB, "view", *map(str, paths), str(legall), "--http", "127.0.0.1:0",
-                                   "--http-address-file", str(addr)], env=env,
+                                   "--http-address-file", str(addr), "--jump-nodes", "2"], env=env,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         driver = None
         try:
@@ -206,7 +222,7 @@ def main():
                 "const gl = document.createElement('canvas').getContext('webgl2');"
                 "return !!gl && !!gl.getExtension('EXT_color_buffer_float');")
             for i, path in enumerate(paths):
-                for rotate, terms in ((0, 64), (45, 16), (200, 1000)):
+                for rotate, terms in ((0, 64), (45, 16), (200, 1000), (0, 8)):
                     for mode, check in (("tree", compare), ("4d", compare4d)):
                         url = (f"{base}/view?store={i}&probe=builtin:sky&rotate={rotate}"
                                f"&terms={terms}&mode={mode}")
@@ -237,15 +253,17 @@ def main():
             # The uv store in 3D: the lightmapped mesh drawn (a mesh only for
             # uv), and turning the camera redraws with no request.
             listed = json.loads(get(f"{base}/api/view/stores"))
-            assert [s["mesh"] for s in listed] == [False, True, False, False], listed
+            assert [s["mesh"] for s in listed] == [False, True, False, False, False], listed
             try:
-                get(f"{base}/api/view/columns/3/meta.json")
+                get(f"{base}/api/view/columns/4/meta.json")
                 raise AssertionError("a LeGall store's columns were served")
             except urllib.error.HTTPError as e:
                 body = e.read().decode()
                 assert e.code == 409 and "column_filter" in body, (e.code, body)
-            assert json.loads(get(f"{base}/api/view/trees/3/header.json"))["format"]
-            status = load(f"{base}/view?store=3&mode=4d")
+            trees16 = json.loads(get(f"{base}/api/view/trees/3/header.json"))
+            assert trees16["levels"] == 4 and trees16["stats"]["jumps"] > 0, trees16["stats"]
+            assert json.loads(get(f"{base}/api/view/trees/4/header.json"))["format"]
+            status = load(f"{base}/view?store=4&mode=4d")
             assert status.startswith("error: ") and "column_filter" in status, status
             status = load(f"{base}/view?store=1&probe=builtin:sky&terms=64&mode=4d")
             assert status == "ready", status

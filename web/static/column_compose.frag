@@ -7,7 +7,7 @@ precision highp float;
 precision highp sampler2D;
 
 uniform sampler2D u_buffer;  // W×H RGBA32F
-uniform sampler2D u_cells;   // W×H: albedo RGB, A 1 sampled / 0 masked
+uniform sampler2D u_cells;   // W×H: albedo RGB, A 0 masked, > 0 sampled
 
 out vec4 o_color;
 

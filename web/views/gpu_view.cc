@@ -89,7 +89,7 @@ absl::StatusOr<ServedStore> Serve(const std::filesystem::path& path,
   s.width = t->width;
   s.height = t->height;
   s.light_res = t->light_res;
-  s.bits = t->bits;
+  s.code_bits = t->code_bits;
   s.header = WaveletTreeHeader(*t, {{"store", s.name}});
   s.line = Bytes(t->line.data(), t->line.size());
   s.blocks = Bytes(t->blocks.data(), t->blocks.size() * 4);
@@ -162,7 +162,7 @@ void AddRoutes(httplib::Server& server, GpuViewState& st) {
                       {"width", s.width},
                       {"height", s.height},
                       {"light_res", s.light_res},
-                      {"bits", s.bits},
+                      {"code_bits", s.code_bits},
                       {"mesh", !s.mesh.empty()},
                       {"bytes", s.line.size() + s.blocks.size() + s.cells.size()}});
     }

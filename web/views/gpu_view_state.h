@@ -40,7 +40,8 @@ struct ServedColumns {
 // (mode=tree), its columns (mode=4d).
 struct ServedStore {
   std::string name;
-  int width = 0, height = 0, light_res = 0, bits = 0;
+  int width = 0, height = 0, light_res = 0;
+  std::vector<int> code_bits;  // per level
   nlohmann::json header;
   std::string line, blocks, cells;
   std::unique_ptr<WaveletTreeReader> reader;
