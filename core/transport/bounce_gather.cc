@@ -251,11 +251,6 @@ class UvInterpolant : public HitInterpolant {
   int channel_;
 };
 
-std::vector<uint64_t>& SortKeys() {
-  thread_local std::vector<uint64_t> keys;
-  return keys;
-}
-
 }  // namespace
 
 absl::StatusOr<BounceGather> MakeBounceGather(const Scene& scene, const RayCaster& caster,
@@ -336,24 +331,18 @@ absl::StatusOr<BounceGather> MakeBounceGather(const Scene& scene, const RayCaste
                          row);
       }
     }
-    // Sources ascending and merged, equal sources added in ray order: the
-    // pairs sorted by (source, position in the row), one 64-bit key each.
-    std::vector<uint64_t>& keys = SortKeys();
-    keys.resize(row.size());
-    for (size_t k = 0; k < row.size(); ++k)
-      keys[k] = uint64_t(uint32_t(row[k].first)) << 32 | uint32_t(k);
-    std::sort(keys.begin(), keys.end());
-    std::vector<std::pair<int32_t, double>> merged;
-    merged.reserve(row.size());
-    for (uint64_t key : keys) {
-      const auto& [src, w] = row[key & 0xffffffffu];
-      if (!merged.empty() && merged.back().first == src) {
-        merged.back().second += w;
+    // Sources ascending and merged; stable, so equal sources add in ray order.
+    std::stable_sort(row.begin(), row.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    size_t out = 0;
+    for (size_t k = 0; k < row.size(); ++k) {
+      if (out > 0 && row[out - 1].first == row[k].first) {
+        row[out - 1].second += row[k].second;
       } else {
-        merged.emplace_back(src, w);
+        row[out++] = row[k];
       }
     }
-    row.swap(merged);
+    row.resize(out);
   });
 
   BounceGather g;

@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "storage/store/store_layout.h"
+#include "storage/zarr/byte_buffer.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/tiles/staging.h"
 
@@ -133,6 +134,21 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
   return absl::OkStatus();
 }
 
+// AddAuxBounces' buffers, kept by the thread from group to group (a group's
+// auxiliary columns alone are 37 MB on cubes-wall's camera: fresh pages each
+// time cost a fault per page). Every element is written before it is read.
+struct AuxScratch {
+  DefaultInitVector<float> aux, previous, next, sum, bounce;
+};
+AuxScratch& ThreadAuxScratch() {
+  thread_local AuxScratch scratch;
+  return scratch;
+}
+std::span<float> Grown(DefaultInitVector<float>& v, size_t n) {
+  if (v.size() < n) v.resize(n);
+  return std::span(v).first(n);
+}
+
 // A camera layout: Σ_{b=1..B} T_b = G_ca Σ_{b<B} G_aa^b A₀ (core/bake/
 // bake_gather.h): the bounces run over the auxiliary set, and the pixels
 // gather their sum once, so B bounces cost B − 1 products with G_aa and one
@@ -145,11 +161,14 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
                            std::vector<double>& energy, const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height, samples = plan.aux_samples;
   const int count = plan.GroupCount(group);
-  std::vector<float> aux(size_t(count) * samples);
-  if (absl::Status s = AssembleAuxColumns(plan, store, group, memory, aux); !s.ok()) return s;
   constexpr int kBlock = BounceGather::kMaxBlock;
-  std::vector<float> previous(samples * kBlock), next(previous.size()), sum(previous.size()),
-      bounce(cells * kBlock);
+  AuxScratch& scratch = ThreadAuxScratch();
+  const std::span<float> aux = Grown(scratch.aux, size_t(count) * samples),
+                         sum = Grown(scratch.sum, samples * kBlock),
+                         bounce = Grown(scratch.bounce, cells * kBlock);
+  std::span<float> previous = Grown(scratch.previous, samples * kBlock),
+                   next = Grown(scratch.next, samples * kBlock);
+  if (absl::Status s = AssembleAuxColumns(plan, store, group, memory, aux); !s.ok()) return s;
   for (int first = 0; first < count; first += kBlock) {
     if (BounceStopped(signals))
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
@@ -166,7 +185,7 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
         energy[b] += e;
       }
       for (size_t i = 0; i < samples * n; ++i) sum[i] += next[i];
-      previous.swap(next);
+      std::swap(previous, next);
     }
     gathers.gather.ApplyBlock(plan.bounces == 1 ? previous : sum, bounce, n);
     AddBlock(bounce, cells, first, n, images, nullptr);  // added, not recorded
