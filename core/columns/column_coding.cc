@@ -109,22 +109,25 @@ const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth) {
   return levels;
 }
 
-void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out) {
+void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
+                double left_out) {
   *out = CodedColumn{};
   out->energy = SumOfSquares(image.data(), image.size());
   out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
+  out->dropped_energy = left_out;
   if (out->energy == 0) {  // an empty column keeps nothing (DESIGN.md §1)
     out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
     return;
   }
-  const double budget = p.target_error * p.target_error * out->reference_energy;
+  const double budget =
+      std::max(0.0, p.target_error * p.target_error * out->reference_energy - left_out);
   if (p.column_terms == 0) {
     if (const std::optional<double> dropped = EnergyIfWithin(image, out->energy, budget)) {
       // The whole column fits its share of the budget: nothing is kept at
       // any depth, so no depth is tried (ties: the shallower; `full` records
       // its one depth).
       out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
-      out->dropped_energy = *dropped;
+      out->dropped_energy += *dropped;
       return;
     }
   }
@@ -132,6 +135,7 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
   out->depth = choice.depth;
   const std::span<const float> w = RankingWeights(p, out->depth);
   Select(p, choice.coefficients, w, budget, out);
+  out->dropped_energy += left_out;
   out->values.reserve(out->positions.size());
   for (uint32_t pos : out->positions) out->values.push_back(choice.coefficients[pos]);
   QuantizationInputs(p, w, out);

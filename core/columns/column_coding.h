@@ -49,9 +49,14 @@ struct CodedColumn {
   int min_bits = 2;  // fewest bits b with Δ = max_abs/Q_b meeting the column's own budget
 };
 
-// Codes one W×H column image (row-major, staged values). Not thread-safe
-// across threads sharing `out`; reuses per-thread scratch buffers.
-void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out);
+// Codes one W×H column image (row-major, staged values). `left_out` is energy
+// the column already lost before coding (bounced light not added,
+// worker/columns/column_bounces.h): it is spent from the column's budget,
+// so the selection drops at most budget − left_out, and is counted in
+// dropped_energy. Not thread-safe across threads sharing `out`; reuses
+// per-thread scratch buffers.
+void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
+                double left_out = 0);
 
 // The ranking weights of a depth-d layout (core/wavelets/subband.h synthesis norms);
 // empty means all ones (core/columns/nla.h), as for the orthonormal filters.

@@ -83,5 +83,29 @@ TEST(ColumnCodingTest, AColumnJustOverItsBudgetKeepsSomething) {
   }
 }
 
+// Energy a column lost before coding (bounced light left out,
+// worker/columns/column_bounces.h) is spent from its budget: the selection
+// drops no more than budget − left_out, the dropped energy counts both, and
+// a column that the budget fitted whole without it keeps something with it.
+TEST(ColumnCodingTest, EnergyLeftOutIsSpentFromTheBudget) {
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::vector<float> v = RandomColumn(rng);
+    const double energy = OrderedEnergy(v);
+    const double matrix_energy = energy * 3 / (0.1 * 0.1);  // budget: three times the energy
+    const double budget = 0.01 * matrix_energy;
+    const ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, matrix_energy);
+    CodedColumn whole, spent;
+    CodeColumn(p, v, &whole);
+    EXPECT_TRUE(whole.positions.empty());
+    const double left_out = budget - 0.5 * energy;
+    CodeColumn(p, v, &spent, left_out);
+    EXPECT_FALSE(spent.positions.empty()) << "trial " << trial;
+    EXPECT_GE(spent.dropped_energy, left_out);
+    EXPECT_LE(spent.dropped_energy, budget);
+    EXPECT_LE(spent.dropped_energy - left_out, 0.5 * energy);
+  }
+}
+
 }  // namespace
 }  // namespace wavebake

@@ -86,38 +86,44 @@ void Interleave(std::span<const float> images, size_t cells, int first, int n,
   }
 }
 
-// The image columns += the block; with `energy`, *energy += Σ v² of each
-// interleaved vector, in column order (each column's sum over its cells in
-// order: the bits of one sweep per column).
-void AddBlock(std::span<const float> block, size_t cells, int first, int n, std::span<float> images,
-              double* energy) {
-  double sums[BounceGather::kMaxBlock] = {};
-  for (size_t i0 = 0; i0 < cells; i0 += kSlice) {
-    const size_t i1 = std::min(cells, i0 + kSlice);
-    for (int k = 0; k < n; ++k) {
-      float* dst = images.data() + size_t(first + k) * cells;
-      double sum = sums[k];
-      for (size_t i = i0; i < i1; ++i) {
-        const float v = block[i * n + k];
-        if (energy) sum += double(v) * v;
-        dst[i] += v;
-      }
-      sums[k] = sum;
+// Σ v² of each of the block's n interleaved vectors, in double, each over its
+// cells in order.
+void VectorEnergies(std::span<const float> block, size_t cells, int n, std::span<double> out) {
+  std::fill_n(out.begin(), n, 0.0);
+  for (size_t i = 0; i < cells; ++i)
+    for (int k = 0; k < n; ++k) out[k] += double(block[i * n + k]) * block[i * n + k];
+}
+
+// The bounced light of columns first..first+n (interleaved in `block`) added
+// to their images, but for a column whose bounced light holds no more than
+// the truncation's threshold: that column keeps its direct light alone and
+// the energy left out is recorded for its coding.
+void AddOrLeaveOut(std::span<const float> block, size_t cells, int first, int n,
+                   std::span<float> images, const BounceTruncation& truncation) {
+  double e[BounceGather::kMaxBlock];
+  VectorEnergies(block, cells, n, e);
+  for (int k = 0; k < n; ++k) {
+    if (e[k] <= truncation.threshold) {
+      truncation.left_out[first + k] = e[k];
+      continue;
     }
+    float* dst = images.data() + size_t(first + k) * cells;
+    for (size_t i = 0; i < cells; ++i) dst[i] += block[i * n + k];
   }
-  if (energy)
-    for (int k = 0; k < n; ++k) *energy += sums[k];
 }
 
 // Mesh and lightmap layouts: T_b = G T_{b−1} over the layout's own cells,
 // BounceGather::kMaxBlock columns at a time (one pass over G's entries per
-// block; the values of the columns side by side).
+// block; the values of the columns side by side), their sum added to the
+// images (AddOrLeaveOut).
 absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int group,
                            std::span<float> images, std::vector<double>& energy,
-                           const TaskSignals& signals) {
+                           const BounceTruncation& truncation, const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height;
   const int count = plan.GroupCount(group);
-  std::vector<float> previous(cells * BounceGather::kMaxBlock), next(previous.size());
+  std::vector<float> previous(cells * BounceGather::kMaxBlock), next(previous.size()),
+      total(previous.size());
+  double e[BounceGather::kMaxBlock];
   for (int first = 0; first < count; first += BounceGather::kMaxBlock) {
     if (BounceStopped(signals))
       return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
@@ -125,11 +131,15 @@ absl::Status AddOwnBounces(const BounceGather& gather, const JobPlan& plan, int 
     for (int k = 0; k < n; ++k)
       energy[0] += BounceSumOfSquares(images.data() + size_t(first + k) * cells, cells);
     Interleave(images, cells, first, n, previous);
+    std::fill_n(total.begin(), cells * n, 0.0f);
     for (int b = 1; b <= plan.bounces; ++b) {
       gather.ApplyBlock(previous, next, n);
-      AddBlock(next, cells, first, n, images, &energy[b]);
+      VectorEnergies(next, cells, n, e);
+      for (int k = 0; k < n; ++k) energy[b] += e[k];
+      for (size_t i = 0; i < cells * n; ++i) total[i] += next[i];
       previous.swap(next);
     }
+    AddOrLeaveOut(total, cells, first, n, images, truncation);
   }
   return absl::OkStatus();
 }
@@ -158,7 +168,8 @@ std::span<float> Grown(DefaultInitVector<float>& v, size_t n) {
 absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
                            const std::filesystem::path& store, int group,
                            const MemoryStaging::Job* memory, std::span<float> images,
-                           std::vector<double>& energy, const TaskSignals& signals) {
+                           std::vector<double>& energy, const BounceTruncation& truncation,
+                           const TaskSignals& signals) {
   const size_t cells = size_t(plan.width) * plan.height, samples = plan.aux_samples;
   const int count = plan.GroupCount(group);
   constexpr int kBlock = BounceGather::kMaxBlock;
@@ -188,7 +199,7 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
       std::swap(previous, next);
     }
     gathers.gather.ApplyBlock(plan.bounces == 1 ? previous : sum, bounce, n);
-    AddBlock(bounce, cells, first, n, images, nullptr);  // added, not recorded
+    AddOrLeaveOut(bounce, cells, first, n, images, truncation);
   }
   return absl::OkStatus();
 }
@@ -196,17 +207,19 @@ absl::Status AddAuxBounces(const BakeGathers& gathers, const JobPlan& plan,
 }  // namespace
 
 absl::Status AddGroupBounces(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                             std::span<float> images, const TaskSignals& signals,
-                             const MemoryStaging::Job* memory) {
+                             std::span<float> images, const BounceTruncation& truncation,
+                             const TaskSignals& signals, const MemoryStaging::Job* memory) {
   const JobPlan& plan = ctx.plan;
   if (plan.bounces <= 0) return absl::OkStatus();
   if (!ctx.bounce)
     return absl::FailedPreconditionError("bounces: the context has no gather operator");
+  if (truncation.left_out.size() != size_t(plan.GroupCount(group)))
+    return absl::InvalidArgumentError("bounces: left_out is not one value per column of the group");
   std::vector<double> energy(plan.bounce_energies(), 0.0);
-  absl::Status s =
-      ctx.bounce->uses_aux()
-          ? AddAuxBounces(*ctx.bounce, plan, store, group, memory, images, energy, signals)
-          : AddOwnBounces(ctx.bounce->gather, plan, group, images, energy, signals);
+  absl::Status s = ctx.bounce->uses_aux() ? AddAuxBounces(*ctx.bounce, plan, store, group, memory,
+                                                          images, energy, truncation, signals)
+                                          : AddOwnBounces(ctx.bounce->gather, plan, group, images,
+                                                          energy, truncation, signals);
   if (!s.ok()) return s;
   return WriteBounceEnergy(plan, store, group, energy);
 }

@@ -139,12 +139,20 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   if (absl::Status s = AssembleColumns(plan, *staging, held.get(), group, images, &local, signals);
       !s.ok())
     return s;
-  // Diffuse interreflection, added to the column images before they are coded.
-  if (absl::Status s = AddGroupBounces(ctx, store, group, images, signals, held.get()); !s.ok())
-    return s;
-
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  // Diffuse interreflection, added to the column images before they are coded.
+  std::vector<double> left_out(plan.GroupCount(group), 0.0);
+  const bool budgeted = params.column_terms == 0 && params.scope == ErrorScope::kMatrix;
+  const BounceTruncation truncation{
+      .threshold =
+          budgeted ? kBounceShare * params.target_error * params.target_error * params.matrix_energy
+                   : 0.0,
+      .left_out = left_out};
+  if (absl::Status s = AddGroupBounces(ctx, store, group, images, truncation, signals, held.get());
+      !s.ok())
+    return s;
+
   std::optional<CellFiller> filler;  // only the uv layout fills (core/layouts/layout.h)
   if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
     filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
@@ -158,7 +166,7 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   CodedColumn coded;
   for (int c = 0; c < plan.GroupCount(group); ++c) {
     if (Stopped(signals)) return Cancelled(group);
-    CodeColumn(params, images.subspan(c * cells, cells), &coded);
+    CodeColumn(params, images.subspan(c * cells, cells), &coded, left_out[c]);
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);
   }
