@@ -67,14 +67,14 @@ bool BounceStopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
 }
 
-// Cells per pass of the two loops below: a pass's slice of the interleaved
-// block (kSlice × n floats, 32 KB at n = 64) stays in L1 while each of the n
-// columns is streamed through it, instead of one strided sweep over the whole
+// Cells per pass of Interleave: a pass's slice of the interleaved block
+// (kSlice × n floats, 32 KB at n = 64) stays in L1 while each of the n
+// columns is streamed into it, instead of one strided sweep over the whole
 // block per column.
 constexpr size_t kSlice = 128;
 
 // Columns first..first+n of `images` (each `cells` long) into `block`,
-// interleaved (block[cell·n + k] = column first+k), and back, added.
+// interleaved (block[cell·n + k] = column first+k).
 void Interleave(std::span<const float> images, size_t cells, int first, int n,
                 std::span<float> block) {
   for (size_t i0 = 0; i0 < cells; i0 += kSlice) {
