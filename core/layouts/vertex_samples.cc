@@ -1,7 +1,7 @@
 #include "core/layouts/vertex_samples.h"
 
 #include <algorithm>
-#include <map>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -19,12 +19,22 @@ namespace {
 // of the directions to their centroids, in the tangent plane) for vertices
 // on the mesh's boundary, zero for the others and where the mean vanishes.
 std::vector<Vec3> BoundaryInward(const Mesh& m) {
-  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  // Edges as sorted (lower, upper) keys: an edge used once is a boundary.
+  std::vector<uint64_t> edges;
+  edges.reserve(3 * m.triangles.size());
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) {
+      const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+      edges.push_back(uint64_t{a} << 32 | b);
+    }
+  std::sort(edges.begin(), edges.end());
   std::vector<uint8_t> boundary(m.positions.size(), 0);
-  for (const auto& [edge, count] : uses)
-    if (count == 1) boundary[edge.first] = boundary[edge.second] = 1;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary[edges[i] >> 32] = boundary[edges[i] & 0xffffffffu] = 1;
+    i = j;
+  }
   std::vector<Vec3> sum(m.positions.size(), Vec3{});
   for (const auto& t : m.triangles) {
     const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f;
