@@ -7,6 +7,9 @@
 //
 // Counters: ns per column cell (ns/cell), the kept coefficients, and the
 // share of columns whose energy fits in the budget (they keep nothing).
+// Adaptive runs twice: by_size:1 as the bake codes (the fewest-coefficient
+// depth set against depth 0 by coded size, core/columns/depth_by_size.h),
+// by_size:0 by count alone.
 #include "core/columns/column_coding.h"
 
 #include <benchmark/benchmark.h>
@@ -104,8 +107,9 @@ void BM_CodeColumn(benchmark::State& state) {
   BakeParams params = c.ctx->params;
   params.column_mode = static_cast<ColumnMode>(state.range(0));
   const JobPlan& plan = c.ctx->plan;
-  const ColumnCodingParams p =
-      MakeColumnCodingParams(params, plan.width, plan.height, c.matrix_energy);
+  ColumnCodingParams p = MakeColumnCodingParams(params, plan.width, plan.height, c.matrix_energy);
+  // by_size 1: as TRANSFORM_COLUMNS codes; 0: adaptive by count alone, the baseline.
+  p.depth_by_size = state.range(1) != 0;
   const size_t cells = size_t(plan.width) * plan.height;
   CodedColumn coded;
   uint64_t kept = 0;
@@ -127,10 +131,11 @@ void BM_CodeColumn(benchmark::State& state) {
   state.SetLabel(g_case.name);
 }
 BENCHMARK(BM_CodeColumn)
-    ->ArgName("mode")
-    ->Arg(int(ColumnMode::k2d))
-    ->Arg(int(ColumnMode::kFull))
-    ->Arg(int(ColumnMode::kAdaptive))
+    ->ArgNames({"mode", "by_size"})
+    ->Args({int(ColumnMode::k2d), 0})
+    ->Args({int(ColumnMode::kFull), 0})
+    ->Args({int(ColumnMode::kAdaptive), 0})
+    ->Args({int(ColumnMode::kAdaptive), 1})
     ->ComputeStatistics("min",
                         [](const std::vector<double>& v) {
                           return *std::min_element(v.begin(), v.end());

@@ -6,6 +6,7 @@
 #include <optional>
 #include <tuple>
 
+#include "core/columns/depth_by_size.h"
 #include "core/columns/depth_search.h"
 #include "core/columns/filled_depth.h"
 #include "core/columns/nla.h"
@@ -88,7 +89,8 @@ ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, i
           .scope = params.error_scope,
           .column_terms = params.column_terms,
           .matrix_energy = matrix_energy,
-          .level_scaling = params.level_scaling};
+          .level_scaling = params.level_scaling,
+          .bits = params.bits};
 }
 
 std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth) {
@@ -131,10 +133,19 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
       return;
     }
   }
-  const DepthChoice choice = ChooseFilledDepth(p, image, budget);
+  DepthChoice choice = ChooseFilledDepth(p, image, budget);
+  Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
+  if (choice.depth != 0 && ComparesCodedSize(p)) {
+    Selection flat = SelectForBudget(image, {}, budget);
+    if (DepthZeroCodesSmaller(p, out->reference_energy, image, flat.kept, choice.coefficients,
+                              out->positions)) {
+      choice = {0, image};
+      out->positions = std::move(flat.kept);
+      out->dropped_energy = flat.dropped_energy;
+    }
+  }
   out->depth = choice.depth;
   const std::span<const float> w = RankingWeights(p, out->depth);
-  Select(p, choice.coefficients, w, budget, out);
   out->dropped_energy += left_out;
   out->values.reserve(out->positions.size());
   for (uint32_t pos : out->positions) out->values.push_back(choice.coefficients[pos]);

@@ -23,6 +23,11 @@ struct ColumnCodingParams {
   int column_terms = 0;      // > 0: keep a fixed K per column instead of the target
   double matrix_energy = 0;  // mean column energy of the whole matrix (scope matrix)
   LevelScaling level_scaling = LevelScaling::kUniform;
+  int bits = 0;  // --bits: 0 = auto
+  // Adaptive with a target and uniform scaling: the fewest-coefficient depth
+  // is set against depth 0 by coded size (core/columns/depth_by_size.h);
+  // false: by count alone (a benchmark's baseline).
+  bool depth_by_size = true;
   // Fills the uncovered cells before a transform of depth ≥ 1 (core/columns/uncovered_fill.h);
   // null: they stay 0. Not owned.
   const CellFiller* filler = nullptr;

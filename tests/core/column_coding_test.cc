@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "core/columns/coded_size.h"
 #include "core/columns/nla.h"
 #include "core/wavelets/wavelet2d.h"
 
@@ -105,6 +106,65 @@ TEST(ColumnCodingTest, EnergyLeftOutIsSpentFromTheBudget) {
     EXPECT_LE(spent.dropped_energy, budget);
     EXPECT_LE(spent.dropped_energy - left_out, 0.5 * energy);
   }
+}
+
+// A column whose smooth part a deep transform packs into few coefficients,
+// plus sparse spikes that it smears: depending on the mix, the fewest
+// coefficients or depth 0's runs of cells code in fewer bits.
+std::vector<float> MixedColumn(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(0, 1);
+  const float smooth = u(rng), spikes = u(rng);
+  std::vector<float> v(kW * kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      v[y * kW + x] = smooth * (1 + std::sin(0.3f * x + 0.5f * y)) +
+                      (u(rng) < 0.2f ? spikes * 4 * u(rng) : 0.0f);
+  return v;
+}
+
+// Quantization codes of `values` with step Δ, as the size estimate takes them.
+std::vector<int16_t> Codes(const std::vector<float>& values, double step) {
+  std::vector<int16_t> codes;
+  for (float v : values) codes.push_back(static_cast<int16_t>(std::round(v / step)));
+  return codes;
+}
+
+// Adaptive by coded size (core/columns/depth_by_size.h), from its definition:
+// the fewest-coefficient coding (adaptive by count) against depth 0's (2d),
+// both quantized with the step Δ of (target/2)²·E_ref = Δ²·K/12, K the
+// former's count; depth 0 wins ties.
+TEST(ColumnCodingTest, AdaptiveTakesDepthZeroWhenItCodesInFewerBits) {
+  std::mt19937 rng(4);
+  int deep = 0, flat = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::vector<float> v = MixedColumn(rng);
+    const double matrix_energy = OrderedEnergy(v);
+    ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, matrix_energy);
+    p.target_error = 0.05;
+    CodedColumn by_size, by_count, two_d;
+    CodeColumn(p, v, &by_size);
+    p.depth_by_size = false;
+    CodeColumn(p, v, &by_count);
+    p.mode = ColumnMode::k2d;
+    CodeColumn(p, v, &two_d);
+    if (by_count.depth == 0) {
+      EXPECT_EQ(by_size.positions, by_count.positions) << "trial " << trial;
+      continue;
+    }
+    const double step =
+        std::sqrt(12 * 0.25 * 0.05 * 0.05 * matrix_energy / double(by_count.positions.size()));
+    const bool depth_zero = CodedBits(two_d.positions, Codes(two_d.values, step)) <=
+                            CodedBits(by_count.positions, Codes(by_count.values, step));
+    const CodedColumn& expected = depth_zero ? two_d : by_count;
+    EXPECT_EQ(by_size.depth, expected.depth) << "trial " << trial;
+    EXPECT_EQ(by_size.positions, expected.positions) << "trial " << trial;
+    EXPECT_EQ(by_size.values, expected.values) << "trial " << trial;
+    EXPECT_EQ(by_size.dropped_energy, expected.dropped_energy) << "trial " << trial;
+    (depth_zero ? flat : deep)++;
+  }
+  // Both outcomes occur, so both branches were checked.
+  EXPECT_GT(deep, 10);
+  EXPECT_GT(flat, 10);
 }
 
 }  // namespace
