@@ -7,9 +7,8 @@
 //
 // Counters: ns per column cell (ns/cell), the kept coefficients, and the
 // share of columns whose energy fits in the budget (they keep nothing).
-// Adaptive runs twice: by_size:1 as the bake codes (the fewest-coefficient
-// depth set against depth 0 by coded size, core/columns/depth_by_size.h),
-// by_size:0 by count alone.
+// Adaptive runs twice: by_size:1 as the bake codes (each group's columns
+// coded both ways, core/columns/group_codings.h), by_size:0 by count alone.
 #include "core/columns/column_coding.h"
 
 #include <benchmark/benchmark.h>
@@ -23,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "core/columns/group_codings.h"
+#include "storage/store/column_bytes.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/transform_columns.h"
@@ -107,20 +108,31 @@ void BM_CodeColumn(benchmark::State& state) {
   BakeParams params = c.ctx->params;
   params.column_mode = static_cast<ColumnMode>(state.range(0));
   const JobPlan& plan = c.ctx->plan;
-  ColumnCodingParams p = MakeColumnCodingParams(params, plan.width, plan.height, c.matrix_energy);
-  // by_size 1: as TRANSFORM_COLUMNS codes; 0: adaptive by count alone, the baseline.
-  p.depth_by_size = state.range(1) != 0;
+  const ColumnCodingParams p =
+      MakeColumnCodingParams(params, plan.width, plan.height, c.matrix_energy);
+  // by_size 1: as TRANSFORM_COLUMNS codes (both codings of each column, the
+  // choice per group); 0: the fewest coefficients alone, the baseline.
+  const bool by_size = state.range(1) != 0;
   const size_t cells = size_t(plan.width) * plan.height;
-  CodedColumn coded;
+  std::vector<ColumnCodings> codings(plan.group_size);
   uint64_t kept = 0;
   int empty = 0;
   for (auto _ : state) {
     kept = 0;
     empty = 0;
-    for (int m = 0; m < plan.columns; ++m) {
-      CodeColumn(p, std::span(c.images).subspan(m * cells, cells), &coded);
-      kept += coded.positions.size();
-      empty += coded.energy <= p.target_error * p.target_error * coded.reference_energy;
+    for (int g = 0; g < plan.groups; ++g) {
+      codings.resize(plan.GroupCount(g));
+      for (int j = 0; j < plan.GroupCount(g); ++j) {
+        const int m = plan.GroupFirst(g) + j;
+        CodeColumn(p, std::span(c.images).subspan(m * cells, cells), &codings[j].fewest, 0,
+                   by_size ? &codings[j].flat : nullptr);
+        empty += codings[j].fewest.energy <=
+                 p.target_error * p.target_error * codings[j].fewest.reference_energy;
+      }
+      const std::vector<uint8_t> use_flat = by_size ? ChooseGroupCodings(p, codings, plan.GroupFirst(g), TransportBytes)
+                                                    : std::vector<uint8_t>(codings.size(), 0);
+      for (size_t j = 0; j < codings.size(); ++j)
+        kept += (use_flat[j] ? codings[j].flat : codings[j].fewest).positions.size();
     }
   }
   state.counters["ns/cell"] = benchmark::Counter(

@@ -6,7 +6,6 @@
 #include <optional>
 #include <tuple>
 
-#include "core/columns/depth_by_size.h"
 #include "core/columns/depth_search.h"
 #include "core/columns/filled_depth.h"
 #include "core/columns/nla.h"
@@ -90,7 +89,8 @@ ColumnCodingParams MakeColumnCodingParams(const BakeParams& params, int width, i
           .column_terms = params.column_terms,
           .matrix_energy = matrix_energy,
           .level_scaling = params.level_scaling,
-          .bits = params.bits};
+          .bits = params.bits,
+          .seed = params.seed};
 }
 
 std::span<const float> RankingWeights(const ColumnCodingParams& p, int depth) {
@@ -111,9 +111,28 @@ const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth) {
   return levels;
 }
 
+namespace {
+
+// The selection in `out` (positions, dropped energy) at `depth` completed:
+// values, the energy left out before coding, quantization inputs.
+void Complete(const ColumnCodingParams& p, int depth, std::span<const float> coefficients,
+              double left_out, CodedColumn* out) {
+  out->depth = depth;
+  const std::span<const float> w = RankingWeights(p, depth);
+  out->dropped_energy += left_out;
+  out->values.reserve(out->positions.size());
+  for (uint32_t pos : out->positions) out->values.push_back(coefficients[pos]);
+  QuantizationInputs(p, w, out);
+  out->min_bits = MinBitsFor(out->max_abs, out->step_unit,
+                             QuantizationBudget(p.target_error, out->reference_energy));
+}
+
+}  // namespace
+
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
-                double left_out) {
+                double left_out, CodedColumn* flat) {
   *out = CodedColumn{};
+  if (flat != nullptr) *flat = CodedColumn{.depth = -1};
   out->energy = SumOfSquares(image.data(), image.size());
   out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
   out->dropped_energy = left_out;
@@ -133,25 +152,18 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
       return;
     }
   }
-  DepthChoice choice = ChooseFilledDepth(p, image, budget);
+  const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
-  if (choice.depth != 0 && ComparesCodedSize(p)) {
-    Selection flat = SelectForBudget(image, {}, budget);
-    if (DepthZeroCodesSmaller(p, out->reference_energy, image, flat.kept, choice.coefficients,
-                              out->positions)) {
-      choice = {0, image};
-      out->positions = std::move(flat.kept);
-      out->dropped_energy = flat.dropped_energy;
-    }
+  if (flat != nullptr && choice.depth != 0) {
+    // Depth 0 keeps cells, as `2d` does: no fill, no weights.
+    Selection cells = SelectForBudget(image, {}, budget);
+    flat->energy = out->energy;
+    flat->reference_energy = out->reference_energy;
+    flat->positions = std::move(cells.kept);
+    flat->dropped_energy = cells.dropped_energy;
+    Complete(p, 0, image, left_out, flat);
   }
-  out->depth = choice.depth;
-  const std::span<const float> w = RankingWeights(p, out->depth);
-  out->dropped_energy += left_out;
-  out->values.reserve(out->positions.size());
-  for (uint32_t pos : out->positions) out->values.push_back(choice.coefficients[pos]);
-  QuantizationInputs(p, w, out);
-  out->min_bits = MinBitsFor(out->max_abs, out->step_unit,
-                             QuantizationBudget(p.target_error, out->reference_energy));
+  Complete(p, choice.depth, choice.coefficients, left_out, out);
 }
 
 double QuantizationBudget(double target_error, double reference_energy) {

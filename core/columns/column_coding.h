@@ -23,11 +23,8 @@ struct ColumnCodingParams {
   int column_terms = 0;      // > 0: keep a fixed K per column instead of the target
   double matrix_energy = 0;  // mean column energy of the whole matrix (scope matrix)
   LevelScaling level_scaling = LevelScaling::kUniform;
-  int bits = 0;  // --bits: 0 = auto
-  // Adaptive with a target and uniform scaling: the fewest-coefficient depth
-  // is set against depth 0 by coded size (core/columns/depth_by_size.h);
-  // false: by count alone (a benchmark's baseline).
-  bool depth_by_size = true;
+  int bits = 0;       // --bits: 0 = auto
+  uint64_t seed = 1;  // --seed: the quantizer's dither (core/columns/quantizer.h)
   // Fills the uncovered cells before a transform of depth ≥ 1 (core/columns/uncovered_fill.h);
   // null: they stay 0. Not owned.
   const CellFiller* filler = nullptr;
@@ -60,8 +57,11 @@ struct CodedColumn {
 // so the selection drops at most budget − left_out, and is counted in
 // dropped_energy. Not thread-safe across threads sharing `out`; reuses
 // per-thread scratch buffers.
+// With `flat`, a column whose coding is not at depth 0 also gets its depth-0
+// coding there (the same budget; `2d`'s coding of it), for adaptive by size
+// (core/columns/group_codings.h); otherwise flat->depth is −1.
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
-                double left_out = 0);
+                double left_out = 0, CodedColumn* flat = nullptr);
 
 // The ranking weights of a depth-d layout (core/wavelets/subband.h synthesis norms);
 // empty means all ones (core/columns/nla.h), as for the orthonormal filters.

@@ -12,7 +12,6 @@
 #include <random>
 #include <vector>
 
-#include "core/columns/coded_size.h"
 #include "core/columns/nla.h"
 #include "core/wavelets/wavelet2d.h"
 
@@ -109,8 +108,7 @@ TEST(ColumnCodingTest, EnergyLeftOutIsSpentFromTheBudget) {
 }
 
 // A column whose smooth part a deep transform packs into few coefficients,
-// plus sparse spikes that it smears: depending on the mix, the fewest
-// coefficients or depth 0's runs of cells code in fewer bits.
+// plus sparse spikes that it smears.
 std::vector<float> MixedColumn(std::mt19937& rng) {
   std::uniform_real_distribution<float> u(0, 1);
   const float smooth = u(rng), spikes = u(rng);
@@ -122,49 +120,41 @@ std::vector<float> MixedColumn(std::mt19937& rng) {
   return v;
 }
 
-// Quantization codes of `values` with step Δ, as the size estimate takes them.
-std::vector<int16_t> Codes(const std::vector<float>& values, double step) {
-  std::vector<int16_t> codes;
-  for (float v : values) codes.push_back(static_cast<int16_t>(std::round(v / step)));
-  return codes;
+void ExpectSameCoding(const CodedColumn& a, const CodedColumn& b, int trial) {
+  EXPECT_EQ(a.depth, b.depth) << "trial " << trial;
+  EXPECT_EQ(a.positions, b.positions) << "trial " << trial;
+  EXPECT_EQ(a.values, b.values) << "trial " << trial;
+  EXPECT_EQ(a.dropped_energy, b.dropped_energy) << "trial " << trial;
+  EXPECT_EQ(a.max_abs, b.max_abs) << "trial " << trial;
+  EXPECT_EQ(a.step_unit, b.step_unit) << "trial " << trial;
+  EXPECT_EQ(a.min_bits, b.min_bits) << "trial " << trial;
 }
 
-// Adaptive by coded size (core/columns/depth_by_size.h), from its definition:
-// the fewest-coefficient coding (adaptive by count) against depth 0's (2d),
-// both quantized with the step Δ of (target/2)²·E_ref = Δ²·K/12, K the
-// former's count; depth 0 wins ties.
-TEST(ColumnCodingTest, AdaptiveTakesDepthZeroWhenItCodesInFewerBits) {
+// The depth-0 alternative (adaptive by size, core/columns/group_codings.h)
+// is exactly `2d`'s coding of the column, and asking for it leaves the
+// fewest-coefficient coding as it was; a column already at depth 0 has none.
+TEST(ColumnCodingTest, TheDepthZeroAlternativeIsTheTwoDCoding) {
   std::mt19937 rng(4);
-  int deep = 0, flat = 0;
-  for (int trial = 0; trial < 200; ++trial) {
+  int deep = 0;
+  for (int trial = 0; trial < 100; ++trial) {
     const std::vector<float> v = MixedColumn(rng);
-    const double matrix_energy = OrderedEnergy(v);
-    ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, matrix_energy);
+    ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, OrderedEnergy(v));
     p.target_error = 0.05;
-    CodedColumn by_size, by_count, two_d;
-    CodeColumn(p, v, &by_size);
-    p.depth_by_size = false;
-    CodeColumn(p, v, &by_count);
-    p.mode = ColumnMode::k2d;
-    CodeColumn(p, v, &two_d);
-    if (by_count.depth == 0) {
-      EXPECT_EQ(by_size.positions, by_count.positions) << "trial " << trial;
+    CodedColumn fewest, flat, alone, two_d;
+    CodeColumn(p, v, &fewest, 0.0, &flat);
+    CodeColumn(p, v, &alone);
+    ExpectSameCoding(fewest, alone, trial);
+    if (fewest.depth == 0) {
+      EXPECT_EQ(flat.depth, -1) << "trial " << trial;
       continue;
     }
-    const double step =
-        std::sqrt(12 * 0.25 * 0.05 * 0.05 * matrix_energy / double(by_count.positions.size()));
-    const bool depth_zero = CodedBits(two_d.positions, Codes(two_d.values, step)) <=
-                            CodedBits(by_count.positions, Codes(by_count.values, step));
-    const CodedColumn& expected = depth_zero ? two_d : by_count;
-    EXPECT_EQ(by_size.depth, expected.depth) << "trial " << trial;
-    EXPECT_EQ(by_size.positions, expected.positions) << "trial " << trial;
-    EXPECT_EQ(by_size.values, expected.values) << "trial " << trial;
-    EXPECT_EQ(by_size.dropped_energy, expected.dropped_energy) << "trial " << trial;
-    (depth_zero ? flat : deep)++;
+    ++deep;
+    p.mode = ColumnMode::k2d;
+    CodeColumn(p, v, &two_d);
+    ExpectSameCoding(flat, two_d, trial);
+    EXPECT_GT(flat.positions.size(), fewest.positions.size()) << "trial " << trial;
   }
-  // Both outcomes occur, so both branches were checked.
   EXPECT_GT(deep, 10);
-  EXPECT_GT(flat, 10);
 }
 
 }  // namespace

@@ -169,7 +169,7 @@ TEST(FailureCompressionTest, FullDepthInflatesARoughLayoutAndAdaptiveDoesNot) {
   for (int m = 0; m < flat.columns; ++m) {
     // Per column: adaptive tries depth 0 (= 2d) and the maximum (= full),
     // keeping the fewest coefficients or depth 0's coding when its bits are
-    // fewer (core/columns/depth_by_size.h).
+    // fewer (core/columns/group_codings.h).
     if (adaptive.depth[m] == 0) {
       ASSERT_EQ(Kept(adaptive, m), Kept(flat, m)) << "column " << m;
     } else {

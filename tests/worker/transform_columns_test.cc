@@ -76,7 +76,7 @@ BakeParams WithMode(BakeParams p, ColumnMode mode) {
 }
 
 // Adaptive keeps the coding with the fewest coefficients over every depth,
-// unless depth 0's codes in fewer bits (core/columns/depth_by_size.h): a
+// unless depth 0's codes in fewer bits (core/columns/group_codings.h): a
 // column is then coded exactly as 2d codes it.
 TEST(TransformColumnsTest, AdaptiveKeepsNoMoreThanTwoDOrFullOrCodesAsTwoD) {
   for (ErrorScope scope : {ErrorScope::kMatrix, ErrorScope::kColumn}) {

@@ -7,6 +7,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
+#include "core/columns/group_codings.h"
+#include "storage/store/column_bytes.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/column_bounces.h"
@@ -163,10 +165,21 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   result.group = group;
   result.first_column = plan.GroupFirst(group);
   result.matrix_energy = *matrix_energy;
-  CodedColumn coded;
+  // Each column's fewest-coefficient coding and, for adaptive by size, its
+  // depth-0 one; the group keeps the choice its arrays code smallest in
+  // (core/columns/group_codings.h).
+  const bool by_size = ComparesCodedSize(params);
+  std::vector<ColumnCodings> codings(plan.GroupCount(group));
   for (int c = 0; c < plan.GroupCount(group); ++c) {
     if (Stopped(signals)) return Cancelled(group);
-    CodeColumn(params, images.subspan(c * cells, cells), &coded, left_out[c]);
+    CodeColumn(params, images.subspan(c * cells, cells), &codings[c].fewest, left_out[c],
+               by_size ? &codings[c].flat : nullptr);
+  }
+  const std::vector<uint8_t> use_flat = by_size
+                                            ? ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes)
+                                            : std::vector<uint8_t>(codings.size(), 0);
+  for (size_t c = 0; c < codings.size(); ++c) {
+    const CodedColumn& coded = use_flat[c] ? codings[c].flat : codings[c].fewest;
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);
   }
