@@ -5,12 +5,9 @@
 // transport/indices), and the little-endian bytes of the int16 codes
 // (transport/data), each set of bytes costing n·H of its own histogram.
 //
-// It ranks two codings of a column as the store's chunks do: choosing each
-// column of the bunny (hilbert 64², N = 32) between its depth-0 and its
-// fewest-coefficient coding by this estimate gave 5.773 MB at target 0.003
-// (by count 5.980, all at depth 0 5.790), 3.696 MB at 0.01 (3.769, 3.762) and
-// 1.766 MB at 0.03 (1.768, 2.063), within 0.1 % of choosing by compressing
-// each column alone with zstd, at a fraction of its cost.
+// Adaptive by coded size (core/columns/group_codings.h) uses it to pick, per
+// column, the cheaper of two codings for one of the choices it measures;
+// the group's choice is then made on real compressed bytes.
 #include <cstdint>
 #include <span>
 

@@ -10,25 +10,25 @@ namespace wavebake {
 namespace {
 
 // With --bits auto in matrix scope the step is one for the whole matrix,
-// Δ² = 12·(target/2)²·E_ref / K̄: each coefficient a column adds makes it
+// Δ² = 12·(target/2)²·E_ref / K̄: each coefficient a choice adds makes it
 // finer for every kept coefficient of the matrix. Codes of ~log2(|v|/Δ) bits
 // then grow by ½·log2(1 + 1/ΣK) each, ΣK·½·log2(1 + 1/ΣK) ≈ 1/(2 ln 2) bits
-// in all per coefficient added, which a column's own estimate must count.
+// in all per coefficient added. Charging that beside codes quantized at the
+// fewest-count step prices every choice without quantizing it again.
 constexpr double kSharedStepBits = 0.72134752044448170;  // 1/(2 ln 2)
 
 // Which coding of each column a choice keeps: 1 the depth-0 one.
 using Mask = std::vector<uint8_t>;
 
-const CodedColumn& Kept(const ColumnCodings& c, uint8_t flat) { return flat ? c.flat : c.fewest; }
+// A column's two codings quantized as FINALIZE would (dither included:
+// without it, runs of equal values at depth 0 look like repeats that the
+// dithered store does not have).
+struct ColumnCodes {
+  std::vector<int16_t> fewest, flat;
+};
 
-double MeanCount(std::span<const ColumnCodings> group, const Mask& mask) {
-  double sum = 0;
-  for (size_t c = 0; c < group.size(); ++c) sum += double(Kept(group[c], mask[c]).positions.size());
-  return group.empty() ? 0 : sum / double(group.size());
-}
-
-// FINALIZE's step for `coding` (core/columns/quantization_steps.h), `mean_count`
-// standing for the matrix's mean count K̄.
+// FINALIZE's step for `coding` (core/columns/quantization_steps.h), with the
+// matrix's mean count K̄ estimated by the group's under fewest coefficients.
 double StepFor(const ColumnCodingParams& p, const CodedColumn& coding, double mean_count) {
   if (p.bits > 0) return coding.max_abs / MaxQuantCode(p.bits);
   const double k = p.scope == ErrorScope::kColumn ? double(coding.positions.size()) : mean_count;
@@ -36,49 +36,45 @@ double StepFor(const ColumnCodingParams& p, const CodedColumn& coding, double me
                : 0.0;
 }
 
-// The codes FINALIZE would write for `coding` with this step, dither
-// included: without it, runs of equal values (a lit floor at depth 0) code
-// as repeats that the dithered store does not have.
-void AppendCodes(const ColumnCodingParams& p, const CodedColumn& coding, double step,
-                 uint64_t column, std::vector<int16_t>& codes) {
+std::vector<int16_t> Codes(const ColumnCodingParams& p, const CodedColumn& coding,
+                           double mean_count, uint64_t column) {
   thread_local std::vector<uint8_t> levels;  // uniform scaling: unused
   levels.assign(coding.values.size(), 0);
-  const size_t at = codes.size();
-  codes.resize(at + coding.values.size());
-  const int max_code = p.bits > 0 ? MaxQuantCode(p.bits) : kMaxStoredCode;
-  QuantizeInto(coding.values, coding.positions, levels, LevelScaling::kUniform, float(step),
-               max_code, p.seed, column, std::span(codes).subspan(at));
+  std::vector<int16_t> codes(coding.values.size());
+  QuantizeInto(coding.values, coding.positions, levels, LevelScaling::kUniform,
+               float(StepFor(p, coding, mean_count)),
+               p.bits > 0 ? MaxQuantCode(p.bits) : kMaxStoredCode, p.seed, column, codes);
+  return codes;
 }
 
-// The bytes of the group's arrays under `mask`, each column quantized with
-// the step that the mask's own mean count gives.
-size_t BytesOf(const ColumnCodingParams& p, std::span<const ColumnCodings> group, int first_column,
-               const Mask& mask, CodedBytesFn bytes) {
-  const double mean_count = MeanCount(group, mask);
+double SharedStepBits(const ColumnCodingParams& p, double added) {
+  return p.bits == 0 && p.scope == ErrorScope::kMatrix ? kSharedStepBits * added : 0.0;
+}
+
+// Every kSampleStride-th column of the matrix is compressed: the masks are
+// compared on the same columns, and compressing all of them cost as much
+// as coding them.
+constexpr int kSampleStride = 4;
+
+// The bytes of the sampled columns' arrays under `mask`, plus what the
+// mask's extra coefficients cost the shared step. Columns with one coding
+// only are the same under every mask and are left out.
+double BytesOf(const ColumnCodingParams& p, std::span<const ColumnCodings> group, int first_column,
+               std::span<const ColumnCodes> codes, const Mask& mask, CodedBytesFn bytes) {
   std::vector<uint32_t> positions;
-  std::vector<int16_t> codes;
+  std::vector<int16_t> all_codes;
+  double added = 0;
   for (size_t c = 0; c < group.size(); ++c) {
-    const CodedColumn& coding = Kept(group[c], mask[c]);
+    if (group[c].flat.depth < 0) continue;
+    if (mask[c])
+      added += double(group[c].flat.positions.size()) - double(group[c].fewest.positions.size());
+    if ((first_column + c) % kSampleStride != 0) continue;
+    const CodedColumn& coding = mask[c] ? group[c].flat : group[c].fewest;
+    const std::vector<int16_t>& q = mask[c] ? codes[c].flat : codes[c].fewest;
     positions.insert(positions.end(), coding.positions.begin(), coding.positions.end());
-    AppendCodes(p, coding, StepFor(p, coding, mean_count), first_column + c, codes);
+    all_codes.insert(all_codes.end(), q.begin(), q.end());
   }
-  return bytes(positions, codes);
-}
-
-// A column's own estimate (core/columns/coded_size.h) at the fewest-count
-// step, plus the shared step's cost of its extra coefficients.
-bool FlatLooksCheaper(const ColumnCodingParams& p, const ColumnCodings& column, uint64_t index,
-                      double mean_count) {
-  thread_local std::vector<int16_t> codes;
-  auto bits = [&](const CodedColumn& coding) {
-    codes.clear();
-    AppendCodes(p, coding, StepFor(p, coding, mean_count), index, codes);
-    return CodedBits(coding.positions, codes);
-  };
-  const bool shared = p.bits == 0 && p.scope == ErrorScope::kMatrix;
-  const double added =
-      double(column.flat.positions.size()) - double(column.fewest.positions.size());
-  return bits(column.flat) + (shared ? kSharedStepBits * added : 0.0) <= bits(column.fewest);
+  return kSampleStride * double(bytes(positions, all_codes)) + SharedStepBits(p, added) / 8;
 }
 
 }  // namespace
@@ -93,18 +89,28 @@ std::vector<uint8_t> ChooseGroupCodings(const ColumnCodingParams& p,
                                         CodedBytesFn bytes) {
   const size_t n = group.size();
   Mask fewest(n, 0), flat(n, 0), cheaper(n, 0);
-  const double mean_count = MeanCount(group, fewest);
-  for (size_t c = 0; c < n; ++c) {
-    if (group[c].flat.depth < 0) continue;
-    flat[c] = 1;
-    cheaper[c] = FlatLooksCheaper(p, group[c], first_column + c, mean_count);
-  }
+  for (size_t c = 0; c < n; ++c) flat[c] = group[c].flat.depth >= 0;
   if (flat == fewest) return fewest;  // no column has another coding
+
+  double mean_count = 0;
+  for (const ColumnCodings& c : group) mean_count += double(c.fewest.positions.size());
+  mean_count /= double(n);
+  std::vector<ColumnCodes> codes(n);
+  for (size_t c = 0; c < n; ++c) {
+    if (!flat[c]) continue;
+    codes[c].fewest = Codes(p, group[c].fewest, mean_count, first_column + c);
+    codes[c].flat = Codes(p, group[c].flat, mean_count, first_column + c);
+    // Each column's own estimate (core/columns/coded_size.h).
+    const double added =
+        double(group[c].flat.positions.size()) - double(group[c].fewest.positions.size());
+    cheaper[c] = CodedBits(group[c].flat.positions, codes[c].flat) + SharedStepBits(p, added) <=
+                 CodedBits(group[c].fewest.positions, codes[c].fewest);
+  }
   const Mask* best = &fewest;
-  size_t best_bytes = BytesOf(p, group, first_column, fewest, bytes);
+  double best_bytes = BytesOf(p, group, first_column, codes, fewest, bytes);
   for (const Mask* choice : {&cheaper, &flat}) {
     if (*choice == *best) continue;
-    const size_t b = BytesOf(p, group, first_column, *choice, bytes);
+    const double b = BytesOf(p, group, first_column, codes, *choice, bytes);
     if (b < best_bytes) best = choice, best_bytes = b;
   }
   return *best;
