@@ -113,6 +113,13 @@ const std::vector<uint8_t>& SubbandLevels(int width, int height, int depth) {
 
 namespace {
 
+// A depth-0 alternative keeping more than twice the coefficients is not
+// coded: a depth-0 coefficient would have to cost under half the bits of a
+// deep one, and on the bunny, spot and cubes-wall no column chosen at depth 0
+// by size kept more than 1.8 times its fewest count. On camera scenes, where
+// depth 0 keeps 3–4 times as many, this skips nearly every alternative.
+constexpr size_t kFlatCountLimit = 2;
+
 // The selection in `out` (positions, dropped energy) at `depth` completed:
 // values, the energy left out before coding, quantization inputs.
 void Complete(const ColumnCodingParams& p, int depth, std::span<const float> coefficients,
@@ -154,7 +161,8 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
   }
   const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
-  if (flat != nullptr && choice.depth != 0) {
+  if (flat != nullptr && choice.depth != 0 &&
+      CountForBudget(image, {}, budget) <= kFlatCountLimit * out->positions.size()) {
     // Depth 0 keeps cells, as `2d` does: no fill, no weights.
     Selection cells = SelectForBudget(image, {}, budget);
     flat->energy = out->energy;

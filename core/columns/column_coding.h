@@ -59,7 +59,8 @@ struct CodedColumn {
 // per-thread scratch buffers.
 // With `flat`, a column whose coding is not at depth 0 also gets its depth-0
 // coding there (the same budget; `2d`'s coding of it), for adaptive by size
-// (core/columns/group_codings.h); otherwise flat->depth is −1.
+// (core/columns/group_codings.h), unless it keeps over twice the
+// coefficients; otherwise flat->depth is −1.
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
                 double left_out = 0, CodedColumn* flat = nullptr);
 

@@ -88,16 +88,13 @@ std::vector<uint8_t> ChooseGroupCodings(const ColumnCodingParams& p,
                                         std::span<const ColumnCodings> group, int first_column,
                                         CodedBytesFn bytes) {
   const size_t n = group.size();
-  Mask fewest(n, 0), flat(n, 0), cheaper(n, 0);
-  for (size_t c = 0; c < n; ++c) flat[c] = group[c].flat.depth >= 0;
-  if (flat == fewest) return fewest;  // no column has another coding
-
+  Mask fewest(n, 0), cheaper(n, 0);
   double mean_count = 0;
   for (const ColumnCodings& c : group) mean_count += double(c.fewest.positions.size());
-  mean_count /= double(n);
+  mean_count /= double(std::max<size_t>(n, 1));
   std::vector<ColumnCodes> codes(n);
   for (size_t c = 0; c < n; ++c) {
-    if (!flat[c]) continue;
+    if (group[c].flat.depth < 0) continue;
     codes[c].fewest = Codes(p, group[c].fewest, mean_count, first_column + c);
     codes[c].flat = Codes(p, group[c].flat, mean_count, first_column + c);
     // Each column's own estimate (core/columns/coded_size.h).
@@ -106,14 +103,11 @@ std::vector<uint8_t> ChooseGroupCodings(const ColumnCodingParams& p,
     cheaper[c] = CodedBits(group[c].flat.positions, codes[c].flat) + SharedStepBits(p, added) <=
                  CodedBits(group[c].fewest.positions, codes[c].fewest);
   }
-  const Mask* best = &fewest;
-  double best_bytes = BytesOf(p, group, first_column, codes, fewest, bytes);
-  for (const Mask* choice : {&cheaper, &flat}) {
-    if (*choice == *best) continue;
-    const double b = BytesOf(p, group, first_column, codes, *choice, bytes);
-    if (b < best_bytes) best = choice, best_bytes = b;
-  }
-  return *best;
+  if (cheaper == fewest) return fewest;
+  return BytesOf(p, group, first_column, codes, cheaper, bytes) <
+                 BytesOf(p, group, first_column, codes, fewest, bytes)
+             ? cheaper
+             : fewest;
 }
 
 }  // namespace wavebake

@@ -8,15 +8,14 @@
 // N = 32: 6.02 against 5.83 MB at target 0.003).
 //
 // So each column of a group also has its depth-0 coding (CodeColumn's
-// `flat`), and the group keeps whichever of three choices its arrays take
-// the fewest bytes for: every column's fewest-coefficient coding (ties go
-// here), each column's cheaper one by the order-0 estimate of
-// core/columns/coded_size.h, or every column's depth-0 coding. The bytes are
-// the store's own codecs on the group's positions and codes (`bytes`,
-// supplied by storage): a per-column estimate alone ranks codings well on
-// some scenes and badly on others (spot, N = 64: +1 % against by count),
-// while the group choice cannot be larger than by count, nor than depth 0,
-// by its own measure.
+// `flat`), taken where the order-0 estimate of core/columns/coded_size.h
+// says it codes smaller, and the group keeps these choices only if its
+// arrays, compressed with the store's own codecs (`bytes`, supplied by
+// storage), come out smaller than with every column's fewest-coefficient
+// coding (ties: the fewest). The per-column estimate alone made spot
+// (N = 64) 1 % larger than by count; a third choice, every column at depth
+// 0, won by the group's measure on cubes-wall (camera 64², N = 32) and made
+// the store larger, so it is not offered.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,9 +42,9 @@ bool ComparesCodedSize(const ColumnCodingParams& p);
 // …), 1 to keep `flat`, 0 to keep `fewest`. Values are quantized as FINALIZE
 // would, dither included, with its step as estimated for the group
 // (core/columns/quantization_steps.h): with --bits auto the Δ of
-// K̄·Δ²/12 = (target/2)²·E_ref, K̄ the group's mean count under the choice
-// measured (scope column: the coding's own count); with --bits B each
-// coding's max over Q_B.
+// K̄·Δ²/12 = (target/2)²·E_ref, K̄ the group's mean fewest count (scope
+// column: the coding's own count), each added coefficient charged the bits
+// it costs the shared step; with --bits B each coding's max over Q_B.
 std::vector<uint8_t> ChooseGroupCodings(const ColumnCodingParams& p,
                                         std::span<const ColumnCodings> group, int first_column,
                                         CodedBytesFn bytes);
