@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "core/columns/group_codings.h"
-#include "storage/store/column_bytes.h"
+#include "storage/store/transport_bytes.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/transform_columns.h"

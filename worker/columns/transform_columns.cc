@@ -8,7 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
 #include "core/columns/group_codings.h"
-#include "storage/store/column_bytes.h"
+#include "storage/store/transport_bytes.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/column_bounces.h"

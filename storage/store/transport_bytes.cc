@@ -1,4 +1,4 @@
-#include "storage/store/column_bytes.h"
+#include "storage/store/transport_bytes.h"
 
 #include <cstring>
 
