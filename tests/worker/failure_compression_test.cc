@@ -6,7 +6,9 @@
 //     roughly neighbours on the surface — the full-depth column transform
 //     keeps MORE coefficients than the 2D (pixel-domain) columns: a deep
 //     transform smears isolated values over every scale (4D paper §4.4). The
-//     adaptive mode, trying every depth, never keeps more than either.
+//     adaptive mode, trying every depth, keeps no more than either per column
+//     (or exactly 2d's coding, when that codes smaller), and its store is
+//     never larger than either in bytes.
 //   * Too few bits: the quantization error follows the subtractive-dither law
 //     Σ n_c (scale_c/Q_b)²/12 (core/columns/quantizer.h) and so grows ~2× per bit
 //     dropped, past the target well before 4 bits; --bits auto stays within
