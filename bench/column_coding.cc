@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "core/columns/group_codings.h"
-#include "storage/store/transport_bytes.h"
 #include "storage/store/store_layout.h"
+#include "storage/store/transport_bytes.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/transform_columns.h"
 #include "worker/tiles/bake_context.h"
@@ -129,8 +129,9 @@ void BM_CodeColumn(benchmark::State& state) {
         empty += codings[j].fewest.energy <=
                  p.target_error * p.target_error * codings[j].fewest.reference_energy;
       }
-      const std::vector<uint8_t> use_flat = by_size ? ChooseGroupCodings(p, codings, plan.GroupFirst(g), TransportBytes)
-                                                    : std::vector<uint8_t>(codings.size(), 0);
+      const std::vector<uint8_t> use_flat =
+          by_size ? ChooseGroupCodings(p, codings, plan.GroupFirst(g), TransportBytes)
+                  : std::vector<uint8_t>(codings.size(), 0);
       for (size_t j = 0; j < codings.size(); ++j)
         kept += (use_flat[j] ? codings[j].flat : codings[j].fewest).positions.size();
     }

@@ -8,8 +8,8 @@
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
 #include "core/columns/group_codings.h"
-#include "storage/store/transport_bytes.h"
 #include "storage/store/store_layout.h"
+#include "storage/store/transport_bytes.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/column_bounces.h"
 #include "worker/columns/group_result.h"
@@ -175,9 +175,9 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
     CodeColumn(params, images.subspan(c * cells, cells), &codings[c].fewest, left_out[c],
                by_size ? &codings[c].flat : nullptr);
   }
-  const std::vector<uint8_t> use_flat = by_size
-                                            ? ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes)
-                                            : std::vector<uint8_t>(codings.size(), 0);
+  const std::vector<uint8_t> use_flat =
+      by_size ? ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes)
+              : std::vector<uint8_t>(codings.size(), 0);
   for (size_t c = 0; c < codings.size(); ++c) {
     const CodedColumn& coded = use_flat[c] ? codings[c].flat : codings[c].fewest;
     AppendColumn(coded, &result);
