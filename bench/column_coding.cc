@@ -129,9 +129,9 @@ void BM_CodeColumn(benchmark::State& state) {
         empty += codings[j].fewest.energy <=
                  p.target_error * p.target_error * codings[j].fewest.reference_energy;
       }
+      // Without depth-0 codings (by_size:0) the choice is fewest everywhere.
       const std::vector<uint8_t> use_flat =
-          by_size ? ChooseGroupCodings(p, codings, plan.GroupFirst(g), TransportBytes)
-                  : std::vector<uint8_t>(codings.size(), 0);
+          ChooseGroupCodings(p, codings, plan.GroupFirst(g), TransportBytes);
       for (size_t j = 0; j < codings.size(); ++j)
         kept += (use_flat[j] ? codings[j].flat : codings[j].fewest).positions.size();
     }

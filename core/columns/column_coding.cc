@@ -162,7 +162,7 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
   }
   const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
-  if (flat != nullptr && choice.depth != 0 &&
+  if (flat != nullptr && choice.depth != 0 && ComparesCodedSize(p) &&
       CountForBudget(image, {}, budget) <= kFlatCountLimit * out->positions.size()) {
     // Depth 0 keeps cells, as `2d` does: no fill, no weights.
     Selection cells = SelectForBudget(image, {}, budget);
@@ -173,6 +173,11 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     Complete(p, 0, image, left_out, flat);
   }
   Complete(p, choice.depth, choice.coefficients, left_out, out);
+}
+
+bool ComparesCodedSize(const ColumnCodingParams& p) {
+  return p.mode == ColumnMode::kAdaptive && p.column_terms == 0 &&
+         p.level_scaling == LevelScaling::kUniform;
 }
 
 double QuantizationBudget(double target_error, double reference_energy) {

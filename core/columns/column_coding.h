@@ -57,12 +57,16 @@ struct CodedColumn {
 // so the selection drops at most budget − left_out, and is counted in
 // dropped_energy. Not thread-safe across threads sharing `out`; reuses
 // per-thread scratch buffers.
-// With `flat`, a column whose coding is not at depth 0 also gets its depth-0
-// coding there (the same budget; `2d`'s coding of it), for adaptive by size
-// (core/columns/group_codings.h), unless it keeps over twice the
-// coefficients; otherwise flat->depth is −1.
+// With `flat` and ComparesCodedSize(p), a column whose coding is not at
+// depth 0 also gets its depth-0 coding there (the same budget; `2d`'s coding
+// of it), for adaptive by size (core/columns/group_codings.h), unless it
+// keeps over twice the coefficients; otherwise flat->depth is −1.
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
                 double left_out = 0, CodedColumn* flat = nullptr);
+
+// Whether a job compares codings by size: adaptive with a target and
+// --level-scaling uniform (a step per level would need its own estimate).
+bool ComparesCodedSize(const ColumnCodingParams& p);
 
 // The ranking weights of a depth-d layout (core/wavelets/subband.h synthesis norms);
 // empty means all ones (core/columns/nla.h), as for the orthonormal filters.

@@ -79,11 +79,6 @@ double BytesOf(const ColumnCodingParams& p, std::span<const ColumnCodings> group
 
 }  // namespace
 
-bool ComparesCodedSize(const ColumnCodingParams& p) {
-  return p.mode == ColumnMode::kAdaptive && p.column_terms == 0 &&
-         p.level_scaling == LevelScaling::kUniform;
-}
-
 std::vector<uint8_t> ChooseGroupCodings(const ColumnCodingParams& p,
                                         std::span<const ColumnCodings> group, int first_column,
                                         CodedBytesFn bytes) {

@@ -30,13 +30,9 @@ using CodedBytesFn = size_t (*)(std::span<const uint32_t> positions,
                                 std::span<const int16_t> codes);
 
 struct ColumnCodings {
-  CodedColumn fewest;  // CodeColumn's coding (DESIGN.md §1's adaptive)
-  CodedColumn flat;    // its depth-0 coding; depth < 0: none (the same as `fewest`)
+  CodedColumn fewest;             // CodeColumn's coding (DESIGN.md §1's adaptive)
+  CodedColumn flat{.depth = -1};  // its depth-0 coding; depth < 0: none
 };
-
-// Whether a job compares codings by size: adaptive with a target and
-// --level-scaling uniform (a step per level would need its own estimate).
-bool ComparesCodedSize(const ColumnCodingParams& p);
 
 // Per column of the group (matrix columns first_column, first_column + 1,
 // …), 1 to keep `flat`, 0 to keep `fewest`. Values are quantized as FINALIZE

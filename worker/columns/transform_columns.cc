@@ -168,16 +168,14 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   // Each column's fewest-coefficient coding and, for adaptive by size, its
   // depth-0 one; the group keeps the choice its arrays code smallest in
   // (core/columns/group_codings.h).
-  const bool by_size = ComparesCodedSize(params);
   std::vector<ColumnCodings> codings(plan.GroupCount(group));
   for (int c = 0; c < plan.GroupCount(group); ++c) {
     if (Stopped(signals)) return Cancelled(group);
     CodeColumn(params, images.subspan(c * cells, cells), &codings[c].fewest, left_out[c],
-               by_size ? &codings[c].flat : nullptr);
+               &codings[c].flat);
   }
   const std::vector<uint8_t> use_flat =
-      by_size ? ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes)
-              : std::vector<uint8_t>(codings.size(), 0);
+      ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes);
   for (size_t c = 0; c < codings.size(); ++c) {
     const CodedColumn& coded = use_flat[c] ? codings[c].flat : codings[c].fewest;
     AppendColumn(coded, &result);
