@@ -140,7 +140,7 @@ void Complete(const ColumnCodingParams& p, int depth, std::span<const float> coe
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
                 double left_out, CodedColumn* flat) {
   *out = CodedColumn{};
-  if (flat != nullptr) *flat = CodedColumn{.depth = -1};
+  if (flat != nullptr) *flat = NoCoding();
   out->energy = SumOfSquares(image.data(), image.size());
   out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
   out->dropped_energy = left_out;
@@ -162,15 +162,19 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
   }
   const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
+  const size_t flat_limit = kFlatCountLimit * out->positions.size();
   if (flat != nullptr && choice.depth != 0 && ComparesCodedSize(p) &&
-      CountForBudget(image, {}, budget) <= kFlatCountLimit * out->positions.size()) {
-    // Depth 0 keeps cells, as `2d` does: no fill, no weights.
+      static_cast<size_t>(choice.depth0.lower) <= flat_limit) {
+    // Depth 0 keeps cells, as `2d` does: no fill, no weights. The search's
+    // bounds on its count spare most camera columns this selection.
     Selection cells = SelectForBudget(image, {}, budget);
-    flat->energy = out->energy;
-    flat->reference_energy = out->reference_energy;
-    flat->positions = std::move(cells.kept);
-    flat->dropped_energy = cells.dropped_energy;
-    Complete(p, 0, image, left_out, flat);
+    if (cells.kept.size() <= flat_limit) {
+      flat->energy = out->energy;
+      flat->reference_energy = out->reference_energy;
+      flat->positions = std::move(cells.kept);
+      flat->dropped_energy = cells.dropped_energy;
+      Complete(p, 0, image, left_out, flat);
+    }
   }
   Complete(p, choice.depth, choice.coefficients, left_out, out);
 }

@@ -51,6 +51,13 @@ struct CodedColumn {
   int min_bits = 2;  // fewest bits b with Δ = max_abs/Q_b meeting the column's own budget
 };
 
+// No coding at all (depth −1): CodeColumn's `flat` when it codes none.
+inline CodedColumn NoCoding() {
+  CodedColumn c;
+  c.depth = -1;
+  return c;
+}
+
 // Codes one W×H column image (row-major, staged values). `left_out` is energy
 // the column already lost before coding (bounced light not added,
 // worker/columns/column_bounces.h): it is spent from the column's budget,

@@ -196,14 +196,16 @@ DepthChoice ChooseDepth(const ColumnCodingParams& p, std::span<const float> imag
   }
   DepthStack stack(p, image, max_depth, s);
   int depth = 0;
+  CountBounds depth0{0, std::numeric_limits<int>::max()};
   if (p.column_terms == 0) {
     const std::vector<CountBounds> bounds = StepWithBounds(p, image, max_depth, budget, stack);
     depth = SearchByCount(p, stack, bounds, budget, s);
+    depth0 = bounds[0];
   } else {
     for (int d = 1; d <= max_depth; ++d) stack.Step(d);
     depth = SearchByDroppedEnergy(p, stack, max_depth, s);
   }
-  return {depth, stack.Rebuild(depth, s.chosen)};
+  return {depth, stack.Rebuild(depth, s.chosen), depth0};
 }
 
 }  // namespace wavebake

@@ -4,9 +4,11 @@
 // maximum, `adaptive` tries every depth and keeps the one needing the fewest
 // coefficients for the column's energy budget (ties: the shallower), or, with
 // a fixed K per column, the one dropping the least energy.
+#include <limits>
 #include <span>
 
 #include "core/columns/column_coding.h"
+#include "core/columns/count_bounds.h"
 
 namespace wavebake {
 
@@ -15,6 +17,10 @@ struct DepthChoice {
   // The column's coefficients at `depth` (Mallat layout). A view of `image`
   // or of per-thread scratch: valid until the next ChooseDepth on this thread.
   std::span<const float> coefficients;
+  // Bounds on CountForBudget of the image itself (depth 0) where the search
+  // learned them, else [0, max]: a caller weighing depth 0 against the
+  // choice may be spared a count.
+  CountBounds depth0{0, std::numeric_limits<int>::max()};
 };
 
 // `budget` is the dropped-energy budget target²·E_ref (unused with K terms).

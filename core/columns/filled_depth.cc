@@ -24,7 +24,8 @@ FilledScratch& ThreadFilledScratch() {
 DepthChoice SearchHaar(const ColumnCodingParams& p, std::span<const float> image, double budget,
                        FilledScratch& s) {
   int best_depth = 0;
-  int best_count = CountForBudget(image, {}, budget);
+  const int depth0_count = CountForBudget(image, {}, budget);
+  int best_count = depth0_count;
   const int max_depth = MaxDepth(p.width, p.height);
   for (int d = 1; d <= max_depth; ++d) {
     ForwardStep(p.filter, s.filled, p.width, p.height, d - 1);  // filled now holds depth d
@@ -37,8 +38,8 @@ DepthChoice SearchHaar(const ColumnCodingParams& p, std::span<const float> image
       s.chosen.swap(s.candidate);
     }
   }
-  if (best_depth == 0) return {0, image};
-  return {best_depth, s.chosen};
+  if (best_depth == 0) return {0, image, {best_count, best_count}};
+  return {best_depth, s.chosen, {depth0_count, depth0_count}};
 }
 
 }  // namespace
@@ -59,10 +60,15 @@ DepthChoice ChooseFilledDepth(const ColumnCodingParams& p, std::span<const float
     p.filler->ZeroUncoveredCoefficients(s.chosen, choice.depth);
     choice.coefficients = s.chosen;
   }
-  if (p.mode == ColumnMode::kAdaptive && p.column_terms == 0 &&
-      CountForBudget(image, {}, budget) <=
-          CountForBudget(choice.coefficients, RankingWeights(p, choice.depth), budget))
-    return {0, image};  // ties: the shallower
+  if (p.mode == ColumnMode::kAdaptive && p.column_terms == 0) {
+    const int depth0_count = CountForBudget(image, {}, budget);
+    if (depth0_count <=
+        CountForBudget(choice.coefficients, RankingWeights(p, choice.depth), budget))
+      return {0, image, {depth0_count, depth0_count}};  // ties: the shallower
+    choice.depth0 = {depth0_count, depth0_count};
+    return choice;
+  }
+  choice.depth0 = DepthChoice{}.depth0;  // they were the filled image's
   return choice;
 }
 

@@ -31,7 +31,7 @@ using CodedBytesFn = size_t (*)(std::span<const uint32_t> positions,
 
 struct ColumnCodings {
   CodedColumn fewest;             // CodeColumn's coding (DESIGN.md §1's adaptive)
-  CodedColumn flat{.depth = -1};  // its depth-0 coding; depth < 0: none
+  CodedColumn flat = NoCoding();  // its depth-0 coding; depth < 0: none
 };
 
 // Per column of the group (matrix columns first_column, first_column + 1,
