@@ -59,6 +59,10 @@ absl::StatusOr<DirtyRowTest> DirtyRowTest::Build(const Scene& changed, const Sce
     test.boxes_.push_back({b.lo - pad, b.hi + pad});
   }
   const int texels = pattern.texels();
+  if (texels != 6 * pattern.n * pattern.n)
+    return absl::InvalidArgumentError(
+        absl::StrCat("pattern: ", texels, " texels, not 6·", pattern.n, "² (cube domain)"));
+  std::vector<float> radii(texels);
   test.centre_.resize(texels);
   test.cos_radius_.resize(texels);
   test.sin_radius_.resize(texels);
@@ -71,11 +75,44 @@ absl::StatusOr<DirtyRowTest> DirtyRowTest::Build(const Scene& changed, const Sce
     for (int k = 0; k < 4; ++k)
       radius = std::max(radius, std::acos(std::clamp(Dot(centre, c[k]), -1.0f, 1.0f)));
     radius += kAnglePad;
+    radii[m] = radius;
     test.centre_[m] = centre;
     test.cos_radius_[m] = std::cos(radius);
     test.sin_radius_[m] = std::sin(radius);
   }
+  test.BuildBlocks(radii);
   return test;
+}
+
+void DirtyRowTest::BuildBlocks(const std::vector<float>& radius) {
+  const int n = pattern_->n, b = std::min(8, n);
+  for (int face = 0; face < 6; ++face)
+    for (int y0 = 0; y0 < n; y0 += b)
+      for (int x0 = 0; x0 < n; x0 += b) {
+        TexelBlock block;
+        block.first = static_cast<int>(block_texels_.size());
+        Vec3 sum{0, 0, 0};
+        for (int y = y0; y < std::min(y0 + b, n); ++y)
+          for (int x = x0; x < std::min(x0 + b, n); ++x) {
+            const int m = (face * n + y) * n + x;
+            block_texels_.push_back(m);
+            sum = sum + centre_[m];
+          }
+        block.count = static_cast<int>(block_texels_.size()) - block.first;
+        block.centre = Normalize(sum);
+        // Every texel cone inside: the farthest texel centre plus its radius.
+        float r = 0;
+        for (int i = block.first; i < block.first + block.count; ++i) {
+          const int m = block_texels_[i];
+          const float to_texel = std::acos(std::clamp(Dot(block.centre, centre_[m]), -1.0f, 1.0f));
+          r = std::max(r, to_texel + radius[m]);
+        }
+        r += kAnglePad;
+        block.wide = r >= std::numbers::pi_v<float> / 2;
+        block.cos_radius = std::cos(r);
+        block.sin_radius = std::sin(r);
+        blocks_.push_back(block);
+      }
 }
 
 // Slab test of the ray origin + t·dir, t ≥ 0, against every padded box: a
@@ -117,9 +154,13 @@ bool DirtyRowTest::TexelRaysChange(Vec3 origin, int m, DirtyRowStats& stats) con
 template <class F>
 bool DirtyRowTest::ForTexelsInCones(Vec3 origin, DirtyRowStats& stats, F f) const {
   bool dirty = false;
-  const int texels = pattern_->texels();
-  std::vector<uint8_t> seen;  // a texel in two cones is visited once
-  if (bounds_.size() > 1) seen.assign(texels, 0);
+  // A texel in two cones is visited once; only the entries set are cleared.
+  thread_local std::vector<uint8_t> seen;
+  thread_local std::vector<int> visited;
+  const bool dedupe = bounds_.size() > 1;
+  if (dedupe && seen.size() != static_cast<size_t>(pattern_->texels()))
+    seen.assign(pattern_->texels(), 0);
+  visited.clear();
   for (const Sphere& s : bounds_) {
     const Vec3 to = s.centre - origin;
     const float d = Length(to);
@@ -128,21 +169,30 @@ bool DirtyRowTest::ForTexelsInCones(Vec3 origin, DirtyRowStats& stats, F f) cons
     const Vec3 axis = inside ? Vec3{0, 0, 1} : to / d;
     const float sin_a = inside ? 1 : s.radius / d;
     const float cos_a = std::sqrt(std::max(0.0f, 1 - sin_a * sin_a));
-    for (int m = 0; m < texels && !dirty; ++m) {
-      // The cones meet iff angle(centre, axis) ≤ α + β; α < 90° and β < 90°,
-      // so α + β < 180° where cos is decreasing:
-      // compare cosines: cos(α + β) = cos α cos β − sin α sin β.
-      if (!inside && Dot(centre_[m], axis) < cos_a * cos_radius_[m] - sin_a * sin_radius_[m])
-        continue;
-      if (!seen.empty()) {
-        if (seen[m]) continue;
-        seen[m] = 1;
+    // The cones meet iff angle(centre, axis) ≤ α + β; α < 90° and β < 90°,
+    // so α + β < 180° where cos is decreasing: compare cosines,
+    // cos(α + β) = cos α cos β − sin α sin β.
+    auto misses = [&](Vec3 centre, float cos_b, float sin_b) {
+      return !inside && Dot(centre, axis) < cos_a * cos_b - sin_a * sin_b;
+    };
+    for (const TexelBlock& b : blocks_) {
+      if (dirty) break;
+      if (!b.wide && misses(b.centre, b.cos_radius, b.sin_radius)) continue;
+      for (int i = b.first; i < b.first + b.count && !dirty; ++i) {
+        const int m = block_texels_[i];
+        if (misses(centre_[m], cos_radius_[m], sin_radius_[m])) continue;
+        if (dedupe) {
+          if (seen[m]) continue;
+          seen[m] = 1;
+          visited.push_back(m);
+        }
+        ++stats.texels_in_cones;
+        dirty = f(m);
       }
-      ++stats.texels_in_cones;
-      dirty = f(m);
     }
     if (dirty) break;
   }
+  for (int m : visited) seen[m] = 0;
   return dirty;
 }
 
@@ -179,7 +229,8 @@ bool DirtyRowTest::RowDelta(Vec3 position, Vec3 normal, float epsilon, std::span
       const float c = Dot(normal, dir);
       if (c <= 0 || MissesBoxes(origin, dir)) continue;
       ++local.rays_changed;
-      if (!changed_->Occluded(origin, dir, 0, kInf)) continue;
+      // No trace of the union first: nearly every ray inside the boxes hits
+      // a placement (most of them both), so it would only add a traversal.
       const bool was = removed_ && removed_->Occluded(origin, dir, 0, kInf);
       const bool is = added_ && added_->Occluded(origin, dir, 0, kInf);
       if (was == is) continue;

@@ -102,6 +102,18 @@ class DirtyRowTest {
   // Per texel: unit centre direction, cos and sin of its angular radius.
   std::vector<Vec3> centre_;
   std::vector<float> cos_radius_, sin_radius_;
+  // Square blocks of up to 8×8 texels of one face, each with a cone holding
+  // its texels' cones: a block whose cone misses a changed bound skips its
+  // texels' tests (most of a row's 6N² texels are far from a small edit).
+  struct TexelBlock {
+    Vec3 centre{0, 0, 1};
+    float cos_radius = 0, sin_radius = 1;
+    bool wide = true;  // radius ≥ 90°: never skipped (the cosine test needs α + β < 180°)
+    int first = 0, count = 0;  // its texels: block_texels_[first, first + count)
+  };
+  std::vector<TexelBlock> blocks_;
+  std::vector<int> block_texels_;
+  void BuildBlocks(const std::vector<float>& radius);
 };
 
 }  // namespace wavebake

@@ -133,6 +133,17 @@ absl::Status ZarrArray::ReadChunkInto(std::span<const int64_t> chunk_index,
   return absl::OkStatus();
 }
 
+absl::Status ZarrArray::CopyChunkFrom(const ZarrArray& source,
+                                      std::span<const int64_t> chunk_index) const {
+  if (absl::Status s = CheckChunkIndex(chunk_index); !s.ok()) return s;
+  if (!SameSpec(spec_, source.spec_))
+    return absl::InvalidArgumentError(
+        absl::StrCat(source.dir_.string(), " and ", dir_.string(), ": arrays of different specs"));
+  ByteBuffer& frame = ThreadBuffer(kFrame);
+  if (absl::Status s = ReadFileInto(source.ChunkPath(chunk_index), frame); !s.ok()) return s;
+  return AtomicWriteFile(ChunkPath(chunk_index), frame);
+}
+
 absl::StatusOr<std::vector<std::byte>> ZarrArray::ReadChunk(
     std::span<const int64_t> chunk_index) const {
   std::vector<std::byte> out(chunk_bytes());

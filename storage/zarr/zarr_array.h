@@ -51,6 +51,12 @@ class ZarrArray {
   // DataLoss). Corruption is DataLoss.
   absl::StatusOr<std::vector<std::byte>> ReadChunk(std::span<const int64_t> chunk_index) const;
   absl::Status ReadChunkInto(std::span<const int64_t> chunk_index, std::span<std::byte> out) const;
+  // Chunk `chunk_index` of `source`, an array of the same spec, written here
+  // as it is encoded, without decoding it: a chunk known to hold the same
+  // values costs a file copy instead of a decode and an encode. Corruption
+  // travels with it and is found where the chunk is read. InvalidArgument if
+  // the specs differ, NotFound if the source never wrote the chunk.
+  absl::Status CopyChunkFrom(const ZarrArray& source, std::span<const int64_t> chunk_index) const;
 
   // Typed chunk I/O: T must be the array's element type (InvalidArgument otherwise).
   template <class T>

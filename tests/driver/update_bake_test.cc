@@ -8,9 +8,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "driver/bake/embedded_bake.h"
+#include "storage/files/atomic_file.h"
+#include "storage/zarr/zarr_array.h"
+#include "storage/zarr/zstd_codec.h"
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 
@@ -184,6 +188,51 @@ TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
               u.value("rows", -1));
     for (const auto& s : {old_store, updated}) std::filesystem::remove_all(s);
   }
+}
+
+// A tile whose every row is an old row in its old cell stages the old
+// chunks as they were encoded: planted with another encoding of the same
+// values (zstd level 19), they reach the update's staging byte for byte,
+// while the tiles the box touched are staged anew; the matrix is the full
+// bake's either way.
+TEST_F(UpdateBakeTest, UntouchedTilesCopyTheirStagedChunks) {
+  const auto old_store = dir_.path() / "old.wbk", full = dir_.path() / "full.wbk",
+             updated = dir_.path() / "updated.wbk";
+  ASSERT_TRUE(Bake(old_scene_, Params("camera:32x32"), old_store).ok());
+  ASSERT_TRUE(Bake(new_scene_, Params("camera:32x32"), full).ok());
+  absl::StatusOr<ZarrArray> staged = ZarrArray::Open(old_store / "staging/transport");
+  ASSERT_TRUE(staged.ok()) << staged.status();
+  std::map<std::string, std::vector<std::byte>> planted;
+  for (int64_t g = 0; g < staged->chunk_grid()[0]; ++g)
+    for (int64_t t = 0; t < staged->chunk_grid()[1]; ++t) {
+      const std::vector<int64_t> index{g, t};
+      absl::StatusOr<std::vector<float>> values = staged->ReadChunk<float>(index);
+      ASSERT_TRUE(values.ok()) << values.status();
+      absl::StatusOr<std::vector<std::byte>> frame =
+          ZstdCompress(std::as_bytes(std::span(*values)), 19);
+      ASSERT_TRUE(frame.ok());
+      ASSERT_TRUE(AtomicWriteFile(staged->ChunkPath(index), *frame).ok());
+      planted[staged->ChunkPath(index).filename().string()] = *frame;
+    }
+  BakeParams p = Params("camera:32x32");
+  p.update_from = old_store.string();
+  p.update_exact = true;
+  ASSERT_TRUE(Bake(new_scene_, p, updated).ok());
+
+  const auto now = ReadTree(updated / "staging/transport"),
+             baked = ReadTree(full / "staging/transport");
+  int copied = 0, staged_anew = 0;
+  for (const auto& [name, frame] : planted) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(now.contains(name));
+    const std::string bytes(reinterpret_cast<const char*>(frame.data()), frame.size());
+    copied += now.at(name) == bytes;
+    staged_anew += now.at(name) == baked.at(name);
+    EXPECT_TRUE(now.at(name) == bytes || now.at(name) == baked.at(name));
+  }
+  EXPECT_GT(copied, 0);
+  EXPECT_GT(staged_anew, 0);
+  EXPECT_TRUE(ReadTree(updated / "transport") == ReadTree(full / "transport"));
 }
 
 TEST_F(UpdateBakeTest, RefusalsNameWhyAndLeaveTheOldStore) {

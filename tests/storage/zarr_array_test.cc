@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "storage/files/atomic_file.h"
+#include "storage/zarr/zstd_codec.h"
 #include "tests/storage/array_values.h"
 #include "tests/storage/test_support.h"
 
@@ -206,6 +207,36 @@ TEST(ZarrArrayTest, CreateIsIdempotentButRefusesADifferentSpec) {
   absl::StatusOr<ZarrArray> other = ZarrArray::Create(tmp.path(), spec);
   EXPECT_EQ(other.status().code(), absl::StatusCode::kAlreadyExists);
   EXPECT_THAT(other.status().message(), HasSubstr(".zarray"));
+}
+
+// A chunk copied as encoded: the source file's bytes, whatever encoding they
+// hold (here level 19, not the spec's), reading back as the source's values.
+TEST(ZarrArrayTest, CopyChunkFromKeepsTheEncodedBytes) {
+  TempDir tmp;
+  const ArraySpec spec{.shape = {40}, .chunks = {10}, .dtype = DType::kFloat32};
+  absl::StatusOr<ZarrArray> from = ZarrArray::Create(tmp.path() / "from", spec);
+  absl::StatusOr<ZarrArray> to = ZarrArray::Create(tmp.path() / "to", spec);
+  ASSERT_TRUE(from.ok() && to.ok());
+  const std::vector<float> values = TestValues<float>(10, 7);
+  absl::StatusOr<std::vector<std::byte>> frame = ZstdCompress(std::as_bytes(std::span(values)), 19);
+  ASSERT_TRUE(frame.ok());
+  const std::vector<int64_t> index{2};
+  ASSERT_TRUE(AtomicWriteFile(from->ChunkPath(index), *frame).ok());
+
+  ASSERT_TRUE(to->CopyChunkFrom(*from, index).ok());
+  EXPECT_EQ(*ReadFile(to->ChunkPath(index)), *frame);
+  EXPECT_TRUE(BitEqual<float>(*to->ReadChunk<float>(index), values));
+
+  const std::vector<int64_t> never_written{1};
+  EXPECT_EQ(to->CopyChunkFrom(*from, never_written).code(), absl::StatusCode::kNotFound);
+  EXPECT_FALSE(std::filesystem::exists(to->ChunkPath(never_written)));
+  ArraySpec other_spec = spec;
+  other_spec.zstd_level = 5;
+  absl::StatusOr<ZarrArray> other = ZarrArray::Create(tmp.path() / "other", other_spec);
+  ASSERT_TRUE(other.ok());
+  const absl::Status refused = other->CopyChunkFrom(*from, index);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(refused.message(), HasSubstr("different specs"));
 }
 
 }  // namespace

@@ -217,6 +217,42 @@ absl::Status BakeAuxTile(const BakeContext& ctx, const std::filesystem::path& st
   return absl::OkStatus();
 }
 
+// An update's tile whose every row is an old row in its old cell (none
+// traced, patched or masked otherwise: RowReuse::tile_touched) stages what
+// the old store staged, bit for bit (the energy too: the same rows summed in
+// the same order), so its chunks are copied as encoded instead of decoded,
+// transposed back, transposed again and encoded. False if it is not such a
+// tile or the old store lacks one of its chunks (then it is baked).
+absl::StatusOr<bool> CopyUnchangedTile(const BakeContext& ctx, const StagingArrays& staging,
+                                       int tile, TileStats& stats) {
+  const RowReuse& reuse = *ctx.reuse;
+  if (!reuse.in_place || reuse.tile_touched.empty() || reuse.tile_touched[tile]) return false;
+  absl::StatusOr<StagingArrays> old = OpenStaging(ctx.plan, reuse.old_store);
+  if (!old.ok()) return old.status();
+  auto copy = [&](const ZarrArray& to, const ZarrArray& from, std::span<const int64_t> index) {
+    absl::Status s = to.CopyChunkFrom(from, index);
+    std::error_code ec;
+    if (s.ok()) stats.bytes_written += std::filesystem::file_size(to.ChunkPath(index), ec);
+    return s;
+  };
+  for (int g = 0; g < ctx.plan.groups; ++g) {
+    const int64_t index[] = {g, tile};
+    absl::Status s = copy(staging.transport, old->transport, index);
+    if (absl::IsNotFound(s)) return false;
+    if (!s.ok()) return s;
+  }
+  const int64_t index[] = {tile};
+  absl::Status s = copy(staging.tile_energy, old->tile_energy, index);
+  if (absl::IsNotFound(s)) return false;
+  if (!s.ok()) return s;
+  const TileRect rect = ctx.plan.Tile(tile);
+  for (int y = rect.y0; y < rect.y0 + rect.height; ++y)
+    for (int x = rect.x0; x < rect.x0 + rect.width; ++x)
+      stats.samples += ctx.samples.grid[size_t(y) * ctx.samples.width + x] >= 0;
+  stats.rows_reused = stats.samples;
+  return true;
+}
+
 }  // namespace
 
 absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store, int tile,
@@ -254,6 +290,18 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
     const absl::Status written = WriteTileEnergy(*staging, tile, 0.0, local);
     if (stats) stats->bytes_written += local.bytes_written;
     return written;
+  }
+  if (ctx.reuse) {
+    absl::StatusOr<bool> copied = CopyUnchangedTile(ctx, *staging, tile, local);
+    if (!copied.ok()) return copied.status();
+    if (*copied) {
+      if (stats) {
+        stats->bytes_written += local.bytes_written;
+        stats->samples += local.samples;
+        stats->rows_reused += local.rows_reused;
+      }
+      return absl::OkStatus();
+    }
   }
   const std::span<float> rows = TaskBuffer(plan.tile_cells() * RowStride(plan));
   double energy = 0;

@@ -29,7 +29,7 @@ absl::Status Refuse(const std::filesystem::path& old_store, const auto&... why) 
 }
 
 // Most cone texels a patched row may have (RowReuse::patch).
-constexpr int kPatchTexels = 32;
+constexpr int kPatchTexels = 256;
 
 // A sample by the bits of its position and normal: equal keys trace equal rows.
 using SampleKey = std::array<uint32_t, 6>;
@@ -88,9 +88,11 @@ void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
         continue;
       }
       if (dirty && dirty->MayChange(s.position[id], s.normal[id], ctx.epsilon, &stats[c])) {
-        // A patch traces single rays through its cones against three BVHs;
-        // past kPatchTexels it costs more than the refined row (~1400
-        // packet rays per row of the N=32 bench bakes): traced instead.
+        // A patch traces single rays through its cones against the two
+        // placements; past kPatchTexels it costs more than the refined row
+        // (~1400 packet rays per row of the N=32 bench bakes): traced
+        // instead. Measured on those bakes (bench/update_bake.sh): the
+        // update's CPU falls from 32 to 128 texels and is flat from 256 to 512.
         if (!r.delta ||
             r.delta->TexelsInCones(s.position[id], s.normal[id], ctx.epsilon) > kPatchTexels)
           continue;
@@ -290,6 +292,29 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, c
   return r;
 }
 
+namespace {
+
+// The inverse of BAKE_TILE's blocked transpose: chunk [count, cells] (column
+// j of the group over the old tile contiguous) into the rows of `pairs`
+// (cell of this tile, cell of the old tile), columns [first, first + count).
+// Sixteen columns at a time: a row's sixteen writes fill one cache line, and
+// the sixteen chunk rows read advance together through the old tile, where
+// one column after another would touch a new line of the chunk per value.
+void CopyStagedRows(std::span<const float> chunk, size_t cells,
+                    std::span<const std::pair<int, int>> pairs, int first, int count,
+                    std::span<float> rows, size_t stride) {
+  for (int j0 = 0; j0 < count; j0 += 16) {
+    const int width = std::min(16, count - j0);
+    const float* in = chunk.data() + size_t(j0) * cells;
+    for (const auto& [cell, at] : pairs) {
+      float* out = rows.data() + size_t(cell) * stride + first + j0;
+      for (int j = 0; j < width; ++j) out[j] = in[size_t(j) * cells + at];
+    }
+  }
+}
+
+}  // namespace
+
 absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, int tile,
                                    std::span<float> rows, size_t stride,
                                    std::vector<uint8_t>& filled) {
@@ -315,11 +340,7 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
       const int64_t index[] = {g, old_tile};
       absl::StatusOr<std::vector<float>> chunk = staged->ReadChunk<float>(index);
       if (!chunk.ok()) return chunk.status();
-      const int first = plan.GroupFirst(g), n = plan.GroupCount(g);
-      for (const auto& [cell, at] : pairs) {
-        float* row = rows.data() + size_t(cell) * stride + first;
-        for (int j = 0; j < n; ++j) row[j] = (*chunk)[size_t(j) * cells + at];
-      }
+      CopyStagedRows(*chunk, cells, pairs, plan.GroupFirst(g), plan.GroupCount(g), rows, stride);
     }
     for (const auto& [cell, at] : pairs) {
       const size_t grid =
