@@ -11,6 +11,8 @@
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/group_result.h"
+#include "worker/columns/transform_columns.h"
+#include "worker/loop/task_buffer.h"
 #include "worker/tiles/row_reuse.h"
 
 namespace wavebake {
@@ -27,48 +29,6 @@ absl::Status WriteCount(const std::filesystem::path& store, int group, size_t co
 
 bool Stopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
-}
-
-// changed[j]: column first+j differs from the old store's in some touched tile.
-absl::StatusOr<std::vector<uint8_t>> ChangedColumns(const RowReuse& reuse, const JobPlan& plan,
-                                                    const ZarrArray& now, const ZarrArray& old,
-                                                    int group, const TaskSignals& signals) {
-  const int count = plan.GroupCount(group);
-  const size_t cells = plan.tile_cells();
-  std::vector<uint8_t> changed(count, 0);
-  for (int t = 0; t < plan.tiles(); ++t) {
-    if (!reuse.tile_touched[t]) continue;  // every row of it copied in place: same bits
-    if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
-    const int64_t index[] = {group, t};
-    absl::StatusOr<std::vector<float>> a = now.ReadChunk<float>(index);
-    if (!a.ok()) return a.status();
-    absl::StatusOr<std::vector<float>> b = old.ReadChunk<float>(index);
-    if (!b.ok()) return b.status();
-    for (int j = 0; j < count; ++j)
-      changed[j] |=
-          std::memcmp(a->data() + j * cells, b->data() + j * cells, cells * sizeof(float)) != 0;
-  }
-  return changed;
-}
-
-// The W×H images of the changed columns, in column order (k-th changed at k·W·H).
-absl::StatusOr<std::vector<float>> ChangedImages(const JobPlan& plan, const ZarrArray& now,
-                                                 int group, const std::vector<int>& which) {
-  const size_t image = size_t(plan.width) * plan.height;
-  std::vector<float> images(which.size() * image);
-  for (int t = 0; t < plan.tiles(); ++t) {
-    const int64_t index[] = {group, t};
-    absl::StatusOr<std::vector<float>> chunk = now.ReadChunk<float>(index);
-    if (!chunk.ok()) return chunk.status();
-    const TileRect r = plan.Tile(t);
-    for (size_t k = 0; k < which.size(); ++k) {
-      const float* src = chunk->data() + size_t(which[k]) * plan.tile_cells();
-      float* dst = images.data() + k * image + size_t(r.y0) * plan.width + r.x0;
-      for (int y = 0; y < r.height; ++y)
-        std::copy_n(src + size_t(y) * r.width, r.width, dst + size_t(y) * plan.width);
-    }
-  }
-  return images;
 }
 
 }  // namespace
@@ -93,31 +53,47 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   if (!old.ok()) return old.status();
   absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
   if (!matrix_energy.ok()) return matrix_energy.status();
-  absl::StatusOr<std::vector<uint8_t>> changed =
-      ChangedColumns(*reuse, plan, *now, *old, group, signals);
-  if (!changed.ok()) return changed.status();
-  std::vector<int> which;
-  for (int j = 0; j < plan.GroupCount(group); ++j)
-    if ((*changed)[j]) which.push_back(j);
-  absl::StatusOr<std::vector<float>> images =
-      which.empty() ? std::vector<float>{} : ChangedImages(plan, *now, group, which);
-  if (!images.ok()) return images.status();
+  // The group's column images, each new chunk read once; in a touched tile
+  // (RowReuse::tile_touched) the old chunk too, to find the columns whose
+  // values differ from the old store's. Every row of an untouched tile was
+  // copied in place: the same bits.
+  const int count = plan.GroupCount(group);
+  const size_t image = size_t(plan.width) * plan.height, cells = plan.tile_cells();
+  const std::span<float> images = TaskBuffer(count * image);
+  std::vector<uint8_t> changed(count, 0);
+  std::vector<float> was_chunk;
+  auto compare = [&](int t, std::span<const float> chunk) {
+    if (!reuse->tile_touched[t]) return absl::OkStatus();
+    was_chunk.resize(chunk.size());
+    const int64_t index[] = {group, t};
+    if (absl::Status s = old->ReadChunkInto(index, std::as_writable_bytes(std::span(was_chunk)));
+        !s.ok())
+      return s;
+    for (int j = 0; j < count; ++j)
+      changed[j] |= std::memcmp(chunk.data() + j * cells, was_chunk.data() + j * cells,
+                                cells * sizeof(float)) != 0;
+    return absl::OkStatus();
+  };
+  GroupStats local;
+  if (absl::Status s =
+          AssembleColumns(plan, *now, nullptr, group, images, &local, signals, compare);
+      !s.ok())
+    return s;
 
   const ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
-  const size_t image = size_t(plan.width) * plan.height;
   GroupResult result;
   result.group = group;
   result.first_column = plan.GroupFirst(group);
   result.matrix_energy = *matrix_energy;
-  GroupStats local;
-  size_t k = 0, at = 0;  // next changed column; start of the old column's slice
+  size_t recomputed = 0, at = 0;  // start of the old column's slice
   CodedColumn coded;
-  for (int j = 0; j < plan.GroupCount(group); ++j) {
+  for (int j = 0; j < count; ++j) {
     if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
     const GroupColumn& was = old_result->columns[j];
-    if (k < which.size() && which[k] == j) {
-      CodeColumn(params, std::span(*images).subspan(k++ * image, image), &coded);
+    if (changed[j]) {
+      ++recomputed;
+      CodeColumn(params, images.subspan(j * image, image), &coded);
       result.columns.push_back({.depth = static_cast<uint8_t>(coded.depth),
                                 .min_bits = static_cast<uint8_t>(coded.min_bits),
                                 .kept = static_cast<uint32_t>(coded.positions.size()),
@@ -147,7 +123,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   std::error_code ec;
   local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
   if (stats) *stats = local;
-  return WriteCount(store, group, which.size());
+  return WriteCount(store, group, recomputed);
 }
 
 absl::StatusOr<int64_t> RecomputedColumns(const JobPlan& plan, const std::filesystem::path& store) {

@@ -47,15 +47,30 @@ absl::Status Cancelled(int group) {
   return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
 }
 
-// Reads chunk (group, t) of every tile and scatters it into `images`: column
-// c of the group is the row-major W×H image images[c*W*H, (c+1)*W*H). The
-// tiles cover the image, so every element is written.
-// A chunk the job's in-memory staging holds is read from there; any other
-// from the store, which must then hold it (a tile whose energy is written
-// has written its chunks somewhere).
+void AppendColumn(const CodedColumn& coded, GroupResult* result) {
+  GroupColumn c;
+  c.depth = static_cast<uint8_t>(coded.depth);
+  c.min_bits = static_cast<uint8_t>(coded.min_bits);
+  c.kept = static_cast<uint32_t>(coded.positions.size());
+  c.energy = coded.energy;
+  c.reference_energy = coded.reference_energy;
+  c.dropped_energy = coded.dropped_energy;
+  c.max_abs = coded.max_abs;
+  c.step_unit = coded.step_unit;
+  result->columns.push_back(c);
+  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
+  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
+}
+
+}  // namespace
+
+// The tiles cover the image, so every element is written. A chunk the job's
+// in-memory staging does not hold must be in the store (a tile whose energy
+// is written has written its chunks somewhere).
 absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
                              const MemoryStaging::Job* memory, int group, std::span<float> images,
-                             GroupStats* stats, const TaskSignals& signals) {
+                             GroupStats* stats, const TaskSignals& signals,
+                             const ChunkVisitor& visit) {
   const int count = plan.GroupCount(group);
   const size_t cells = size_t(plan.width) * plan.height;
   std::vector<float> buffer;
@@ -75,6 +90,8 @@ absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
       chunk = buffer;
     }
     stats->staging_bytes += chunk.size() * sizeof(float);
+    if (visit)
+      if (absl::Status s = visit(t, chunk); !s.ok()) return s;
     const TileRect r = plan.Tile(t);
     for (int c = 0; c < count; ++c) {
       const float* src = chunk.data() + size_t(c) * plan.tile_cells();
@@ -86,23 +103,6 @@ absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
   }
   return absl::OkStatus();
 }
-
-void AppendColumn(const CodedColumn& coded, GroupResult* result) {
-  GroupColumn c;
-  c.depth = static_cast<uint8_t>(coded.depth);
-  c.min_bits = static_cast<uint8_t>(coded.min_bits);
-  c.kept = static_cast<uint32_t>(coded.positions.size());
-  c.energy = coded.energy;
-  c.reference_energy = coded.reference_energy;
-  c.dropped_energy = coded.dropped_energy;
-  c.max_abs = coded.max_abs;
-  c.step_unit = coded.step_unit;
-  result->columns.push_back(c);
-  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
-  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
-}
-
-}  // namespace
 
 absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTileEnergy));

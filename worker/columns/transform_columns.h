@@ -8,10 +8,13 @@
 // times (a retry rewrites the same bytes).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <span>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/bake/job_plan.h"
+#include "storage/zarr/zarr_array.h"
 #include "worker/loop/task_signals.h"
 #include "worker/tiles/bake_context.h"
 #include "worker/tiles/memory_staging.h"
@@ -36,6 +39,20 @@ struct GroupStats {
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
                               GroupStats* stats, const TaskSignals& signals = {},
                               const MemoryStaging* memory = nullptr);
+
+// Sees chunk (group, tile) of staging/transport as it is read: [group count,
+// tile cells] values, column c of the group over the tile at c·tile_cells.
+using ChunkVisitor = std::function<absl::Status(int tile, std::span<const float> chunk)>;
+
+// The column images of `group` (column c as the row-major W×H image
+// images[c·W·H, (c+1)·W·H)), assembled from chunk (group, t) of every tile,
+// each read once: from the job's in-memory staging (`memory`) if it holds
+// it, else from `staging`. `visit`, if set, sees each chunk before the next
+// is read; its error stops the assembly.
+absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
+                             const MemoryStaging::Job* memory, int group, std::span<float> images,
+                             GroupStats* stats, const TaskSignals& signals,
+                             const ChunkVisitor& visit = {});
 
 // E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
 // order in double (the same number on every worker).
