@@ -38,7 +38,7 @@ DepthChoice SearchHaar(const ColumnCodingParams& p, std::span<const float> image
       s.chosen.swap(s.candidate);
     }
   }
-  if (best_depth == 0) return {0, image, {best_count, best_count}};
+  if (best_depth == 0) return {0, image, {depth0_count, depth0_count}};
   return {best_depth, s.chosen, {depth0_count, depth0_count}};
 }
 

@@ -229,8 +229,9 @@ bool DirtyRowTest::RowDelta(Vec3 position, Vec3 normal, float epsilon, std::span
       const float c = Dot(normal, dir);
       if (c <= 0 || MissesBoxes(origin, dir)) continue;
       ++local.rays_changed;
-      // No trace of the union first: nearly every ray inside the boxes hits
-      // a placement (most of them both), so it would only add a traversal.
+      // No trace of the union first: nearly every ray that meets a box hits
+      // that placement (the cubes-wall-like bench edit: 1 443 165 of
+      // 1 443 709), so it would only add a traversal.
       const bool was = removed_ && removed_->Occluded(origin, dir, 0, kInf);
       const bool is = added_ && added_->Occluded(origin, dir, 0, kInf);
       if (was == is) continue;

@@ -176,6 +176,25 @@ void MarkTiles(const SampleSet& now, const SampleSet& old, const JobPlan& plan, 
     }
 }
 
+// The inverse of BAKE_TILE's blocked transpose: chunk [count, cells] (column
+// j of the group over the old tile contiguous) into the rows of `pairs`
+// (cell of this tile, cell of the old tile), columns [first, first + count).
+// Sixteen columns at a time: a row's sixteen writes fill one cache line, and
+// the sixteen chunk rows read advance together through the old tile, where
+// one column after another would touch a new line of the chunk per value.
+void CopyStagedRows(std::span<const float> chunk, size_t cells,
+                    std::span<const std::pair<int, int>> pairs, int first, int count,
+                    std::span<float> rows, size_t stride) {
+  for (int j0 = 0; j0 < count; j0 += 16) {
+    const int width = std::min(16, count - j0);
+    const float* in = chunk.data() + size_t(j0) * cells;
+    for (const auto& [cell, at] : pairs) {
+      float* out = rows.data() + size_t(cell) * stride + first + j0;
+      for (int j = 0; j < width; ++j) out[j] = in[size_t(j) * cells + at];
+    }
+  }
+}
+
 }  // namespace
 
 nlohmann::json RowReuse::Record() const {
@@ -291,29 +310,6 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, c
   r->plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
-
-namespace {
-
-// The inverse of BAKE_TILE's blocked transpose: chunk [count, cells] (column
-// j of the group over the old tile contiguous) into the rows of `pairs`
-// (cell of this tile, cell of the old tile), columns [first, first + count).
-// Sixteen columns at a time: a row's sixteen writes fill one cache line, and
-// the sixteen chunk rows read advance together through the old tile, where
-// one column after another would touch a new line of the chunk per value.
-void CopyStagedRows(std::span<const float> chunk, size_t cells,
-                    std::span<const std::pair<int, int>> pairs, int first, int count,
-                    std::span<float> rows, size_t stride) {
-  for (int j0 = 0; j0 < count; j0 += 16) {
-    const int width = std::min(16, count - j0);
-    const float* in = chunk.data() + size_t(j0) * cells;
-    for (const auto& [cell, at] : pairs) {
-      float* out = rows.data() + size_t(cell) * stride + first + j0;
-      for (int j = 0; j < width; ++j) out[j] = in[size_t(j) * cells + at];
-    }
-  }
-}
-
-}  // namespace
 
 absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, int tile,
                                    std::span<float> rows, size_t stride,
