@@ -169,6 +169,21 @@ absl::StatusOr<uint64_t> ReadTable(std::span<const std::byte> frame, const std::
 
 }  // namespace
 
+void AppendColumn(const CodedColumn& coded, GroupResult* result) {
+  GroupColumn c;
+  c.depth = static_cast<uint8_t>(coded.depth);
+  c.min_bits = static_cast<uint8_t>(coded.min_bits);
+  c.kept = static_cast<uint32_t>(coded.positions.size());
+  c.energy = coded.energy;
+  c.reference_energy = coded.reference_energy;
+  c.dropped_energy = coded.dropped_energy;
+  c.max_abs = coded.max_abs;
+  c.step_unit = coded.step_unit;
+  result->columns.push_back(c);
+  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
+  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
+}
+
 std::filesystem::path GroupResultDir(const std::filesystem::path& store) {
   return store::Path(store, store::kStagingGroups);
 }

@@ -21,6 +21,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "core/columns/column_coding.h"
 #include "storage/zarr/byte_buffer.h"
 
 namespace wavebake {
@@ -46,6 +47,9 @@ struct GroupResult {
   DefaultInitVector<uint32_t> positions;
   DefaultInitVector<float> values;
 };
+
+// Appends a coded column: its table entry and its positions and values.
+void AppendColumn(const CodedColumn& coded, GroupResult* result);
 
 std::filesystem::path GroupResultDir(const std::filesystem::path& store);
 std::filesystem::path GroupResultPath(const std::filesystem::path& store, int group);

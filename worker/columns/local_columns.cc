@@ -94,17 +94,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
     if (changed[j]) {
       ++recomputed;
       CodeColumn(params, images.subspan(j * image, image), &coded);
-      result.columns.push_back({.depth = static_cast<uint8_t>(coded.depth),
-                                .min_bits = static_cast<uint8_t>(coded.min_bits),
-                                .kept = static_cast<uint32_t>(coded.positions.size()),
-                                .energy = coded.energy,
-                                .reference_energy = coded.reference_energy,
-                                .dropped_energy = coded.dropped_energy,
-                                .max_abs = coded.max_abs,
-                                .step_unit = coded.step_unit});
-      result.positions.insert(result.positions.end(), coded.positions.begin(),
-                              coded.positions.end());
-      result.values.insert(result.values.end(), coded.values.begin(), coded.values.end());
+      AppendColumn(coded, &result);
     } else {
       GroupColumn kept = was;
       if (ctx.params.error_scope == ErrorScope::kMatrix) kept.reference_energy = *matrix_energy;

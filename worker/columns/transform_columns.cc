@@ -47,21 +47,6 @@ absl::Status Cancelled(int group) {
   return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
 }
 
-void AppendColumn(const CodedColumn& coded, GroupResult* result) {
-  GroupColumn c;
-  c.depth = static_cast<uint8_t>(coded.depth);
-  c.min_bits = static_cast<uint8_t>(coded.min_bits);
-  c.kept = static_cast<uint32_t>(coded.positions.size());
-  c.energy = coded.energy;
-  c.reference_energy = coded.reference_energy;
-  c.dropped_energy = coded.dropped_energy;
-  c.max_abs = coded.max_abs;
-  c.step_unit = coded.step_unit;
-  result->columns.push_back(c);
-  result->positions.insert(result->positions.end(), coded.positions.begin(), coded.positions.end());
-  result->values.insert(result->values.end(), coded.values.begin(), coded.values.end());
-}
-
 }  // namespace
 
 // The tiles cover the image, so every element is written. A chunk the job's
