@@ -56,7 +56,7 @@ record() {
   "$py" - "$1/.zattrs" <<'PY'
 import json, sys
 u = json.load(open(sys.argv[1]))["update"]
-keys = ("rows", "rows_reused", "rows_patched", "rows_rebaked", "columns_recomputed", "columns")
+keys = ("rows", "rows_reused", "rows_patched", "rows_rebaked", "columns_recomputed", "columns_depth_searched", "columns")
 print(" ".join("%s=%s" % (k, u.get(k)) for k in keys))
 PY
 }

@@ -135,31 +135,37 @@ void Complete(const ColumnCodingParams& p, int depth, std::span<const float> coe
                              QuantizationBudget(p.target_error, out->reference_energy));
 }
 
+// What every coding of a column starts with: its energy, its reference and
+// its budget. True when that settles it: an empty column, or one whose whole
+// energy fits the budget, keeps nothing at any depth, so no depth is tried
+// (ties: the shallower; `full` records its one depth).
+bool KeepsNothing(const ColumnCodingParams& p, std::span<const float> image, double left_out,
+                  CodedColumn* out, double* budget) {
+  out->energy = SumOfSquares(image.data(), image.size());
+  out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
+  out->dropped_energy = left_out;
+  const int none_depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
+  if (out->energy == 0) {  // an empty column keeps nothing (DESIGN.md §1)
+    out->depth = none_depth;
+    return true;
+  }
+  *budget = std::max(0.0, p.target_error * p.target_error * out->reference_energy - left_out);
+  if (p.column_terms != 0) return false;
+  const std::optional<double> dropped = EnergyIfWithin(image, out->energy, *budget);
+  if (!dropped) return false;
+  out->depth = none_depth;
+  out->dropped_energy += *dropped;
+  return true;
+}
+
 }  // namespace
 
 void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, CodedColumn* out,
                 double left_out, CodedColumn* flat) {
   *out = CodedColumn{};
   if (flat != nullptr) *flat = NoCoding();
-  out->energy = SumOfSquares(image.data(), image.size());
-  out->reference_energy = p.scope == ErrorScope::kColumn ? out->energy : p.matrix_energy;
-  out->dropped_energy = left_out;
-  if (out->energy == 0) {  // an empty column keeps nothing (DESIGN.md §1)
-    out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
-    return;
-  }
-  const double budget =
-      std::max(0.0, p.target_error * p.target_error * out->reference_energy - left_out);
-  if (p.column_terms == 0) {
-    if (const std::optional<double> dropped = EnergyIfWithin(image, out->energy, budget)) {
-      // The whole column fits its share of the budget: nothing is kept at
-      // any depth, so no depth is tried (ties: the shallower; `full` records
-      // its one depth).
-      out->depth = p.mode == ColumnMode::kFull ? MaxDepth(p.width, p.height) : 0;
-      out->dropped_energy += *dropped;
-      return;
-    }
-  }
+  double budget = 0;
+  if (KeepsNothing(p, image, left_out, out, &budget)) return;
   const DepthChoice choice = ChooseFilledDepth(p, image, budget);
   Select(p, choice.coefficients, RankingWeights(p, choice.depth), budget, out);
   const size_t flat_limit = kFlatCountLimit * out->positions.size();
@@ -177,6 +183,16 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
     }
   }
   Complete(p, choice.depth, choice.coefficients, left_out, out);
+}
+
+void CodeColumnAtDepth(const ColumnCodingParams& p, std::span<const float> image, int depth,
+                       CodedColumn* out) {
+  *out = CodedColumn{};
+  double budget = 0;
+  if (KeepsNothing(p, image, 0, out, &budget)) return;
+  const DepthChoice at = FilledAtDepth(p, image, depth);
+  Select(p, at.coefficients, RankingWeights(p, depth), budget, out);
+  Complete(p, depth, at.coefficients, 0, out);
 }
 
 bool ComparesCodedSize(const ColumnCodingParams& p) {

@@ -72,4 +72,15 @@ DepthChoice ChooseFilledDepth(const ColumnCodingParams& p, std::span<const float
   return choice;
 }
 
+DepthChoice FilledAtDepth(const ColumnCodingParams& p, std::span<const float> image, int depth) {
+  if (depth == 0) return {0, image};
+  FilledScratch& s = ThreadFilledScratch();
+  s.chosen.assign(image.begin(), image.end());
+  if (p.filler != nullptr) p.filler->Fill(s.chosen);
+  Forward2d(p.filter, s.chosen, p.width, p.height, depth);
+  if (p.filler != nullptr && p.filter == WaveletFilter::kHaar)
+    p.filler->ZeroUncoveredCoefficients(s.chosen, depth);
+  return {depth, s.chosen};
+}
+
 }  // namespace wavebake

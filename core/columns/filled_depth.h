@@ -21,4 +21,11 @@ namespace wavebake {
 DepthChoice ChooseFilledDepth(const ColumnCodingParams& p, std::span<const float> image,
                               double budget);
 
+// The column's coefficients at a given depth, as ChooseFilledDepth would
+// have them had it chosen `depth`: the image itself at 0; else transformed
+// (from the filled image when p.filler is set, free Haar coefficients
+// zeroed). No search: an update's recomputed column keeps its old depth
+// (worker/columns/local_columns.h).
+DepthChoice FilledAtDepth(const ColumnCodingParams& p, std::span<const float> image, int depth);
+
 }  // namespace wavebake

@@ -68,6 +68,7 @@ absl::StatusOr<bool> CopyIfUnchanged(const std::string& scene, const BakeParams&
       {"rows_rebaked", 0},
       {"columns", columns},
       {"columns_recomputed", 0},
+      {"columns_depth_searched", 0},
       {"unchanged_scene", "the scene hashes as the old store's: its files were copied"},
       {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
   if (absl::Status s = WriteAttrs(copy, *attrs); !s.ok()) return s;
@@ -105,6 +106,9 @@ std::string UpdateSummary(const std::filesystem::path& store) {
   if (u.contains("columns_recomputed"))
     absl::StrAppendFormat(&line, ", %lld of %lld columns recomputed",
                           u.value("columns_recomputed", 0LL), u.value("columns", 0LL));
+  if (u.value("mode", "") == "local" && u.value("columns_recomputed", 0LL) > 0)
+    absl::StrAppendFormat(&line, " (%lld searched for their depth)",
+                          u.value("columns_depth_searched", 0LL));
   if (u.contains("estimated_seconds_saved"))
     absl::StrAppendFormat(&line, ", ~%.1f s of tracing saved",
                           u.value("estimated_seconds_saved", 0.0));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/columns/nla.h"
+#include "core/columns/uncovered_fill.h"
 #include "core/wavelets/wavelet2d.h"
 
 namespace wavebake {
@@ -155,6 +156,63 @@ TEST(ColumnCodingTest, TheDepthZeroAlternativeIsTheTwoDCoding) {
     EXPECT_GT(flat.positions.size(), fewest.positions.size()) << "trial " << trial;
   }
   EXPECT_GT(deep, 10);
+}
+
+// CodeColumnAtDepth (an update's recomputed column at its old depth) at the
+// depth the search chose is the search's coding, with and without a fill of
+// uncovered cells.
+TEST(ColumnCodingTest, CodingAtTheSearchedDepthIsTheSearchsCoding) {
+  std::vector<int32_t> grid(kW * kH, -1);  // the left half and a diagonal covered
+  for (int i = 0; i < kW * kH; ++i)
+    if (i % kW < kW / 2 || i % kW == i / kW) grid[i] = i;
+  const CellFiller filler(UncoveredFill::kPushPull, grid, kW, kH);
+  std::mt19937 rng(5);
+  std::vector<int> depths(MaxDepth(kW, kH) + 1, 0);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<float> v = MixedColumn(rng);
+    ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, OrderedEnergy(v));
+    p.target_error = 0.05;
+    if (trial % 2 == 1) {
+      for (int i = 0; i < kW * kH; ++i)
+        if (grid[i] < 0) v[i] = 0;  // as staged
+      p.filler = &filler;
+    }
+    CodedColumn searched, at;
+    CodeColumn(p, v, &searched);
+    CodeColumnAtDepth(p, v, searched.depth, &at);
+    ExpectSameCoding(searched, at, trial);
+    ++depths[searched.depth];
+  }
+  EXPECT_GT(depths[0], 0);
+  EXPECT_GT(depths.back() + depths[depths.size() - 2], 0);
+}
+
+// At any other depth the coding meets the same budget, measured by an
+// independent oracle (the inverse transform of the kept coefficients against
+// the column), and keeps no fewer coefficients than the search's.
+TEST(ColumnCodingTest, CodingAtAnyDepthMeetsTheBudget) {
+  std::mt19937 rng(6);
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::vector<float> v = MixedColumn(rng);
+    ColumnCodingParams p = Params(ColumnMode::kAdaptive, WaveletFilter::kHaar, OrderedEnergy(v));
+    p.target_error = 0.05;
+    const double budget = p.target_error * p.target_error * p.matrix_energy;
+    CodedColumn searched;
+    CodeColumn(p, v, &searched);
+    for (int d = 0; d <= MaxDepth(kW, kH); ++d) {
+      CodedColumn at;
+      CodeColumnAtDepth(p, v, d, &at);
+      EXPECT_EQ(at.depth, d);
+      EXPECT_GE(at.positions.size(), searched.positions.size()) << "trial " << trial << " d " << d;
+      std::vector<float> kept(v.size(), 0.0f);
+      for (size_t k = 0; k < at.positions.size(); ++k) kept[at.positions[k]] = at.values[k];
+      Inverse2d(p.filter, kept, kW, kH, d);
+      double error = 0;
+      for (size_t i = 0; i < v.size(); ++i) error += (double{v[i]} - kept[i]) * (v[i] - kept[i]);
+      EXPECT_LE(error, budget * (1 + 1e-4)) << "trial " << trial << " d " << d;
+      EXPECT_NEAR(error, at.dropped_energy, 1e-4 * budget) << "trial " << trial << " d " << d;
+    }
+  }
 }
 
 }  // namespace

@@ -179,6 +179,21 @@ TEST_F(UpdateBakeTest, LocalUpdateRecomputesOnlyChangedColumns) {
     EXPECT_EQ(u.value("columns", 0), 6 * 8 * 8);
     EXPECT_GT(u.value("columns_recomputed", 0), 0) << u.dump();
     EXPECT_LT(u.value("columns_recomputed", 0), u.value("columns", 0)) << u.dump();
+    // A recomputed column keeps its old depth unless it was searched again,
+    // which few are: a small edit moves few columns' energy by a quarter.
+    EXPECT_LT(u.value("columns_depth_searched", -1), u.value("columns_recomputed", 0));
+    const auto depths = [](const std::filesystem::path& store) {
+      absl::StatusOr<ZarrArray> a = ZarrArray::Open(store / "transport/depth");
+      EXPECT_TRUE(a.ok()) << a.status();
+      absl::StatusOr<std::vector<uint8_t>> d = a->ReadAll<uint8_t>();
+      EXPECT_TRUE(d.ok()) << d.status();
+      return *d;
+    };
+    const std::vector<uint8_t> was = depths(old_store), now = depths(updated);
+    ASSERT_EQ(was.size(), now.size());
+    int moved = 0;
+    for (size_t m = 0; m < was.size(); ++m) moved += was[m] != now[m];
+    EXPECT_LE(moved, u.value("columns_depth_searched", -1)) << u.dump();
     // Rows the moved box reaches through few texels are patched, not traced;
     // those with no old sample at their position (on the box, or where it
     // stood) and those that see it large are traced.

@@ -1,12 +1,14 @@
 #include "worker/columns/local_columns.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
+#include "core/columns/zero_quads.h"
 #include "storage/files/atomic_file.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
@@ -22,13 +24,26 @@ std::filesystem::path CountPath(const std::filesystem::path& store, int group) {
   return GroupResultDir(store) / absl::StrCat(group, ".recomputed");
 }
 
-absl::Status WriteCount(const std::filesystem::path& store, int group, size_t count) {
-  const std::string text = std::to_string(count);
+absl::Status WriteCount(const std::filesystem::path& store, int group, RecodedColumns count) {
+  const std::string text = absl::StrCat(count.recomputed, " ", count.searched);
   return AtomicWriteFile(CountPath(store, group), std::as_bytes(std::span(text)));
 }
 
 bool Stopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
+}
+
+// Whether a recomputed adaptive column is coded at its old depth rather than
+// searched again: an edit that leaves its energy within kDepthKeptChange of
+// the old one moves what the depths keep little, and the search is most of
+// the coding's cost. The old depth still meets the budget (the selection is
+// against it at any depth); it may keep more coefficients than the best one.
+constexpr double kDepthKeptChange = 0.25;
+bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
+                   std::span<const float> column) {
+  if (p.mode != ColumnMode::kAdaptive || was.kept == 0) return false;
+  const double energy = SumOfSquares(column.data(), column.size());
+  return std::abs(energy - was.energy) <= kDepthKeptChange * was.energy;
 }
 
 }  // namespace
@@ -44,7 +59,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   if (!old_result.ok() || old_result->first_column != plan.GroupFirst(group) ||
       static_cast<int>(old_result->columns.size()) != plan.GroupCount(group)) {
     if (absl::Status s = TransformColumns(ctx, store, group, stats, signals); !s.ok()) return s;
-    return WriteCount(store, group, plan.GroupCount(group));
+    return WriteCount(store, group, {plan.GroupCount(group), plan.GroupCount(group)});
   }
   absl::StatusOr<ZarrArray> now = ZarrArray::Open(store::Path(store, store::kStagingTransport));
   if (!now.ok()) return now.status();
@@ -80,20 +95,28 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
       !s.ok())
     return s;
 
-  const ColumnCodingParams params =
+  ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
+  const std::optional<CellFiller> filler = UncoveredFiller(ctx);
+  if (filler) params.filler = &*filler;
   GroupResult result;
   result.group = group;
   result.first_column = plan.GroupFirst(group);
   result.matrix_energy = *matrix_energy;
-  size_t recomputed = 0, at = 0;  // start of the old column's slice
+  size_t recomputed = 0, searched = 0, at = 0;  // start of the old column's slice
   CodedColumn coded;
   for (int j = 0; j < count; ++j) {
     if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
     const GroupColumn& was = old_result->columns[j];
     if (changed[j]) {
       ++recomputed;
-      CodeColumn(params, images.subspan(j * image, image), &coded);
+      const std::span<const float> column = images.subspan(j * image, image);
+      if (KeepsItsDepth(params, was, column)) {
+        CodeColumnAtDepth(params, column, was.depth, &coded);
+      } else {
+        ++searched;
+        CodeColumn(params, column, &coded);
+      }
       AppendColumn(coded, &result);
     } else {
       GroupColumn kept = was;
@@ -113,18 +136,21 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   std::error_code ec;
   local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
   if (stats) *stats = local;
-  return WriteCount(store, group, recomputed);
+  return WriteCount(store, group, {int64_t(recomputed), int64_t(searched)});
 }
 
-absl::StatusOr<int64_t> RecomputedColumns(const JobPlan& plan, const std::filesystem::path& store) {
-  int64_t total = 0;
+absl::StatusOr<RecodedColumns> RecomputedColumns(const JobPlan& plan,
+                                                 const std::filesystem::path& store) {
+  RecodedColumns total;
   for (int g = 0; g < plan.groups; ++g) {
-    int64_t n = -1;
+    RecodedColumns n{-1, -1};
     {
       std::ifstream in(CountPath(store, g));
-      if (!(in >> n) || n < 0) n = plan.GroupCount(g);
+      if (!(in >> n.recomputed >> n.searched) || n.recomputed < 0 || n.searched < 0)
+        n = {plan.GroupCount(g), plan.GroupCount(g)};
     }
-    total += n;
+    total.recomputed += n.recomputed;
+    total.searched += n.searched;
     // Read once, by FINALIZE: a kept staging holds a full bake's files only.
     std::error_code ec;
     std::filesystem::remove(CountPath(store, g), ec);

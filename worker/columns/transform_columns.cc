@@ -107,6 +107,13 @@ absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesyst
   return sum / plan.columns;
 }
 
+std::optional<CellFiller> UncoveredFiller(const BakeContext& ctx) {
+  if (ctx.layout.kind != LayoutKind::kUv || ctx.layout.fill == UncoveredFill::kZero)
+    return std::nullopt;
+  return std::optional<CellFiller>(std::in_place, ctx.layout.fill, ctx.samples.grid,
+                                   ctx.plan.width, ctx.plan.height);
+}
+
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
                               GroupStats* stats, const TaskSignals& signals,
                               const MemoryStaging* memory) {
@@ -140,11 +147,8 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
       !s.ok())
     return s;
 
-  std::optional<CellFiller> filler;  // only the uv layout fills (core/layouts/layout.h)
-  if (ctx.layout.kind == LayoutKind::kUv && ctx.layout.fill != UncoveredFill::kZero) {
-    filler.emplace(ctx.layout.fill, ctx.samples.grid, plan.width, plan.height);
-    params.filler = &*filler;
-  }
+  const std::optional<CellFiller> filler = UncoveredFiller(ctx);
+  if (filler) params.filler = &*filler;
   const size_t cells = size_t(plan.width) * plan.height;
   GroupResult result;
   result.group = group;

@@ -9,11 +9,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <span>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/bake/job_plan.h"
+#include "core/columns/uncovered_fill.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/loop/task_signals.h"
 #include "worker/tiles/bake_context.h"
@@ -53,6 +55,10 @@ absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
                              const MemoryStaging::Job* memory, int group, std::span<float> images,
                              GroupStats* stats, const TaskSignals& signals,
                              const ChunkVisitor& visit = {});
+
+// The fill of uncovered cells a column of ctx's layout is transformed with
+// (only the uv layout fills, core/layouts/layout.h); none: they stay 0.
+std::optional<CellFiller> UncoveredFiller(const BakeContext& ctx);
 
 // E_ref of error scope "matrix": Σ staging/tile_energy / M, summed in tile
 // order in double (the same number on every worker).

@@ -153,9 +153,10 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
   const bool retry_after_publish = !std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok();
   if (!retry_after_publish) {
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
-    int64_t recomputed = ctx.plan.columns;  // before FINALIZE drops staging/groups
+    // Before FINALIZE drops staging/groups.
+    RecodedColumns recomputed{ctx.plan.columns, ctx.plan.columns};
     if (ctx.reuse && !ctx.reuse->exact) {
-      absl::StatusOr<int64_t> n = RecomputedColumns(ctx.plan, partial);
+      absl::StatusOr<RecodedColumns> n = RecomputedColumns(ctx.plan, partial);
       if (!n.ok()) return n.status();
       recomputed = *n;
     }
@@ -167,7 +168,8 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
         !s.ok())
       return s;
     if (ctx.reuse) {
-      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed, ctx.plan.columns);
+      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed.recomputed,
+                                              recomputed.searched, ctx.plan.columns);
           !s.ok())
         return s;
     }

@@ -360,18 +360,21 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
 }
 
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
-                               int64_t columns_recomputed, int64_t columns) {
+                               int64_t columns_recomputed, int64_t columns_searched,
+                               int64_t columns) {
   absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
   if (!attrs.ok()) return attrs.status();
   nlohmann::json record = reuse.Record();
   record["columns"] = columns;
   record["columns_recomputed"] = columns_recomputed;
+  record["columns_depth_searched"] = columns_searched;
   record["column_decisions"] =
       reuse.exact ? "every column coded anew from the merged rows, as a full bake"
-                  : "columns whose values changed in a tile with a rebaked cell: adaptive depth "
-                    "searched again, selected against the new matrix energy; the others keep "
-                    "the old depth and selection; one matrix-wide quantization step over all "
-                    "(FINALIZE)";
+                  : "columns whose values changed in a tile with a rebaked cell: selected "
+                    "against the new matrix energy at their old depth (the adaptive depth "
+                    "searched again if they kept nothing before or their energy moved by over "
+                    "a quarter); the others keep the old depth and selection; one matrix-wide "
+                    "quantization step over all (FINALIZE)";
   (*attrs)["update"] = std::move(record);
   return WriteAttrs(store, *attrs);
 }

@@ -113,8 +113,10 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
 void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row);
 
 // Adds reuse.Record() as "update" to the store's root .zattrs (after
-// FINALIZE), with the columns coded anew out of `columns`.
+// FINALIZE), with the columns coded anew out of `columns` and how many of
+// those were searched for their depth.
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
-                               int64_t columns_recomputed, int64_t columns);
+                               int64_t columns_recomputed, int64_t columns_searched,
+                               int64_t columns);
 
 }  // namespace wavebake
