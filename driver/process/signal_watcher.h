@@ -16,10 +16,15 @@ class SignalWatcher {
   explicit SignalWatcher(std::function<void(int)> on_signal);
   SignalWatcher(const SignalWatcher&) = delete;
   SignalWatcher& operator=(const SignalWatcher&) = delete;
-  ~SignalWatcher();  // stops watching; the signals stay blocked
+  // Stops watching at once (the thread is woken, not polled); the signals
+  // stay blocked.
+  ~SignalWatcher();
 
  private:
   sigset_t set_;
+  // The thread waits on both: the signals, read as data (signalfd), and a
+  // wake-up the destructor writes (eventfd).
+  int signal_fd_ = -1, stop_fd_ = -1;
   std::jthread thread_;
 };
 
