@@ -45,6 +45,9 @@ inline constexpr char kStagingBounceEnergy[] = "staging/bounce_energy";
 inline constexpr char kStagingAuxTransport[] = "staging/aux_transport";
 // Not Zarr: one <g>.wbg file per TRANSFORM_COLUMNS group (worker/columns/group_result.h).
 inline constexpr char kStagingGroups[] = "staging/groups";
+// Not Zarr: one <t> file per BAKE_TILE of an in-place --update, a bit per
+// column the tile changed (worker/tiles/changed_columns.h).
+inline constexpr char kStagingChanged[] = "staging/changed";
 // Not Zarr: one <k>.wbq file per FINALIZE shard, its columns' quantization
 // outcome for the last task (worker/columns/finalize_parts.h).
 inline constexpr char kStagingFinalize[] = "staging/finalize";

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <optional>
 #include <fstream>
 #include <vector>
 
@@ -46,6 +46,34 @@ bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
   return std::abs(energy - was.energy) <= kDepthKeptChange * was.energy;
 }
 
+// The group's columns whose values differ from the old store's, from the
+// records of the touched tiles (RowReuse::tile_touched; every row of the
+// others is an old row in its old cell: the same bits). NotFound if a
+// touched tile left none.
+absl::StatusOr<std::vector<uint8_t>> ChangedInGroup(const RowReuse& reuse, const JobPlan& plan,
+                                                    const std::filesystem::path& store,
+                                                    int group) {
+  std::vector<uint8_t> changed(plan.GroupCount(group), 0);
+  for (int t = 0; t < plan.tiles(); ++t) {
+    if (!reuse.tile_touched[t]) continue;
+    if (absl::Status s = OrChangedColumns(store, t, plan.GroupFirst(group), changed); !s.ok())
+      return s;
+  }
+  return changed;
+}
+
+// The old coding of column j of `was`, appended to `result` as it was.
+void KeepColumn(const GroupResult& was, int j, size_t at, std::optional<double> matrix_energy,
+                GroupResult* result) {
+  GroupColumn kept = was.columns[j];
+  if (matrix_energy) kept.reference_energy = *matrix_energy;
+  result->columns.push_back(kept);
+  result->positions.insert(result->positions.end(), was.positions.begin() + at,
+                           was.positions.begin() + at + kept.kept);
+  result->values.insert(result->values.end(), was.values.begin() + at,
+                        was.values.begin() + at + kept.kept);
+}
+
 }  // namespace
 
 absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem::path& store,
@@ -56,44 +84,29 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
       reuse && reuse->in_place && reuse->full_reason.empty()
           ? ReadGroupResult(reuse->old_store, group)
           : absl::StatusOr<GroupResult>(absl::NotFoundError("rows moved"));
-  if (!old_result.ok() || old_result->first_column != plan.GroupFirst(group) ||
+  absl::StatusOr<std::vector<uint8_t>> changed =
+      old_result.ok() ? ChangedInGroup(*reuse, plan, store, group) : old_result.status();
+  if (!changed.ok() || old_result->first_column != plan.GroupFirst(group) ||
       static_cast<int>(old_result->columns.size()) != plan.GroupCount(group)) {
     if (absl::Status s = TransformColumns(ctx, store, group, stats, signals); !s.ok()) return s;
     return WriteCount(store, group, {plan.GroupCount(group), plan.GroupCount(group)});
   }
   absl::StatusOr<ZarrArray> now = ZarrArray::Open(store::Path(store, store::kStagingTransport));
   if (!now.ok()) return now.status();
-  absl::StatusOr<ZarrArray> old =
-      ZarrArray::Open(store::Path(reuse->old_store, store::kStagingTransport));
-  if (!old.ok()) return old.status();
   absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
   if (!matrix_energy.ok()) return matrix_energy.status();
-  // The group's column images, each new chunk read once; in a touched tile
-  // (RowReuse::tile_touched) the old chunk too, to find the columns whose
-  // values differ from the old store's. Every row of an untouched tile was
-  // copied in place: the same bits.
-  const int count = plan.GroupCount(group);
-  const size_t image = size_t(plan.width) * plan.height, cells = plan.tile_cells();
-  const std::span<float> images = TaskBuffer(count * image);
-  std::vector<uint8_t> changed(count, 0);
-  std::vector<float> was_chunk;
-  auto compare = [&](int t, std::span<const float> chunk) {
-    if (!reuse->tile_touched[t]) return absl::OkStatus();
-    was_chunk.resize(chunk.size());
-    const int64_t index[] = {group, t};
-    if (absl::Status s = old->ReadChunkInto(index, std::as_writable_bytes(std::span(was_chunk)));
+  // The images of the changed columns only; a group without any reads no chunk.
+  std::vector<int> recode;
+  for (int j = 0; j < plan.GroupCount(group); ++j)
+    if ((*changed)[j]) recode.push_back(j);
+  const size_t image = size_t(plan.width) * plan.height;
+  const std::span<float> images = TaskBuffer(recode.size() * image);
+  GroupStats local;
+  if (!recode.empty())
+    if (absl::Status s =
+            AssembleColumns(plan, *now, nullptr, group, images, &local, signals, recode);
         !s.ok())
       return s;
-    for (int j = 0; j < count; ++j)
-      changed[j] |= std::memcmp(chunk.data() + j * cells, was_chunk.data() + j * cells,
-                                cells * sizeof(float)) != 0;
-    return absl::OkStatus();
-  };
-  GroupStats local;
-  if (absl::Status s =
-          AssembleColumns(plan, *now, nullptr, group, images, &local, signals, compare);
-      !s.ok())
-    return s;
 
   ColumnCodingParams params =
       MakeColumnCodingParams(ctx.params, plan.width, plan.height, *matrix_energy);
@@ -103,14 +116,15 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   result.group = group;
   result.first_column = plan.GroupFirst(group);
   result.matrix_energy = *matrix_energy;
-  size_t recomputed = 0, searched = 0, at = 0;  // start of the old column's slice
+  const std::optional<double> reference =
+      ctx.params.error_scope == ErrorScope::kMatrix ? std::optional(*matrix_energy) : std::nullopt;
+  size_t searched = 0, at = 0, k = 0;  // at: start of the old column's slice
   CodedColumn coded;
-  for (int j = 0; j < count; ++j) {
+  for (int j = 0; j < plan.GroupCount(group); ++j) {
     if (Stopped(signals)) return absl::CancelledError(absl::StrCat("group ", group, ": cancelled"));
     const GroupColumn& was = old_result->columns[j];
-    if (changed[j]) {
-      ++recomputed;
-      const std::span<const float> column = images.subspan(j * image, image);
+    if ((*changed)[j]) {
+      const std::span<const float> column = images.subspan(k++ * image, image);
       if (KeepsItsDepth(params, was, column)) {
         CodeColumnAtDepth(params, column, was.depth, &coded);
       } else {
@@ -119,13 +133,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
       }
       AppendColumn(coded, &result);
     } else {
-      GroupColumn kept = was;
-      if (ctx.params.error_scope == ErrorScope::kMatrix) kept.reference_energy = *matrix_energy;
-      result.columns.push_back(kept);
-      result.positions.insert(result.positions.end(), old_result->positions.begin() + at,
-                              old_result->positions.begin() + at + was.kept);
-      result.values.insert(result.values.end(), old_result->values.begin() + at,
-                           old_result->values.begin() + at + was.kept);
+      KeepColumn(*old_result, j, at, reference, &result);
     }
     local.min_bits = std::max<int>(local.min_bits, result.columns.back().min_bits);
     at += was.kept;
@@ -136,7 +144,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   std::error_code ec;
   local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
   if (stats) *stats = local;
-  return WriteCount(store, group, {int64_t(recomputed), int64_t(searched)});
+  return WriteCount(store, group, {int64_t(recode.size()), int64_t(searched)});
 }
 
 absl::StatusOr<RecodedColumns> RecomputedColumns(const JobPlan& plan,
@@ -155,6 +163,7 @@ absl::StatusOr<RecodedColumns> RecomputedColumns(const JobPlan& plan,
     std::error_code ec;
     std::filesystem::remove(CountPath(store, g), ec);
   }
+  RemoveChangedColumns(store);
   return total;
 }
 

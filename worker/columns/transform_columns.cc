@@ -55,8 +55,8 @@ absl::Status Cancelled(int group) {
 absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
                              const MemoryStaging::Job* memory, int group, std::span<float> images,
                              GroupStats* stats, const TaskSignals& signals,
-                             const ChunkVisitor& visit) {
-  const int count = plan.GroupCount(group);
+                             std::span<const int> columns) {
+  const int count = columns.empty() ? plan.GroupCount(group) : static_cast<int>(columns.size());
   const size_t cells = size_t(plan.width) * plan.height;
   std::vector<float> buffer;
   for (int t = 0; t < plan.tiles(); ++t) {
@@ -75,12 +75,11 @@ absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
       chunk = buffer;
     }
     stats->staging_bytes += chunk.size() * sizeof(float);
-    if (visit)
-      if (absl::Status s = visit(t, chunk); !s.ok()) return s;
     const TileRect r = plan.Tile(t);
-    for (int c = 0; c < count; ++c) {
+    for (int k = 0; k < count; ++k) {
+      const int c = columns.empty() ? k : columns[k];
       const float* src = chunk.data() + size_t(c) * plan.tile_cells();
-      float* dst = images.data() + c * cells + size_t(r.y0) * plan.width + r.x0;
+      float* dst = images.data() + k * cells + size_t(r.y0) * plan.width + r.x0;
       for (int y = 0; y < r.height; ++y) {
         std::copy_n(src + size_t(y) * r.width, r.width, dst + size_t(y) * plan.width);
       }

@@ -8,7 +8,6 @@
 // times (a retry rewrites the same bytes).
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <span>
 
@@ -42,19 +41,15 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
                               GroupStats* stats, const TaskSignals& signals = {},
                               const MemoryStaging* memory = nullptr);
 
-// Sees chunk (group, tile) of staging/transport as it is read: [group count,
-// tile cells] values, column c of the group over the tile at c·tile_cells.
-using ChunkVisitor = std::function<absl::Status(int tile, std::span<const float> chunk)>;
-
-// The column images of `group` (column c as the row-major W×H image
-// images[c·W·H, (c+1)·W·H)), assembled from chunk (group, t) of every tile,
-// each read once: from the job's in-memory staging (`memory`) if it holds
-// it, else from `staging`. `visit`, if set, sees each chunk before the next
-// is read; its error stops the assembly.
+// The column images of `group`, assembled from chunk (group, t) of every
+// tile, each read once: from the job's in-memory staging (`memory`) if it
+// holds it, else from `staging`. Image k (the row-major W×H image
+// images[k·W·H, (k+1)·W·H)) is the group's column columns[k], or column k
+// when `columns` is empty (all of them).
 absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
                              const MemoryStaging::Job* memory, int group, std::span<float> images,
                              GroupStats* stats, const TaskSignals& signals,
-                             const ChunkVisitor& visit = {});
+                             std::span<const int> columns = {});
 
 // The fill of uncovered cells a column of ctx's layout is transformed with
 // (only the uv layout fills, core/layouts/layout.h); none: they stay 0.

@@ -1,6 +1,7 @@
 #include "worker/tiles/bake_tile.h"
 
 #include <algorithm>
+#include <optional>
 #include <system_error>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
 #include "worker/loop/task_buffer.h"
+#include "worker/tiles/changed_columns.h"
 #include "worker/tiles/row_reuse.h"
 #include "worker/tiles/row_transform.h"
 #include "worker/tiles/staging.h"
@@ -70,10 +72,11 @@ void TraceRow(const BakeContext& ctx, Vec3 position, Vec3 normal, std::span<floa
 // Row-transformed rows of the cells of tile row `cy`, cell c of the tile at
 // c*RowStride (masked cells all 0). Adds their Σ v² to `energy` while each
 // row is still in cache; the fixed order (cell, then m) makes the sum the
-// same bits on every worker.
+// same bits on every worker. A patched row marks in `changed` (if given)
+// the columns its patch changes.
 void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::span<float> rows,
                   const std::vector<uint8_t>& reused, double& energy, TileStats& stats,
-                  RefineScratch& scratch) {
+                  RefineScratch& scratch, std::span<uint8_t> changed) {
   const int m_count = ctx.plan.columns;
   const int y = rect.y0 + cy;
   TransportStats traced;
@@ -86,7 +89,7 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
       continue;
     }
     if (!reused.empty() && reused[cell]) {  // an update bake's old row: already staged values
-      if (reused[cell] == 2) PatchRow(*ctx.reuse, ctx, id, row);
+      if (reused[cell] == 2) PatchRow(*ctx.reuse, ctx, id, row, changed);
       energy += SumOfSquares(row.data(), row.size());
       ++stats.samples;
       continue;
@@ -129,14 +132,44 @@ absl::Status WriteChunkCounted(const ZarrArray& array, std::span<const int64_t> 
   return absl::OkStatus();
 }
 
+// Chunk `index` of `from`, copied into `to` as it was encoded (the same spec).
+absl::Status CopyChunkCounted(const ZarrArray& to, const ZarrArray& from,
+                              std::span<const int64_t> index, TileStats& stats) {
+  if (absl::Status s = to.CopyChunkFrom(from, index); !s.ok()) return s;
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(to.ChunkPath(index), ec);
+  if (!ec) stats.bytes_written += bytes;
+  return absl::OkStatus();
+}
+
+// Where an in-place update's tile finds the chunks it did not change: the
+// old staging, whose chunk (g, tile) holds the same cells.
+struct UnchangedChunks {
+  const ZarrArray* old = nullptr;
+  std::span<const uint8_t> changed;  // per column of the plan (worker/tiles/changed_columns.h)
+
+  bool Holds(const JobPlan& plan, int g) const {
+    if (old == nullptr) return false;
+    const auto columns = changed.subspan(plan.GroupFirst(g), plan.GroupCount(g));
+    return std::find(columns.begin(), columns.end(), 1) == columns.end();
+  }
+};
+
 // Every group's chunk of the tile into `transport`, each transposed just
-// before it is compressed.
+// before it is compressed, or, where `unchanged` holds it, copied as it was
+// encoded (the same values: the same bits).
 absl::Status WriteTileChunks(const ZarrArray& transport, const JobPlan& plan, int tile,
-                             std::span<const float> rows, TileStats& stats) {
+                             std::span<const float> rows, TileStats& stats,
+                             const UnchangedChunks& unchanged = {}) {
   std::vector<float> chunk(static_cast<size_t>(plan.group_size) * plan.tile_cells());
   for (int g = 0; g < plan.groups; ++g) {
-    TransposeGroup(rows, plan, g, chunk);
     const int64_t index[] = {g, tile};
+    if (unchanged.Holds(plan, g)) {
+      absl::Status s = CopyChunkCounted(transport, *unchanged.old, index, stats);
+      if (s.ok()) continue;
+      if (!absl::IsNotFound(s)) return s;  // not staged there: written anew
+    }
+    TransposeGroup(rows, plan, g, chunk);
     if (absl::Status s = WriteChunkCounted(transport, index, chunk, stats); !s.ok()) return s;
   }
   return absl::OkStatus();
@@ -160,9 +193,10 @@ bool HasSamples(const BakeContext& ctx, const TileRect& r) {
 // staging), then the tile's energy.
 absl::Status WriteTile(const StagingArrays& staging, MemoryStaging::Job* memory,
                        const JobPlan& plan, int tile, std::span<const float> rows, double energy,
-                       TileStats& stats) {
+                       TileStats& stats, const UnchangedChunks& unchanged = {}) {
   if (!memory) {
-    if (absl::Status s = WriteTileChunks(staging.transport, plan, tile, rows, stats); !s.ok())
+    if (absl::Status s = WriteTileChunks(staging.transport, plan, tile, rows, stats, unchanged);
+        !s.ok())
       return s;
     return WriteTileEnergy(staging, tile, energy, stats);
   }
@@ -229,20 +263,14 @@ absl::StatusOr<bool> CopyUnchangedTile(const BakeContext& ctx, const StagingArra
   if (!reuse.in_place || reuse.tile_touched.empty() || reuse.tile_touched[tile]) return false;
   absl::StatusOr<StagingArrays> old = OpenStaging(ctx.plan, reuse.old_store);
   if (!old.ok()) return old.status();
-  auto copy = [&](const ZarrArray& to, const ZarrArray& from, std::span<const int64_t> index) {
-    absl::Status s = to.CopyChunkFrom(from, index);
-    std::error_code ec;
-    if (s.ok()) stats.bytes_written += std::filesystem::file_size(to.ChunkPath(index), ec);
-    return s;
-  };
   for (int g = 0; g < ctx.plan.groups; ++g) {
     const int64_t index[] = {g, tile};
-    absl::Status s = copy(staging.transport, old->transport, index);
+    absl::Status s = CopyChunkCounted(staging.transport, old->transport, index, stats);
     if (absl::IsNotFound(s)) return false;
     if (!s.ok()) return s;
   }
   const int64_t index[] = {tile};
-  absl::Status s = copy(staging.tile_energy, old->tile_energy, index);
+  absl::Status s = CopyChunkCounted(staging.tile_energy, old->tile_energy, index, stats);
   if (absl::IsNotFound(s)) return false;
   if (!s.ok()) return s;
   const TileRect rect = ctx.plan.Tile(tile);
@@ -307,19 +335,34 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   double energy = 0;
   RefineScratch scratch;
   std::vector<uint8_t> reused;  // per cell of the tile: its row came from an old store
+  // An in-place --update records the columns the tile changes
+  // (worker/tiles/changed_columns.h) from the old rows of the cells it rewrites.
+  const bool records_changes = ctx.reuse && ctx.reuse->in_place && !ctx.reuse->exact;
+  OldRows rewritten;
+  std::vector<uint8_t> changed(records_changes ? plan.columns : 0, 0);
   if (ctx.reuse) {
-    absl::StatusOr<int> n = FillReusedRows(*ctx.reuse, plan, tile, rows, RowStride(plan), reused);
+    absl::StatusOr<int> n = FillReusedRows(*ctx.reuse, plan, tile, rows, RowStride(plan), reused,
+                                           records_changes ? &rewritten : nullptr);
     if (!n.ok()) return n.status();
     local.rows_reused = static_cast<uint64_t>(*n);
   }
   for (int cy = 0; cy < rect.height; ++cy) {
     if (signals.cancel && signals.cancel->load(std::memory_order_relaxed))
       return absl::CancelledError(absl::StrCat("tile: ", tile, " cancelled"));
-    TraceTileRow(ctx, rect, cy, rows, reused, energy, local, scratch);
+    TraceTileRow(ctx, rect, cy, rows, reused, energy, local, scratch, changed);
     if (signals.rays_traced)
       signals.rays_traced->store(local.rays_traced, std::memory_order_relaxed);
   }
-  absl::Status written = WriteTile(*staging, held.get(), plan, tile, rows, energy, local);
+  std::optional<StagingArrays> old;
+  if (records_changes) {
+    OrChangedColumns(rewritten, rows, RowStride(plan), changed);
+    if (absl::Status s = WriteChangedColumns(store, tile, changed); !s.ok()) return s;
+    absl::StatusOr<StagingArrays> opened = OpenStaging(plan, ctx.reuse->old_store);
+    if (!opened.ok()) return opened.status();
+    old = *std::move(opened);
+  }
+  absl::Status written = WriteTile(*staging, held.get(), plan, tile, rows, energy, local,
+                                   {.old = old ? &old->transport : nullptr, .changed = changed});
   if (stats) {
     stats->rays_traced += local.rays_traced;
     stats->bytes_written += local.bytes_written;

@@ -313,18 +313,35 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, c
 
 absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, int tile,
                                    std::span<float> rows, size_t stride,
-                                   std::vector<uint8_t>& filled) {
+                                   std::vector<uint8_t>& filled, OldRows* rewritten) {
   const TileRect rect = plan.Tile(tile);
   filled.assign(plan.tile_cells(), 0);
+  auto patched = [&](int cell) {
+    const size_t grid =
+        size_t(rect.y0 + cell / rect.width) * plan.width + rect.x0 + cell % rect.width;
+    return !reuse.patch.empty() && reuse.patch[grid];
+  };
   // Old tile -> (cell of this tile, cell inside the old tile).
   std::map<int64_t, std::vector<std::pair<int, int>>> wanted;
+  // In place, the old tile is this one: (k, cell) for the old rows of the
+  // cells traced or masked, into rewritten->values row k.
+  std::vector<std::pair<int, int>> old_rows;
   for (int cy = 0; cy < rect.height; ++cy)
     for (int cx = 0; cx < rect.width; ++cx) {
+      const int cell = cy * rect.width + cx;
       const int64_t src = reuse.source[size_t(rect.y0 + cy) * plan.width + rect.x0 + cx];
-      if (src < 0) continue;
-      wanted[src / plan.tile_cells()].emplace_back(cy * rect.width + cx,
-                                                   static_cast<int>(src % plan.tile_cells()));
+      if (src >= 0)
+        wanted[src / plan.tile_cells()].emplace_back(cell,
+                                                     static_cast<int>(src % plan.tile_cells()));
+      if (rewritten != nullptr && src < 0)
+        old_rows.emplace_back(static_cast<int>(old_rows.size()), cell);
     }
+  if (rewritten != nullptr) {
+    rewritten->cells.clear();
+    for (const auto& [k, cell] : old_rows) rewritten->cells.push_back(cell);
+    rewritten->values.resize(old_rows.size() * plan.columns);
+    if (!old_rows.empty()) wanted[tile];  // read even if no row is reused
+  }
   if (wanted.empty()) return 0;
   absl::StatusOr<ZarrArray> staged =
       ZarrArray::Open(store::Path(reuse.old_store, store::kStagingTransport));
@@ -337,18 +354,18 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
       absl::StatusOr<std::vector<float>> chunk = staged->ReadChunk<float>(index);
       if (!chunk.ok()) return chunk.status();
       CopyStagedRows(*chunk, cells, pairs, plan.GroupFirst(g), plan.GroupCount(g), rows, stride);
+      if (old_tile == tile && !old_rows.empty())
+        CopyStagedRows(*chunk, cells, old_rows, plan.GroupFirst(g), plan.GroupCount(g),
+                       rewritten->values, plan.columns);
     }
-    for (const auto& [cell, at] : pairs) {
-      const size_t grid =
-          size_t(rect.y0 + cell / rect.width) * plan.width + rect.x0 + cell % rect.width;
-      filled[cell] = !reuse.patch.empty() && reuse.patch[grid] ? 2 : 1;
-    }
+    for (const auto& [cell, at] : pairs) filled[cell] = patched(cell) ? 2 : 1;
     count += static_cast<int>(pairs.size());
   }
   return count;
 }
 
-void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row) {
+void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row,
+              std::span<uint8_t> changed) {
   thread_local std::vector<float> delta;
   delta.resize(row.size());
   if (!reuse.delta->RowDelta(ctx.samples.position[id], ctx.samples.normal[id], ctx.epsilon, delta,
@@ -356,7 +373,15 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
     return;
   // The row transform is linear: transform(old + Δ) = staged old + transform(Δ).
   RowTransform(ctx.params.row_filter, ctx.plan.light_res, delta);
-  for (size_t m = 0; m < row.size(); ++m) row[m] += delta[m];
+  if (changed.empty()) {
+    for (size_t m = 0; m < row.size(); ++m) row[m] += delta[m];
+    return;
+  }
+  for (size_t m = 0; m < row.size(); ++m) {
+    const float was = row[m];
+    row[m] += delta[m];
+    changed[m] |= std::bit_cast<uint32_t>(row[m]) != std::bit_cast<uint32_t>(was);
+  }
 }
 
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,

@@ -24,6 +24,7 @@
 #include "core/bake/bake_params.h"
 #include "core/bake/job_plan.h"
 #include "core/transport/dirty_rows.h"
+#include "worker/tiles/changed_columns.h"
 #include "nlohmann/json.hpp"
 
 namespace wavebake {
@@ -104,13 +105,18 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, c
 // Copies the old rows of tile `tile`'s reused cells into `rows` (cell c of
 // the tile at c·stride, plan.columns values, as BAKE_TILE lays them out) and
 // sets filled[c] = 1 for them, 2 for those to patch (PatchRow), 0 for the
-// others. Returns how many.
+// others. Returns how many. With `rewritten` (reuse.in_place only: each old
+// row is in its old cell), also the old rows of the cells filled 0, from
+// the same chunks (worker/tiles/changed_columns.h).
 absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, int tile,
                                    std::span<float> rows, size_t stride,
-                                   std::vector<uint8_t>& filled);
+                                   std::vector<uint8_t>& filled, OldRows* rewritten = nullptr);
 
-// Adds the change's difference to the old row of sample `id` (filled 2).
-void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row);
+// Adds the change's difference to the old row of sample `id` (filled 2),
+// setting changed[m] = 1 where value m's bits change (if `changed` is given:
+// one byte per column).
+void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row,
+              std::span<uint8_t> changed = {});
 
 // Adds reuse.Record() as "update" to the store's root .zattrs (after
 // FINALIZE), with the columns coded anew out of `columns` and how many of
