@@ -338,7 +338,9 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   // An in-place --update records the columns the tile changes
   // (worker/tiles/changed_columns.h) from the old rows of the cells it rewrites.
   const bool records_changes = ctx.reuse && ctx.reuse->in_place && !ctx.reuse->exact;
-  OldRows rewritten;
+  // Per thread, reused tile after tile: a fresh buffer would be zero-filled
+  // and first-touched for every tile, only to be overwritten.
+  thread_local OldRows rewritten;
   std::vector<uint8_t> changed(records_changes ? plan.columns : 0, 0);
   if (ctx.reuse) {
     absl::StatusOr<int> n = FillReusedRows(*ctx.reuse, plan, tile, rows, RowStride(plan), reused,

@@ -20,11 +20,13 @@ void OrChangedColumns(const OldRows& old, std::span<const float> rows, size_t st
                       std::span<uint8_t> changed) {
   const size_t columns = changed.size();
   for (size_t k = 0; k < old.cells.size(); ++k) {
-    const float* now = rows.data() + size_t(old.cells[k]) * stride;
-    const float* was = old.values.data() + k * columns;
+    const float* __restrict now = rows.data() + size_t(old.cells[k]) * stride;
+    const float* __restrict was = old.values.data() + k * columns;
+    uint8_t* __restrict mark = changed.data();  // bytes alias anything: restrict, to vectorize
     // Bits, not values: -0 and 0 are stored differently (as a memcmp of the chunks sees them).
     for (size_t m = 0; m < columns; ++m)
-      changed[m] |= std::bit_cast<uint32_t>(now[m]) != std::bit_cast<uint32_t>(was[m]);
+      mark[m] |= static_cast<uint8_t>(std::bit_cast<uint32_t>(now[m]) !=
+                                      std::bit_cast<uint32_t>(was[m]));
   }
 }
 

@@ -339,6 +339,9 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
   if (rewritten != nullptr) {
     rewritten->cells.clear();
     for (const auto& [k, cell] : old_rows) rewritten->cells.push_back(cell);
+    // Room for a whole tile at once, so that a thread's buffer is not
+    // reallocated (and first-touched again) as its tiles need more.
+    rewritten->values.reserve(size_t(plan.tile_cells()) * plan.columns);
     rewritten->values.resize(old_rows.size() * plan.columns);
     if (!old_rows.empty()) wanted[tile];  // read even if no row is reused
   }
@@ -377,10 +380,15 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
     for (size_t m = 0; m < row.size(); ++m) row[m] += delta[m];
     return;
   }
+  // Restrict: `changed` is bytes, which may alias anything, and would
+  // otherwise keep the loop from being vectorized.
+  float* __restrict out = row.data();
+  const float* __restrict add = delta.data();
+  uint8_t* __restrict mark = changed.data();
   for (size_t m = 0; m < row.size(); ++m) {
-    const float was = row[m];
-    row[m] += delta[m];
-    changed[m] |= std::bit_cast<uint32_t>(row[m]) != std::bit_cast<uint32_t>(was);
+    const uint32_t was = std::bit_cast<uint32_t>(out[m]);
+    out[m] += add[m];
+    mark[m] |= static_cast<uint8_t>(std::bit_cast<uint32_t>(out[m]) != was);
   }
 }
 
