@@ -27,7 +27,8 @@ TEST(SignalWatcherTest, SignalsReachTheCallbackWithTheirNumbers) {
       std::unique_lock lock(mu);
       const size_t before = got.size();  // before the signal: it may be seen at once
       ASSERT_EQ(kill(getpid(), signo), 0);
-      ASSERT_TRUE(seen.wait_for(lock, std::chrono::seconds(10), [&] { return got.size() > before; }))
+      ASSERT_TRUE(
+          seen.wait_for(lock, std::chrono::seconds(10), [&] { return got.size() > before; }))
           << "signal " << signo << " not seen";
     }
   }  // the destructor wakes the thread: no signal is pending

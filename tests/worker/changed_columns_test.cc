@@ -27,10 +27,10 @@ TEST(ChangedColumnsTest, AnyBitOfAListedCellChangesItsColumn) {
   constexpr size_t kStride = 8;  // padded rows, as BAKE_TILE lays them out
   std::vector<float> rows(3 * kStride, 1.0f);
   OldRows old{.cells = {0, 2}, .values = std::vector<float>(2 * kColumns, 1.0f)};
-  rows[0 * kStride + 1] = -0.0f;       // cell 0, column 1: was +0
+  rows[0 * kStride + 1] = -0.0f;  // cell 0, column 1: was +0
   old.values[0 * kColumns + 1] = 0.0f;
-  rows[2 * kStride + 3] = 1.0000001f;  // cell 2, column 3: one ulp up
-  rows[1 * kStride + 4] = 7.0f;        // cell 1 is not listed (an old row, copied)
+  rows[2 * kStride + 3] = 1.0000001f;   // cell 2, column 3: one ulp up
+  rows[1 * kStride + 4] = 7.0f;         // cell 1 is not listed (an old row, copied)
   rows[2 * kStride + kColumns] = 9.0f;  // padding past the row
   std::vector<uint8_t> changed(kColumns, 0);
   OrChangedColumns(old, rows, kStride, changed);

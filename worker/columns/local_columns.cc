@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -51,8 +51,7 @@ bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
 // others is an old row in its old cell: the same bits). NotFound if a
 // touched tile left none.
 absl::StatusOr<std::vector<uint8_t>> ChangedInGroup(const RowReuse& reuse, const JobPlan& plan,
-                                                    const std::filesystem::path& store,
-                                                    int group) {
+                                                    const std::filesystem::path& store, int group) {
   std::vector<uint8_t> changed(plan.GroupCount(group), 0);
   for (int t = 0; t < plan.tiles(); ++t) {
     if (!reuse.tile_touched[t]) continue;

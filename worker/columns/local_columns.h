@@ -3,9 +3,10 @@
 // columns the edit changed are transformed again (Boulton §4.5: Haar's local
 // support). A column image is W×H staged values; when every reused row sits
 // in its old cell (RowReuse::in_place), a column whose values in the tiles
-// with a rebaked cell are bit-identical to the old store's is the same image,
-// so its old coded column (the old store's kept staging/groups) is exact
-// and is kept; the others are coded anew from the merged staging.
+// with a rebaked cell are bit-identical to the old store's (as BAKE_TILE
+// recorded them: worker/tiles/changed_columns.h) is the same image, so its
+// old coded column (the old store's kept staging/groups) is exact and is
+// kept; the others are coded anew from the merged staging.
 //
 // How depth and quantization are decided then: a recomputed column is
 // selected against the budget of the new matrix energy
@@ -31,10 +32,10 @@
 namespace wavebake {
 
 // TransformColumns of group `group` for ctx (ctx.reuse set, not exact).
-// Falls back to TransformColumns when the rows moved between cells or the
-// old store kept no group result for the group. Writes how many columns
-// were coded anew, and how many of those were searched for their depth,
-// beside the group result (RecomputedColumns reads it).
+// Falls back to TransformColumns when the rows moved between cells, the old
+// store kept no group result for the group, or a touched tile left no record. Writes how many
+// columns were coded anew, and how many of those were searched for their depth, beside the group
+// result (RecomputedColumns reads it).
 absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem::path& store,
                                    int group, GroupStats* stats, const TaskSignals& signals = {});
 

@@ -109,8 +109,8 @@ absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesyst
 std::optional<CellFiller> UncoveredFiller(const BakeContext& ctx) {
   if (ctx.layout.kind != LayoutKind::kUv || ctx.layout.fill == UncoveredFill::kZero)
     return std::nullopt;
-  return std::optional<CellFiller>(std::in_place, ctx.layout.fill, ctx.samples.grid,
-                                   ctx.plan.width, ctx.plan.height);
+  return std::optional<CellFiller>(std::in_place, ctx.layout.fill, ctx.samples.grid, ctx.plan.width,
+                                   ctx.plan.height);
 }
 
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,

@@ -169,7 +169,7 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
       return s;
     if (ctx.reuse) {
       if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed.recomputed,
-                                              recomputed.searched, ctx.plan.columns);
+                                             recomputed.searched, ctx.plan.columns);
           !s.ok())
         return s;
     }

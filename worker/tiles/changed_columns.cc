@@ -1,7 +1,6 @@
 #include "worker/tiles/changed_columns.h"
 
 #include <bit>
-#include <cstring>
 
 #include "absl/strings/str_cat.h"
 #include "storage/files/atomic_file.h"
@@ -25,8 +24,8 @@ void OrChangedColumns(const OldRows& old, std::span<const float> rows, size_t st
     uint8_t* __restrict mark = changed.data();  // bytes alias anything: restrict, to vectorize
     // Bits, not values: -0 and 0 are stored differently (as a memcmp of the chunks sees them).
     for (size_t m = 0; m < columns; ++m)
-      mark[m] |= static_cast<uint8_t>(std::bit_cast<uint32_t>(now[m]) !=
-                                      std::bit_cast<uint32_t>(was[m]));
+      mark[m] |=
+          static_cast<uint8_t>(std::bit_cast<uint32_t>(now[m]) != std::bit_cast<uint32_t>(was[m]));
   }
 }
 

@@ -24,8 +24,8 @@
 #include "core/bake/bake_params.h"
 #include "core/bake/job_plan.h"
 #include "core/transport/dirty_rows.h"
-#include "worker/tiles/changed_columns.h"
 #include "nlohmann/json.hpp"
+#include "worker/tiles/changed_columns.h"
 
 namespace wavebake {
 
