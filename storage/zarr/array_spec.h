@@ -19,6 +19,9 @@ struct ArraySpec {
   DType dtype = DType::kFloat32;
   double fill_value = 0;  // what a missing chunk reads as; integral for integer dtypes
   int zstd_level = kDefaultZstdLevel;
+  // How the writer searches at that level: not in the .zarray and not
+  // compared by SameSpec (a reader needs only the frames).
+  ZstdSearch zstd_search = {};
   // numcodecs Delta filter (integer dtypes only); DESIGN.md §3 suggests it for
   // transport/indices, whose sorted runs become small differences.
   bool delta_filter = false;

@@ -29,7 +29,8 @@ absl::StatusOr<ZarrArray> ZarrArray::Create(const std::filesystem::path& dir,
   if (absl::Status s = ValidateSpec(spec, (dir / kZarray).string()); !s.ok()) return s;
   absl::StatusOr<ZarrArray> existing = Open(dir);
   if (existing.ok()) {
-    if (SameSpec(existing->spec(), spec)) return existing;
+    // The requested spec, which may carry what the .zarray does not (its zstd search).
+    if (SameSpec(existing->spec(), spec)) return ZarrArray(dir, spec);
     return absl::AlreadyExistsError(absl::StrCat(
         (dir / kZarray).string(), ": an array with a different spec exists: ",
         ToZarray(existing->spec()).dump(), " (requested ", ToZarray(spec).dump(), ")"));
@@ -100,9 +101,9 @@ absl::Status ZarrArray::WriteChunk(std::span<const int64_t> chunk_index,
     filtered.assign(data.begin(), data.end());
     if (spec_.delta_filter) DeltaEncode(spec_.dtype, filtered);
     if (spec_.shuffle_filter) ShuffleEncode(ItemSize(spec_.dtype), filtered);
-    compressed = ZstdCompressInto(filtered, spec_.zstd_level, frame);
+    compressed = ZstdCompressInto(filtered, spec_.zstd_level, frame, spec_.zstd_search);
   } else {
-    compressed = ZstdCompressInto(data, spec_.zstd_level, frame);
+    compressed = ZstdCompressInto(data, spec_.zstd_level, frame, spec_.zstd_search);
   }
   if (!compressed.ok()) return compressed;
   return AtomicWriteFile(ChunkPath(chunk_index), frame);

@@ -90,7 +90,8 @@ absl::Status Corrupt(absl::string_view source, absl::string_view why) {
 
 }  // namespace
 
-absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuffer& frame) {
+absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuffer& frame,
+                              const ZstdSearch& search) {
   if (level < ZSTD_minCLevel() || level > ZSTD_maxCLevel()) {
     return absl::InvalidArgumentError(absl::StrCat("zstd level ", level, " out of range [",
                                                    ZSTD_minCLevel(), ", ", ZSTD_maxCLevel(), "]"));
@@ -100,9 +101,14 @@ absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuf
   if (cctx == nullptr) return absl::ResourceExhaustedError("zstd: cannot create a context");
   // Reset parameters too: a failed call must not leak settings into the next chunk.
   ZSTD_CCtx_reset(cctx, ZSTD_reset_session_and_parameters);
+  // The level first: it sets every match-finder parameter, which the search's
+  // nonzero ones then replace (0 is zstd's "the level's default" too).
   for (auto [param, value] :
        {std::pair{ZSTD_c_compressionLevel, level}, std::pair{ZSTD_c_contentSizeFlag, 1},
-        std::pair{ZSTD_c_checksumFlag, 1}}) {
+        std::pair{ZSTD_c_checksumFlag, 1}, std::pair{ZSTD_c_strategy, search.strategy},
+        std::pair{ZSTD_c_minMatch, search.min_match}, std::pair{ZSTD_c_chainLog, search.chain_log},
+        std::pair{ZSTD_c_hashLog, search.hash_log},
+        std::pair{ZSTD_c_searchLog, search.search_log}}) {
     if (size_t rc = ZSTD_CCtx_setParameter(cctx, param, value); ZSTD_isError(rc)) {
       return ZstdError("setParameter", rc);
     }

@@ -16,12 +16,24 @@ namespace wavebake {
 
 inline constexpr int kDefaultZstdLevel = 1;
 
+// A level's match finder with some of its settings replaced (zstd's advanced
+// parameters; 0 keeps the level's own). A frame decodes the same whatever
+// found its matches, so a store records only the level (.zarray "level").
+struct ZstdSearch {
+  int strategy = 0;  // ZSTD_strategy
+  int min_match = 0;
+  int chain_log = 0;
+  int hash_log = 0;
+  int search_log = 0;
+};
+
 // Compresses `src` as a single frame at `level`. Thread-safe (contexts come from a pool).
 absl::StatusOr<std::vector<std::byte>> ZstdCompress(std::span<const std::byte> src,
                                                     int level = kDefaultZstdLevel);
 // The same into `frame`, resized to the frame: a buffer reused chunk after
 // chunk keeps its pages (storage/zarr/byte_buffer.h).
-absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuffer& frame);
+absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuffer& frame,
+                              const ZstdSearch& search = {});
 
 // Decompresses a buffer that must be exactly one frame whose header declares
 // `expected_size` content bytes; the checksum is verified when the frame has
