@@ -31,7 +31,9 @@ float StepForMax(double max_abs, int max_code) {
   // Rounded up so that the stored float step (the one decoding uses) still
   // keeps the largest value within max_code.
   float f = static_cast<float>(step);
-  if (static_cast<double>(f) < step) f = std::nextafter(f, INFINITY);
+  // The next float up, as std::nextafter(f, INFINITY) but without the libm
+  // call: f is finite and ≥ 0 here, where the next bit pattern is the next float.
+  if (static_cast<double>(f) < step) f = std::bit_cast<float>(std::bit_cast<uint32_t>(f) + 1);
   return f;
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/columns/column_coding.h"
@@ -86,6 +87,39 @@ TEST(QuantizationStepsTest, EmptyColumnsGetNoStep) {
   const StepPlan plan = PlanSteps(cols, Auto(0.01));
   EXPECT_EQ(plan.steps[3], 0.0f);
   EXPECT_GT(plan.steps[0], 0.0f);
+}
+
+// bits_needed is the fewest b in [2, 16) whose dither energy Σ (max_c/Q_b)²·U_c
+// fits the half budget (16 if none does), against a scan of every b in long
+// double with unrounded steps. Targets from 4 down to 1e-6 take it from 2
+// to "none fits"; each case's budget stays clear of every sum by 1e-5 so that
+// the float steps' rounding cannot tip the comparison.
+TEST(QuantizationStepsTest, BitsNeededIsTheFewestThatFitsAtEveryTarget) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> log_max(-6, 0), kept(1, 400);
+  std::vector<ColumnQuantInput> cols(300);
+  for (ColumnQuantInput& c : cols) {
+    c.max_abs = std::pow(10.0, log_max(rng));
+    c.step_unit = kept(rng) / 12;
+    c.reference_energy = c.max_abs * c.max_abs * kept(rng) / 4;
+  }
+  std::vector<int> seen;
+  for (double target = 4.0; target > 1e-6; target /= 1.7) {
+    long double budget = 0;
+    for (const ColumnQuantInput& c : cols) budget += 0.25L * target * target * c.reference_energy;
+    int expected = 16;
+    for (int b = 15; b >= 2; --b) {
+      const long double q = std::ldexp(1.0L, b - 1) - 1;
+      long double e = 0;
+      for (const ColumnQuantInput& c : cols) e += c.max_abs * c.max_abs / (q * q) * c.step_unit;
+      ASSERT_GT(std::fabs(e - budget), 1e-5L * budget) << "target " << target << ", b " << b;
+      if (e <= budget) expected = b;
+    }
+    EXPECT_EQ(PlanSteps(cols, Auto(target)).bits_needed, expected) << "target " << target;
+    seen.push_back(expected);
+  }
+  EXPECT_EQ(seen.front(), 2);
+  EXPECT_EQ(seen.back(), 16);
 }
 
 }  // namespace
