@@ -61,6 +61,21 @@ TEST(ZstdCodecTest, LevelChangesTheFrameAndBadLevelIsRejected) {
   EXPECT_EQ(ZstdCompress(src, 99).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+// A level's search with some settings replaced writes frames any decoder
+// reads; settings outside zstd's bounds are refused, not clamped.
+TEST(ZstdCodecTest, SearchSettingsKeepFramesReadableAndOutOfRangeOnesAreRejected) {
+  const std::vector<std::byte> src = SmoothFloats(1 << 18);
+  ByteBuffer frame;
+  const ZstdSearch narrowed = {
+      .strategy = 5, .min_match = 6, .chain_log = 16, .hash_log = 16, .search_log = 3};
+  ASSERT_TRUE(ZstdCompressInto(src, 9, frame, narrowed).ok());
+  std::vector<std::byte> plain(src.size());
+  EXPECT_EQ(ZSTD_decompress(plain.data(), plain.size(), frame.data(), frame.size()), src.size());
+  EXPECT_EQ(plain, src);
+  EXPECT_FALSE(ZstdCompressInto(src, 9, frame, {.min_match = 99}).ok());
+  EXPECT_FALSE(ZstdCompressInto(src, 9, frame, {.strategy = 42}).ok());
+}
+
 // Contexts are pooled and reused across levels and threads, and frame
 // buffers across chunks: a chunk's frame must not depend on what was
 // compressed before it (stores are byte-identical across workers and retries).
@@ -69,9 +84,9 @@ TEST(ZstdCodecTest, FramesDoNotDependOnWhatWasCompressedBefore) {
   absl::StatusOr<std::vector<std::byte>> first = ZstdCompress(smooth, 9);
   ASSERT_TRUE(first.ok());
   ByteBuffer reused;
-  for (int level : {-3, 9, 5, 1}) {  // other levels and data through the pooled contexts
+  for (int level : {-3, 9, 5, 1}) {  // other levels, searches and data through the pooled contexts
     ASSERT_TRUE(ZstdCompressInto(noise, level, reused).ok());
-    ASSERT_TRUE(ZstdCompressInto(smooth, level, reused).ok());
+    ASSERT_TRUE(ZstdCompressInto(smooth, level, reused, {.min_match = 7, .hash_log = 12}).ok());
   }
   ASSERT_TRUE(ZstdCompressInto(smooth, 9, reused).ok());
   EXPECT_TRUE(std::equal(reused.begin(), reused.end(), first->begin(), first->end()));
