@@ -14,6 +14,7 @@
 #include "coordinator/service/coordinator.h"
 #include "coordinator/service/job_planner.h"
 #include "core/bake/bake_params.h"
+#include "driver/process/memory_limit.h"
 #include "wavebake.pb.h"
 #include "worker/columns/publish_store.h"  // ResolveOutputPath: OUT as a bake writes it
 
@@ -35,10 +36,13 @@ struct EmbeddedBakeOptions {
   std::function<void(Coordinator&, const std::string& job_id)> on_ending = {};
   // Staging chunks of a job whose whole staging fits this many bytes stay
   // in memory (worker/tiles/memory_staging.h) instead of going through the store;
-  // 0: always the store. The peak memory of such a bake is this much more
-  // than a store-staged one's (docs/RESULTS.md).
-  uint64_t memory_staging_bytes = kDefaultMemoryStagingBytes;
-  static constexpr uint64_t kDefaultMemoryStagingBytes = uint64_t{1} << 30;
+  // 0: always the store. The peak memory of such a bake is up to this much
+  // more than a store-staged one's (docs/RESULTS.md).
+  uint64_t memory_staging_bytes = DefaultMemoryStagingBytes();
+  // A quarter of what the process may use (driver/process/memory_limit.h):
+  // 1 GiB held the N = 64 bunny and spot but not N = 128 (1.6 GB), whose
+  // staging zstd and files were a sixth of the bake's CPU.
+  static uint64_t DefaultMemoryStagingBytes() { return UsableMemoryBytes() / 4; }
 };
 
 // The job as it ended: DONE (the store is at `out`; an older store there is
