@@ -30,11 +30,11 @@ constexpr int64_t kColumnChunk = 1 << 16;
 // than at 9, 2.6× as fast: 65 against 25 MB/s) — the slower strategies of
 // the higher levels find nothing more in them.
 constexpr int kIndicesZstdLevel = 9;
-// Level 9's lazy2 search, narrowed: matches of at least 6 bytes (shorter ones
-// in the shuffled delta planes cost more than their literals), 2^16-entry
-// tables (level 9's 2^20+ ones miss the cache) and 8 candidates per position.
-// Smaller indices on the three N = 32–64 stores tried (−0.1 to −0.9 %) at
-// 1.6–1.9× the speed (`zstd -b9 -B1048576 --zstd=...` on their chunks).
+// Level 9's lazy2 search, narrowed: matches of at least 6 bytes, 2^16-entry
+// hash and chain tables, 8 candidates per position: −1.5 % to +0.3 % of
+// level 9's indices bytes on six stores (N = 16–64), at 1.6–1.9× its speed
+// on the three timed (`zstd -b9 -B1048576 --zstd=...` on their decoded
+// chunks; docs/RESULTS.md).
 constexpr ZstdSearch kIndicesZstdSearch = {
     .strategy = 5, .min_match = 6, .chain_log = 16, .hash_log = 16, .search_log = 3};
 constexpr int kDataZstdLevel = 5;
