@@ -35,15 +35,17 @@ bool IsTemporary(const std::string& name) {
   return name.size() > 9 && name.front() == '.' && name.ends_with(".partial");
 }
 
-// staging/groups and staging/finalize: "<n><suffix>" files (".wbg", ".wbq")
-// and their temporaries, nothing else.
-std::optional<fs::path> ForeignInNumbered(const fs::path& dir, const std::string& suffix) {
+// staging/groups and staging/finalize: "<n><suffix>" files (".wbg", ".wbq"),
+// `also` (staging/finalize's plan.wbp) and their temporaries, nothing else.
+std::optional<fs::path> ForeignInNumbered(const fs::path& dir, const std::string& suffix,
+                                          const std::string& also = "") {
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
     const bool numbered =
         name.ends_with(suffix) && IsChunkKey(name.substr(0, name.size() - suffix.size()));
-    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !(numbered || IsTemporary(name)))
+    const bool known = numbered || (!also.empty() && name == also) || IsTemporary(name);
+    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !known)
       return e.path();
   }
   if (ec) return dir;
@@ -53,7 +55,7 @@ std::optional<fs::path> ForeignInNumbered(const fs::path& dir, const std::string
 std::optional<fs::path> ForeignIn(const fs::path& store, const fs::path& dir) {
   std::error_code ec;
   if (dir == store / store::kStagingGroups) return ForeignInNumbered(dir, ".wbg");
-  if (dir == store / store::kStagingFinalize) return ForeignInNumbered(dir, ".wbq");
+  if (dir == store / store::kStagingFinalize) return ForeignInNumbered(dir, ".wbq", "plan.wbp");
   const bool array = fs::exists(dir / ".zarray", ec);
   if (!array && !fs::exists(dir / ".zgroup", ec)) return dir;  // no Zarr node
   for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {

@@ -19,7 +19,9 @@
 #include "storage/store/store_reader.h"
 #include "storage/zarr/zarr_array.h"
 #include "tests/worker/column_test_support.h"
+#include "worker/columns/finalize_parts.h"
 #include "worker/columns/group_result.h"
+#include "worker/columns/shard_plan.h"
 #include "worker/columns/store_manifest.h"
 #include "worker/columns/transform_columns.h"
 
@@ -521,6 +523,50 @@ TEST(FinalizeTest, ShardsInAnyOrderThenTheLastTaskWriteTheOneCallStore) {
   // A shard retried after the store is finished has nothing to do.
   EXPECT_TRUE(FinalizeShard(*ctx, store, 1, {}).ok());
   EXPECT_EQ(ReadTree(store), expected);
+}
+
+// The shards' plan (worker/columns/shard_plan.h): the first shard keeps it,
+// it reads back as worked out from the group results, a file that is not a
+// plan of this job is worked out again (and the store still comes out right),
+// and a group result written anew removes it.
+TEST(FinalizeTest, ShardsShareOnePlanThatANewGroupResultRemoves) {
+  const BakeParams p = SmallJob();
+  const auto expected = ReadTree(Bake(p)->store);
+  ScratchDir dir;
+  const auto store = dir.path() / "out.wbk";
+  auto ctx = MakeContext(p);
+  WriteSyntheticStaging(ctx->plan, store, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, store);
+  EXPECT_EQ(ReadShardPlan(store, ctx->plan).status().code(), absl::StatusCode::kNotFound);
+  ASSERT_TRUE(FinalizeShard(*ctx, store, 2, {}).ok());
+  absl::StatusOr<ShardPlan> kept = ReadShardPlan(store, ctx->plan);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx->plan, store, {});
+  ASSERT_TRUE(scan.ok());
+  const StepPlan steps = PlanFinalizeSteps(*scan, p);
+  EXPECT_EQ(kept->group_offsets, scan->group_offsets);
+  EXPECT_EQ(kept->steps, steps.steps);
+  EXPECT_EQ(kept->max_code, steps.max_code);
+
+  JobPlan other = ctx->plan;
+  other.groups += 1;
+  const absl::Status mismatched = ReadShardPlan(store, other).status();
+  EXPECT_EQ(mismatched.code(), absl::StatusCode::kDataLoss);
+  EXPECT_THAT(mismatched.message(), ::testing::HasSubstr("plan.wbp"));
+  std::filesystem::resize_file(ShardPlanPath(store), 10);
+  for (int shard = 0; shard < FinalizeShards(ctx->plan.groups); ++shard)
+    ASSERT_TRUE(FinalizeShard(*ctx, store, shard, {}).ok());
+  ASSERT_TRUE(ReadShardPlan(store, ctx->plan).ok());  // worked out and kept again
+  ASSERT_TRUE(FinalizeStore(*ctx, store, {}).ok());
+  EXPECT_EQ(ReadTree(store), expected);
+
+  ScratchDir again;
+  const auto recoded = again.path() / "out.wbk";
+  WriteSyntheticStaging(ctx->plan, recoded, SyntheticMatrix(kW, kH));
+  TransformAll(*ctx, recoded);
+  ASSERT_TRUE(WriteShardPlan(recoded, *kept).ok());
+  ASSERT_TRUE(TransformColumns(*ctx, recoded, 1, nullptr).ok());
+  EXPECT_FALSE(std::filesystem::exists(ShardPlanPath(recoded)));
 }
 
 }  // namespace

@@ -45,18 +45,18 @@ absl::Status CheckStaging(const std::filesystem::path& store, bool* done) {
 // appended in order; the shard's own groups also give their columns'
 // outcome.
 absl::Status WriteShard(const BakeContext& ctx, const std::filesystem::path& store,
-                        const FinalizeScan& scan, const StepPlan& steps, int shard,
-                        const FinalizeOptions& options) {
+                        const ShardPlan& steps, int shard, const FinalizeOptions& options) {
   const JobPlan& plan = ctx.plan;
-  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, scan.nnz);
+  const int64_t nnz = steps.nnz();
+  absl::StatusOr<CscArrays> arrays = CreateTransport(store, plan.columns, nnz);
   if (!arrays.ok()) return arrays.status();
   const int g0 = ShardFirstGroup(plan.groups, shard), g1 = ShardFirstGroup(plan.groups, shard + 1);
   const int64_t chunk = arrays->indices.spec().chunks.at(0);
-  const auto& at = scan.group_offsets;
+  const auto& at = steps.group_offsets;
   const int64_t first_chunk = (at[g0] + chunk - 1) / chunk;
   const int64_t end_chunk = (at[g1] + chunk - 1) / chunk;
-  const int64_t begin = std::min(first_chunk * chunk, scan.nnz);
-  const int64_t end = std::max(begin, std::min(end_chunk * chunk, scan.nnz));
+  const int64_t begin = std::min(first_chunk * chunk, nnz);
+  const int64_t end = std::max(begin, std::min(end_chunk * chunk, nnz));
   // Groups to read: the shard's own, and on to the one holding element end − 1.
   int g_end = g1;
   if (end > begin) {
@@ -197,9 +197,15 @@ absl::Status FinalizeShard(const BakeContext& ctx, const std::filesystem::path& 
   }
   bool done = false;
   if (absl::Status s = CheckStaging(store, &done); !s.ok() || done) return s;
-  absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
-  if (!scan.ok()) return scan.status();
-  return WriteShard(ctx, store, *scan, PlanFinalizeSteps(*scan, ctx.params), shard, options);
+  absl::StatusOr<ShardPlan> steps = ReadShardPlan(store, ctx.plan);
+  if (absl::IsNotFound(steps.status()) || absl::IsDataLoss(steps.status())) {
+    absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
+    if (!scan.ok()) return scan.status();
+    steps = MakeShardPlan(*scan, PlanFinalizeSteps(*scan, ctx.params));
+    if (absl::Status s = WriteShardPlan(store, *steps); !s.ok()) return s;
+  }
+  if (!steps.ok()) return steps.status();
+  return WriteShard(ctx, store, *steps, shard, options);
 }
 
 absl::Status FinalizeStore(const BakeContext& ctx, const std::filesystem::path& store,
@@ -225,8 +231,9 @@ absl::Status Finalize(const BakeContext& ctx, const std::filesystem::path& store
   absl::StatusOr<FinalizeScan> scan = ScanGroups(ctx.plan, store, options);
   if (!scan.ok()) return scan.status();
   const StepPlan steps = PlanFinalizeSteps(*scan, ctx.params);
+  const ShardPlan shards = MakeShardPlan(*scan, steps);
   for (int k = 0; k < FinalizeShards(ctx.plan.groups); ++k) {
-    if (absl::Status s = WriteShard(ctx, store, *scan, steps, k, options); !s.ok()) return s;
+    if (absl::Status s = WriteShard(ctx, store, shards, k, options); !s.ok()) return s;
   }
   if (absl::Status s = WriteStore(ctx, store, *scan, steps); !s.ok()) return s;
   if (options.memory) options.memory->Drop(store);

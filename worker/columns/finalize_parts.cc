@@ -130,7 +130,11 @@ StepPlan PlanFinalizeSteps(const FinalizeScan& scan, const BakeParams& params) {
   return PlanSteps(in, params);
 }
 
-absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const StepPlan& steps,
+ShardPlan MakeShardPlan(const FinalizeScan& scan, const StepPlan& steps) {
+  return {.group_offsets = scan.group_offsets, .steps = steps.steps, .max_code = steps.max_code};
+}
+
+absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const ShardPlan& steps,
                                              const std::filesystem::path& store,
                                              const FinalizeOptions& options, int g) {
   absl::StatusOr<GroupResult> r = ReadCheckedGroup(ctx.plan, store, options, g, false);

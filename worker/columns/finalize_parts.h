@@ -14,6 +14,7 @@
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/finalize.h"
 #include "worker/columns/group_result.h"
+#include "worker/columns/shard_plan.h"
 #include "worker/tiles/bake_context.h"
 
 namespace wavebake {
@@ -31,6 +32,8 @@ absl::StatusOr<FinalizeScan> ScanGroups(const JobPlan& plan, const std::filesyst
 
 // The steps of every column (core/columns/quantization_steps.h), from the scan alone.
 StepPlan PlanFinalizeSteps(const FinalizeScan& scan, const BakeParams& params);
+// What the shards take of them (worker/columns/shard_plan.h).
+ShardPlan MakeShardPlan(const FinalizeScan& scan, const StepPlan& steps);
 
 // Threads of a FINALIZE task: options.threads, or one per hardware thread.
 int FinalizeThreads(const FinalizeOptions& options);
@@ -45,7 +48,7 @@ struct QuantizedGroup {
   std::vector<double> error_energy;
   std::vector<int> bits;
 };
-absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const StepPlan& steps,
+absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const ShardPlan& steps,
                                              const std::filesystem::path& store,
                                              const FinalizeOptions& options, int g);
 

@@ -9,6 +9,7 @@
 #include "storage/files/atomic_file.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zstd_codec.h"
+#include "worker/columns/shard_plan.h"
 
 namespace wavebake {
 namespace {
@@ -193,6 +194,8 @@ std::filesystem::path GroupResultPath(const std::filesystem::path& store, int gr
 }
 
 absl::Status WriteGroupResult(const std::filesystem::path& store, const GroupResult& result) {
+  // A FINALIZE plan worked out from the group results before is not this one's.
+  if (absl::Status s = RemoveShardPlan(store); !s.ok()) return s;
   const std::vector<std::byte> table = Table(result);
   thread_local std::array<ByteBuffer, kFrames> frames;
   const std::array<std::span<const std::byte>, kFrames> raw = {
