@@ -7,8 +7,10 @@
 // and the manifest. Pure arithmetic shared by the coordinator (to plan) and
 // the workers (to run).
 //
-// Every shard reads every group's column table (the step choice is
-// matrix-wide, core/columns/quantization_steps.h), so the count is bounded: with
+// Every shard needs what every group's column table gives (the step choice
+// is matrix-wide, core/columns/quantization_steps.h); the first to read them
+// all keeps the result for the others (worker/columns/shard_plan.h), but
+// shards that start together each read them, so the count is bounded: with
 // more than 64 shards those reads (shards × M table entries) would outgrow
 // what a shard writes on the largest stores (docs/SCALING.md).
 #include <cstdint>

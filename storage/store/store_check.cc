@@ -45,8 +45,7 @@ std::optional<fs::path> ForeignInNumbered(const fs::path& dir, const std::string
     const bool numbered =
         name.ends_with(suffix) && IsChunkKey(name.substr(0, name.size() - suffix.size()));
     const bool known = numbered || (!also.empty() && name == also) || IsTemporary(name);
-    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !known)
-      return e.path();
+    if (e.is_symlink(ec) || !e.is_regular_file(ec) || !known) return e.path();
   }
   if (ec) return dir;
   return std::nullopt;

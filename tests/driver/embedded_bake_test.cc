@@ -301,6 +301,7 @@ TEST(EmbeddedBakeTest, RefusesToReplaceAStoreHoldingAUsersFile) {
   keep.keep_staging = true;
   ASSERT_TRUE(Bake(out, 2, keep).ok());
   ASSERT_TRUE(std::filesystem::exists(out / "staging" / "groups"));
+  ASSERT_TRUE(std::filesystem::exists(out / "staging" / "finalize" / "plan.wbp"));
   ASSERT_TRUE(Bake(out, 2).ok()) << "kept staging is the bake's own";
   for (const std::filesystem::path& foreign :
        {out / "notes.txt", out / "transport" / "data" / "notes.txt", out / "mine" / "x.bin"}) {

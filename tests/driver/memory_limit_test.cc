@@ -21,7 +21,8 @@ TEST(MemoryLimitTest, CgroupLimitFilesParseToBytesOrNoLimit) {
 }
 
 TEST(MemoryLimitTest, UsableMemoryIsAtMostThePhysicalMemory) {
-  const uint64_t physical = uint64_t(::sysconf(_SC_PHYS_PAGES)) * uint64_t(::sysconf(_SC_PAGE_SIZE));
+  const uint64_t physical =
+      uint64_t(::sysconf(_SC_PHYS_PAGES)) * uint64_t(::sysconf(_SC_PAGE_SIZE));
   const uint64_t usable = UsableMemoryBytes();
   EXPECT_GT(usable, 0u);
   EXPECT_LE(usable, physical);

@@ -176,9 +176,8 @@ absl::StatusOr<CscArrays> CreateTransport(const std::filesystem::path& store, in
   // their mostly-zero high bytes together: 5.1 → 3.3 bits per position on an
   // adaptive cubes-wall store. The int16 values do not gain from a shuffle
   // (adaptive: 6.4 → 6.5 bits), so data has none.
-  auto indices =
-      Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true, true, kIndicesZstdLevel,
-             kIndicesZstdSearch);
+  auto indices = Create(store, store::kIndices, DType::kUint32, nnz, kNnzChunk, true, true,
+                        kIndicesZstdLevel, kIndicesZstdSearch);
   auto data =
       Create(store, store::kData, DType::kInt16, nnz, kNnzChunk, false, false, kDataZstdLevel);
   auto depth = Create(store, store::kDepth, DType::kUint8, columns, kColumnChunk);

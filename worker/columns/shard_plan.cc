@@ -50,10 +50,10 @@ absl::StatusOr<ShardPlan> ReadShardPlan(const std::filesystem::path& store, cons
   int32_t header[3] = {};
   const bool sized = in->size() == PlanFileBytes(job.groups, job.columns);
   if (sized) std::memcpy(header, in->data() + sizeof kPlanMagic, sizeof header);
-  if (!sized || std::memcmp(in->data(), kPlanMagic, sizeof kPlanMagic) != 0 || header[0] != job.groups ||
-      header[1] != job.columns) {
-    return absl::DataLossError(absl::StrCat(path.string(), ": not a FINALIZE plan of ",
-                                            job.groups, " groups and ", job.columns, " columns"));
+  if (!sized || std::memcmp(in->data(), kPlanMagic, sizeof kPlanMagic) != 0 ||
+      header[0] != job.groups || header[1] != job.columns) {
+    return absl::DataLossError(absl::StrCat(path.string(), ": not a FINALIZE plan of ", job.groups,
+                                            " groups and ", job.columns, " columns"));
   }
   ShardPlan plan;
   plan.max_code = header[2];
@@ -69,7 +69,8 @@ absl::StatusOr<ShardPlan> ReadShardPlan(const std::filesystem::path& store, cons
 absl::Status RemoveShardPlan(const std::filesystem::path& store) {
   std::error_code ec;
   std::filesystem::remove(ShardPlanPath(store), ec);
-  if (ec) return absl::InternalError(absl::StrCat(ShardPlanPath(store).string(), ": ", ec.message()));
+  if (ec)
+    return absl::InternalError(absl::StrCat(ShardPlanPath(store).string(), ": ", ec.message()));
   return absl::OkStatus();
 }
 
