@@ -101,8 +101,8 @@ absl::Status ZstdCompressInto(std::span<const std::byte> src, int level, ByteBuf
   if (cctx == nullptr) return absl::ResourceExhaustedError("zstd: cannot create a context");
   // Reset parameters too: a failed call must not leak settings into the next chunk.
   ZSTD_CCtx_reset(cctx, ZSTD_reset_session_and_parameters);
-  // The level first: it sets every match-finder parameter, which the search's
-  // nonzero ones then replace (0 is zstd's "the level's default" too).
+  // A nonzero search setting replaces the level's own; 0 is zstd's "the
+  // level's", so a default ZstdSearch compresses as the level alone.
   for (auto [param, value] :
        {std::pair{ZSTD_c_compressionLevel, level}, std::pair{ZSTD_c_contentSizeFlag, 1},
         std::pair{ZSTD_c_checksumFlag, 1}, std::pair{ZSTD_c_strategy, search.strategy},

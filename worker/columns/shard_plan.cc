@@ -1,5 +1,6 @@
 #include "worker/columns/shard_plan.h"
 
+#include <algorithm>
 #include <cstring>
 #include <system_error>
 
@@ -63,6 +64,9 @@ absl::StatusOr<ShardPlan> ReadShardPlan(const std::filesystem::path& store, cons
   std::memcpy(plan.group_offsets.data(), p, plan.group_offsets.size() * sizeof(int64_t));
   p += plan.group_offsets.size() * sizeof(int64_t);
   std::memcpy(plan.steps.data(), p, plan.steps.size() * sizeof(float));
+  if (plan.group_offsets.front() != 0 ||
+      !std::is_sorted(plan.group_offsets.begin(), plan.group_offsets.end()))
+    return absl::DataLossError(absl::StrCat(path.string(), ": group offsets out of order"));
   return plan;
 }
 
