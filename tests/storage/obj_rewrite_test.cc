@@ -9,6 +9,8 @@
 
 #include <chrono>
 
+#include "absl/strings/str_cat.h"
+
 namespace wavebake {
 namespace {
 
@@ -98,7 +100,7 @@ TEST(ObjRewriteTest, FacesUpTo255CornersPass) {
   std::string file;
   for (int i = 0; i < 255; ++i) file += "v " + std::to_string(i) + " 0 0\n";
   std::string face = "f";
-  for (int i = 1; i <= 255; ++i) face += " " + std::to_string(i);
+  for (int i = 1; i <= 255; ++i) absl::StrAppend(&face, " ", i);
   absl::StatusOr<std::string> text = RewriteObj(file + face + "\n");
   ASSERT_TRUE(text.ok()) << text.status();
   EXPECT_THAT(*text, HasSubstr(face + "\n"));
