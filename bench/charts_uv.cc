@@ -52,7 +52,7 @@ struct RunConfig {
   std::vector<int> sizes{128, 256, 512};
 };
 
-std::string Spot() { return std::string(WB_SHARED_DATA) + "/models/spot.obj"; }
+std::string Spot() { return WB_SHARED_DATA "/models/spot.obj"; }
 
 // Traces `layout` into a staging store under the work dir, unless a finished
 // trace of the same layout and N is there already (its marker file).
