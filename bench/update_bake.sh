@@ -8,21 +8,27 @@
 # .zattrs once its "update" record is set aside) and, with --eval, the
 # eval --reference error of --update against the full bake's (builtin:sky).
 #
-#   bench/update_bake.sh [build/wavebake] [WORK_DIR] [--quick] [--eval]
+#   bench/update_bake.sh [build/wavebake] [WORK_DIR] [--quick] [--eval] [--bounces B]
 #
 # Scenes (bench/update_scenes.py): bunny + spot on a ground grid with a
 # small cube moved (hilbert:128x128, N = 32) and cubes-wall-like geometry
 # with one corner cube moved (camera:256x256, N = 32). --quick: N = 16,
 # hilbert:128x128 (the two models have 8128 vertices) and camera:128x128.
 # Targets: --update <= 0.25x, --update-exact <= 0.35x of the full bake's wall
-# time.
+# time. --bounces B bakes every store with B bounces (an update then reuses
+# direct rows only and codes every column: docs/UPDATE.md).
 set -euo pipefail
 WB=$(realpath "${1:-build/wavebake}")
 WORK=${2:-$(mktemp -d "${TMPDIR:-/tmp}/wb_update.XXXXXX")}
 shift $(($# >= 2 ? 2 : $#)) || true
-quick=0 eval=0
-for a in "$@"; do
-  case $a in --quick) quick=1 ;; --eval) eval=1 ;; esac
+quick=0 eval=0 bounces=0
+while (($#)); do
+  case $1 in
+    --quick) quick=1 ;;
+    --eval) eval=1 ;;
+    --bounces) bounces=$2 && shift ;;
+  esac
+  shift
 done
 here=$(cd "$(dirname "$0")" && pwd)
 models=$(realpath "$here/../../shared/data/models")
@@ -68,7 +74,7 @@ ref_error() {
 run_case() { # NAME SCENE_A SCENE_B FLAGS...
   local name=$1 a=$2 b=$3
   shift 3
-  local flags=("$@" --keep-staging --quiet --workers 2)
+  local flags=("$@" --bounces "$bounces" --keep-staging --quiet --workers 2)
   rm -f "$WORK/times"
   rm -rf "$WORK/$name".*.wbk
   timed old "$WB" bake "$a" "${flags[@]}" --out "$WORK/$name.old.wbk"

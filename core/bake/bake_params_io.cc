@@ -140,13 +140,6 @@ absl::Status ValidateBakeParams(const BakeParams& p) {
   if (p.update_exact && !p.updates())
     return absl::InvalidArgumentError(
         "update_exact: needs update_from or update_job (the store to update)");
-  // A local edit reaches every sample's bounced light (the gather spans the
-  // whole scene), while an update reuses direct rows where the edit cannot
-  // reach them: bounce stores are baked whole.
-  if (p.updates() && p.bounces != 0)
-    return bad("bounces",
-               "an update reuses direct rows only, and an edit reaches every sample's bounced "
-               "light: bake a store with bounces in full");
   return absl::OkStatus();
 }
 

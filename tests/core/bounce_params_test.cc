@@ -53,17 +53,5 @@ TEST(BounceParamsTest, RangesAndRefusals) {
   EXPECT_TRUE(ValidateBakeParams(uv).ok());
 }
 
-// An edit reaches every sample's bounced light, and an update reuses direct
-// rows only: a bounce store is baked whole.
-TEST(BounceParamsTest, AnUpdateOfABounceBakeIsRefused) {
-  BakeParams p = MeshJob(2);
-  p.update_from = "old.wbk";
-  const absl::Status s = ValidateBakeParams(p);
-  EXPECT_EQ(s.code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_THAT(s.message(), HasSubstr("bounced light"));
-  p.bounces = 0;
-  EXPECT_TRUE(ValidateBakeParams(p).ok());
-}
-
 }  // namespace
 }  // namespace wavebake

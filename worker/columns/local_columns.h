@@ -31,7 +31,7 @@
 
 namespace wavebake {
 
-// TransformColumns of group `group` for ctx (ctx.reuse set, not exact).
+// TransformColumns of group `group` for ctx (CodesChangedColumnsOnly).
 // Falls back to TransformColumns when the rows moved between cells, the old
 // store kept no group result for the group, or a touched tile left no record. Writes how many
 // columns were coded anew, and how many of those were searched for their depth, beside the group

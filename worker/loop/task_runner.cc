@@ -113,7 +113,7 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
   GroupStats stats;
   // An update (worker/tiles/row_reuse.h) stages through the store, never in memory.
   absl::Status s =
-      ctx.reuse && !ctx.reuse->exact
+      CodesChangedColumnsOnly(ctx)
           ? LocalTransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel})
           : TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel}, memory);
   if (!s.ok()) return s;
@@ -155,7 +155,7 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
     // Before FINALIZE drops staging/groups.
     RecodedColumns recomputed{ctx.plan.columns, ctx.plan.columns};
-    if (ctx.reuse && !ctx.reuse->exact) {
+    if (CodesChangedColumnsOnly(ctx)) {
       absl::StatusOr<RecodedColumns> n = RecomputedColumns(ctx.plan, partial);
       if (!n.ok()) return n.status();
       recomputed = *n;
@@ -168,8 +168,9 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
         !s.ok())
       return s;
     if (ctx.reuse) {
-      if (absl::Status s = WriteUpdateRecord(partial, *ctx.reuse, recomputed.recomputed,
-                                             recomputed.searched, ctx.plan.columns);
+      if (absl::Status s =
+              WriteUpdateRecord(partial, *ctx.reuse, recomputed.recomputed, recomputed.searched,
+                                ctx.plan.columns, ctx.plan.bounces);
           !s.ok())
         return s;
     }

@@ -335,9 +335,10 @@ absl::Status BakeTile(const BakeContext& ctx, const std::filesystem::path& store
   double energy = 0;
   RefineScratch scratch;
   std::vector<uint8_t> reused;  // per cell of the tile: its row came from an old store
-  // An in-place --update records the columns the tile changes
-  // (worker/tiles/changed_columns.h) from the old rows of the cells it rewrites.
-  const bool records_changes = ctx.reuse && ctx.reuse->in_place && !ctx.reuse->exact;
+  // An in-place --update that codes only changed columns records those the
+  // tile changes (worker/tiles/changed_columns.h) from the old rows of the
+  // cells it rewrites.
+  const bool records_changes = CodesChangedColumnsOnly(ctx) && ctx.reuse->in_place;
   // Per thread, reused tile after tile: a fresh buffer would be zero-filled
   // and first-touched for every tile, only to be overwritten.
   thread_local OldRows rewritten;

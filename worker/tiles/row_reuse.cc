@@ -263,7 +263,11 @@ absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, c
   r->samples = ctx.samples.size();
   r->source.assign(ctx.samples.grid.size(), -1);
   const SceneDiff diff = DiffScenes(*old_scene, ctx.scene);
-  if (!exact && ctx.layout.kind == LayoutKind::kHilbert) {
+  // Keeping the old cells keeps rows in place for the local column stage.
+  // With bounces every column is coded anew, and the gather operators were
+  // built over this bake's own cells (worker/tiles/bake_context.h), so the
+  // cells must stay as they are.
+  if (!exact && ctx.plan.bounces == 0 && ctx.layout.kind == LayoutKind::kHilbert) {
     if (std::optional<std::vector<int32_t>> grid =
             KeptHilbertGrid(*old_samples, *old_scene, ctx.scene, diff, ctx.samples)) {
       ctx.samples.grid = *std::move(grid);
@@ -392,22 +396,30 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
   }
 }
 
+bool CodesChangedColumnsOnly(const BakeContext& ctx) {
+  return ctx.reuse && !ctx.reuse->exact && ctx.plan.bounces == 0;
+}
+
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
                                int64_t columns_recomputed, int64_t columns_searched,
-                               int64_t columns) {
+                               int64_t columns, int bounces) {
   absl::StatusOr<nlohmann::json> attrs = ReadAttrs(store);
   if (!attrs.ok()) return attrs.status();
   nlohmann::json record = reuse.Record();
   record["columns"] = columns;
   record["columns_recomputed"] = columns_recomputed;
   record["columns_depth_searched"] = columns_searched;
+  record["bounces"] = bounces;
   record["column_decisions"] =
       reuse.exact ? "every column coded anew from the merged rows, as a full bake"
-                  : "columns whose values changed in a tile with a rebaked cell: selected "
-                    "against the new matrix energy at their old depth (the adaptive depth "
-                    "searched again if they kept nothing before or their energy moved by over "
-                    "a quarter); the others keep the old depth and selection; one matrix-wide "
-                    "quantization step over all (FINALIZE)";
+      : bounces > 0
+          ? "every column coded anew, as a full bake, from the updated direct rows and the "
+            "bounces gathered over the new scene: bounced light reaches every sample"
+          : "columns whose values changed in a tile with a rebaked cell: selected "
+            "against the new matrix energy at their old depth (the adaptive depth "
+            "searched again if they kept nothing before or their energy moved by over "
+            "a quarter); the others keep the old depth and selection; one matrix-wide "
+            "quantization step over all (FINALIZE)";
   (*attrs)["update"] = std::move(record);
   return WriteAttrs(store, *attrs);
 }

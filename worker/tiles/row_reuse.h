@@ -118,11 +118,17 @@ absl::StatusOr<int> FillReusedRows(const RowReuse& reuse, const JobPlan& plan, i
 void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::span<float> row,
               std::span<uint8_t> changed = {});
 
+// Whether an update's TRANSFORM_COLUMNS (worker/columns/local_columns.h) codes only the columns its
+// tiles changed: --update (not exact) of a bake without bounces. Bounced light reaches every sample
+// wherever the edit is (the gather spans the scene, T = Σ_b G^b T₀), so with bounces every column
+// is coded anew from the updated direct rows and the new scene's gather, as in a full bake.
+bool CodesChangedColumnsOnly(const BakeContext& ctx);
+
 // Adds reuse.Record() as "update" to the store's root .zattrs (after
-// FINALIZE), with the columns coded anew out of `columns` and how many of
-// those were searched for their depth.
+// FINALIZE), with the columns coded anew out of `columns`, how many of
+// those were searched for their depth, and the bake's bounce count.
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
                                int64_t columns_recomputed, int64_t columns_searched,
-                               int64_t columns);
+                               int64_t columns, int bounces);
 
 }  // namespace wavebake
