@@ -307,7 +307,8 @@ TEST_F(UpdateBakeTest, LocalUpdateWithBouncesIsCloseToTheFullBake) {
   const nlohmann::json& u = a["update"];
   EXPECT_EQ(u.value("mode", ""), "local");
   EXPECT_EQ(u.value("columns_recomputed", -1), u.value("columns", -2)) << u.dump();
-  EXPECT_GT(u.value("rows_reused", 0) + u.value("rows_patched", 0), 0) << u.dump();
+  EXPECT_GT(u.value("rows_reused", 0), 0) << u.dump();
+  EXPECT_GT(u.value("rows_patched", 0), 0) << u.dump();
   EXPECT_TRUE(ReadTree(updated / "samples") == ReadTree(full / "samples"));  // the same cells
   const double e_update = a["stats"].value("energy", 0.0), e_full = b["stats"].value("energy", 1.0);
   EXPECT_GT(e_full, 0);
