@@ -366,6 +366,10 @@ def uv_fill(rows, out):
                  "transform")
     ax.legend()
     ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 PHONG_COLORS = {"phong:8": "tab:blue", "phong:32": "tab:green", "phong:128": "tab:red"}
 
 
