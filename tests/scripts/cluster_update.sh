@@ -3,7 +3,8 @@
 # --update JOB_OR_STORE` names the old store by its job (id or output name),
 # never by a path; the coordinator resolves it and the workers load the old
 # job's scene from its upload. --update-exact gives the bytes of an embedded
-# full bake of the new scene; --update by output name reuses rows too; a bad
+# full bake of the new scene, with a bounce too (the workers gather over the
+# new scene); --update by output name reuses rows too; a bad
 # reference, a store without staged rows and a changed parameter are refused
 # at submit naming why, and a raw client's update_from or update_scene is
 # refused naming the field.
@@ -31,6 +32,9 @@ scene 0.45 0.35 >new.json
 BAKE=(--layout camera:16x16 --light-res 8 --tile-size 8 --column-group 128)
 "$WB" bake new.json "${BAKE[@]}" --out "$TMP/full.wbk" --quiet >"$TMP/full.log" 2>&1 ||
   fail "embedded bake of the new scene: $(tail -n 2 "$TMP/full.log")"
+BOUNCED=("${BAKE[@]}" --bounces 1 --gather-rays 16)
+"$WB" bake new.json "${BOUNCED[@]}" --out "$TMP/full_b.wbk" --quiet >"$TMP/full_b.log" 2>&1 ||
+  fail "embedded bake of the new scene with a bounce: $(tail -n 2 "$TMP/full_b.log")"
 
 start_coordinator "$TMP/data" "$(free_port)"
 start_worker w1 "$TMP/data/store" --threads 2 --scene-cache "$TMP/worker-cache"
@@ -41,26 +45,38 @@ exact=$(submit new.json "${BAKE[@]}" --update "$old" --update-exact --output-nam
   fail "the exact update by job id"
 local_=$(submit new.json "${BAKE[@]}" --update old.wbk --output-name local.wbk) ||
   fail "the update by output name"
+submit old.json "${BOUNCED[@]}" --keep-staging --output-name old_b.wbk >/dev/null ||
+  fail "the old bake with a bounce"
+submit new.json "${BOUNCED[@]}" --update old_b.wbk --update-exact --output-name exact_b.wbk \
+  >/dev/null || fail "the exact update with a bounce"
 cd "$TMP"  # from here on no file of the client's is read
 
 S=$TMP/data/store
-(cd full.wbk && find . -type f ! -name .zattrs | sort) >full.files
-(cd "$S/exact.wbk" && find . -type f ! -name .zattrs | sort) >exact.files
-diff full.files exact.files >/dev/null || fail "the exact update holds other files than a full bake"
-while read -r f; do
-  cmp -s "full.wbk/$f" "$S/exact.wbk/$f" || fail "$f of the exact update differs from a full bake"
-done <full.files
-/usr/bin/python3 - full.wbk "$S/exact.wbk" "$S/local.wbk" <<'PY' || fail "the update records"
+same_files() {  # same_files FULL UPDATED: every file but .zattrs byte for byte
+  (cd "$1" && find . -type f ! -name .zattrs | sort) >full.files
+  (cd "$2" && find . -type f ! -name .zattrs | sort) >updated.files
+  diff full.files updated.files >/dev/null || fail "$2 holds other files than $1"
+  while read -r f; do
+    cmp -s "$1/$f" "$2/$f" || fail "$f of $2 differs from $1"
+  done <full.files
+}
+same_files full.wbk "$S/exact.wbk"
+same_files full_b.wbk "$S/exact_b.wbk"
+/usr/bin/python3 - full.wbk "$S/exact.wbk" "$S/local.wbk" full_b.wbk "$S/exact_b.wbk" <<'PY' ||
 import json, sys
-full, exact, local = (json.load(open(d + "/.zattrs")) for d in sys.argv[1:])
-for attrs, mode in ((exact, "exact"), (local, "local")):
+full, exact, local, full_b, exact_b = (json.load(open(d + "/.zattrs")) for d in sys.argv[1:])
+for attrs, mode, old in ((exact, "exact", "old.wbk"), (local, "local", "old.wbk"),
+                         (exact_b, "exact", "old_b.wbk")):
     u = attrs.pop("update")
-    assert u["from"] == "old.wbk", u["from"]  # the store's name, no path of the server
+    assert u["from"] == old, u["from"]  # the store's name, no path of the server
     assert u["mode"] == mode, u
     assert 0 < u["rows_reused"] < u["rows"], u
     assert u["rows_rebaked"] + u["rows_patched"] > 0, u
+    assert u["bounces"] == (1 if old == "old_b.wbk" else 0), u
 assert exact == full, "exact update's .zattrs differs from the full bake's beyond its record"
+assert exact_b == full_b, "the exact update with a bounce differs from its full bake's .zattrs"
 PY
+  fail "the update records"
 
 refused() {  # refused WHAT EXPECTED ARGS...: submit fails and its message holds EXPECTED
   local what=$1 want=$2
@@ -101,4 +117,4 @@ for fields, field in cases:
         continue
     raise SystemExit("accepted %s" % fields)
 PY
-echo "PASS: submit --update by job id (exact: a full bake's bytes) and by output name; bad references, a store without staging, a changed parameter and raw paths refused"
+echo "PASS: submit --update by job id (exact: a full bake's bytes, with a bounce too) and by output name; bad references, a store without staging, a changed parameter and raw paths refused"
