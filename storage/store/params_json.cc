@@ -41,6 +41,19 @@ inline json AbsentOf(const params::Switch& row) {
   return params::InWords(row) ? json(std::string(row.absent ? row.yes : row.no)) : json(row.absent);
 }
 
+// A field of a record, or for one the record leaves out the value its absence
+// means (Record::kUnlessAbsent), so that a refusal names it ("0 there").
+json FieldOrAbsent(const json& record, const std::string& field) {
+  if (record.contains(field)) return record[field];
+  json absent = "(absent)";
+  params::ForEach([&](const auto& row) {
+    if (row.info.name == field && row.info.record == params::Record::kUnlessAbsent &&
+        !row.info.recorded_if)
+      absent = AbsentOf(row);
+  });
+  return absent;
+}
+
 template <class T>
 absl::Status Read(const params::Number<T>& row, const json& v, BakeParams& p) {
   if (row.special_is_word && v == row.special) {
@@ -114,15 +127,17 @@ absl::StatusOr<BakeParams> BakeParamsFromJson(const json& j) {
 std::string FirstParameterDifference(const nlohmann::json& have, const nlohmann::json& want) {
   constexpr char kWhy[] = ": an update keeps every parameter but the scene";
   for (const auto& [field, value] : want.items()) {
-    if (have.contains(field) && have[field] == value) continue;
-    return absl::StrCat("parameter ", field, " is ",
-                        have.value(field, nlohmann::json("(absent)")).dump(), " there and ",
-                        value.dump(), " here", kWhy);
+    const json there = FieldOrAbsent(have, field);
+    if (there == value) continue;
+    return absl::StrCat("parameter ", field, " is ", there.dump(), " there and ", value.dump(),
+                        " here", kWhy);
   }
-  for (const auto& [field, value] : have.items())
-    if (!want.contains(field))
-      return absl::StrCat("parameter ", field, " is ", value.dump(), " there and absent here",
-                          kWhy);
+  for (const auto& [field, value] : have.items()) {
+    const json here = FieldOrAbsent(want, field);
+    if (!want.contains(field) && here != value)
+      return absl::StrCat("parameter ", field, " is ", value.dump(), " there and ", here.dump(),
+                          " here", kWhy);
+  }
   return "";
 }
 

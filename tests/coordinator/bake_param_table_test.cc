@@ -138,6 +138,22 @@ TEST(BakeParamTableTest, DefaultStoresKeepTheirKeysAndOlderStoresRead) {
               ::testing::StartsWith("params.light_res: missing"));
 }
 
+// An update's refusal names the first parameter that differs by the values a
+// user gave, a row the record leaves out by the value its absence means.
+TEST(BakeParamTableTest, ADifferenceNamesWhatAnAbsentRowMeans) {
+  BakeParams bounced;
+  bounced.bounces = 1;
+  EXPECT_EQ(FirstParameterDifference(ToJson(BakeParams{}), ToJson(BakeParams{})), "");
+  EXPECT_THAT(FirstParameterDifference(ToJson(BakeParams{}), ToJson(bounced)),
+              ::testing::StartsWith("parameter bounces is 0 there and 1 here"));
+  EXPECT_THAT(FirstParameterDifference(ToJson(bounced), ToJson(BakeParams{})),
+              ::testing::StartsWith("parameter bounces is 1 there and 0 here"));
+  // The same value written out or left out is no difference.
+  nlohmann::json explicit_default = ToJson(BakeParams{});
+  explicit_default["bounces"] = 0;
+  EXPECT_EQ(FirstParameterDifference(explicit_default, ToJson(BakeParams{})), "");
+}
+
 TEST(BakeParamTableTest, TheRangesOfTheTableAreEnforcedEverywhere) {
   BakeParams p;
   p.tile_size = 3;

@@ -89,7 +89,7 @@ refused "a store without staged rows" "bake it with --keep-staging" \
   builtin:furnace "${BAKE[@]}" --update exact.wbk
 refused "another light resolution" "parameter light_res is 8 there and 16 here" \
   builtin:furnace --layout camera:16x16 --light-res 16 --tile-size 8 --column-group 128 --update "$old"
-refused "another bounce count" "parameter bounces is" builtin:furnace "${BAKE[@]}" --bounces 1 --update "$old"
+refused "another bounce count" "parameter bounces is 0 there and 1 here" builtin:furnace "${BAKE[@]}" --bounces 1 --update "$old"
 
 /usr/bin/python3 -m grpc_tools.protoc -I "$src/proto" --python_out="$TMP" \
   --grpc_python_out="$TMP" "$src/proto/wavebake.proto" || fail "protoc for Python"
