@@ -133,8 +133,9 @@ std::string FirstParameterDifference(const nlohmann::json& have, const nlohmann:
                         " here", kWhy);
   }
   for (const auto& [field, value] : have.items()) {
+    if (want.contains(field)) continue;  // compared above
     const json here = FieldOrAbsent(want, field);
-    if (!want.contains(field) && here != value)
+    if (here != value)
       return absl::StrCat("parameter ", field, " is ", value.dump(), " there and ", here.dump(),
                           " here", kWhy);
   }
