@@ -186,13 +186,13 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
 }
 
 void CodeColumnAtDepth(const ColumnCodingParams& p, std::span<const float> image, int depth,
-                       CodedColumn* out) {
+                       CodedColumn* out, double left_out) {
   *out = CodedColumn{};
   double budget = 0;
-  if (KeepsNothing(p, image, 0, out, &budget)) return;
+  if (KeepsNothing(p, image, left_out, out, &budget)) return;
   const DepthChoice at = FilledAtDepth(p, image, depth);
   Select(p, at.coefficients, RankingWeights(p, depth), budget, out);
-  Complete(p, depth, at.coefficients, 0, out);
+  Complete(p, depth, at.coefficients, left_out, out);
 }
 
 bool ComparesCodedSize(const ColumnCodingParams& p) {

@@ -72,11 +72,11 @@ void CodeColumn(const ColumnCodingParams& p, std::span<const float> image, Coded
                 double left_out = 0, CodedColumn* flat = nullptr);
 
 // CodeColumn without the depth search: the coding at `depth` (an update's
-// recomputed column at its old depth, worker/columns/local_columns.h). An
-// empty column, or one that fits its budget whole, keeps nothing at the
-// depth CodeColumn records for it.
+// recomputed column at its old depth, worker/columns/local_columns.h), with
+// `left_out` spent as CodeColumn spends it. An empty column, or one that
+// fits its budget whole, keeps nothing at the depth CodeColumn records for it.
 void CodeColumnAtDepth(const ColumnCodingParams& p, std::span<const float> image, int depth,
-                       CodedColumn* out);
+                       CodedColumn* out, double left_out = 0);
 
 // Whether a job compares codings by size: adaptive with a target and
 // --level-scaling uniform (a step per level would need its own estimate).

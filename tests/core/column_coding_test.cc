@@ -160,7 +160,8 @@ TEST(ColumnCodingTest, TheDepthZeroAlternativeIsTheTwoDCoding) {
 
 // CodeColumnAtDepth (an update's recomputed column at its old depth) at the
 // depth the search chose is the search's coding, with and without a fill of
-// uncovered cells.
+// uncovered cells, and with energy left out before coding (bounced light not
+// added, worker/columns/column_bounces.h) spent from the budget alike.
 TEST(ColumnCodingTest, CodingAtTheSearchedDepthIsTheSearchsCoding) {
   std::vector<int32_t> grid(kW * kH, -1);  // the left half and a diagonal covered
   for (int i = 0; i < kW * kH; ++i)
@@ -177,10 +178,13 @@ TEST(ColumnCodingTest, CodingAtTheSearchedDepthIsTheSearchsCoding) {
         if (grid[i] < 0) v[i] = 0;  // as staged
       p.filler = &filler;
     }
+    const double left_out =
+        trial % 3 == 2 ? 0.3 * p.target_error * p.target_error * p.matrix_energy : 0.0;
     CodedColumn searched, at;
-    CodeColumn(p, v, &searched);
-    CodeColumnAtDepth(p, v, searched.depth, &at);
+    CodeColumn(p, v, &searched, left_out);
+    CodeColumnAtDepth(p, v, searched.depth, &at, left_out);
     ExpectSameCoding(searched, at, trial);
+    EXPECT_GE(at.dropped_energy, left_out) << "trial " << trial;
     ++depths[searched.depth];
   }
   EXPECT_GT(depths[0], 0);

@@ -256,7 +256,9 @@ TEST_F(UpdateBakeTest, UntouchedTilesCopyTheirStagedChunks) {
 // store, camera (its auxiliary vertex rows) and hilbert alike; a repainted
 // box changes no direct row but the light it bounces, and even --update
 // then gives the full bake's bytes — which an update gathering with the old
-// albedo, or keeping old columns, would not.
+// albedo, or keeping old columns, would not. (--update codes a column at its
+// old depth when its energy moved little; here those are the depths the full
+// bake's search finds.)
 TEST_F(UpdateBakeTest, UpdatesWithBouncesRecodeEveryColumnFromTheNewGather) {
   const auto painted = dir_.path() / "painted.json";
   WriteScene(painted, -0.5, 0.3, 0.2);
@@ -307,6 +309,9 @@ TEST_F(UpdateBakeTest, LocalUpdateWithBouncesIsCloseToTheFullBake) {
   const nlohmann::json& u = a["update"];
   EXPECT_EQ(u.value("mode", ""), "local");
   EXPECT_EQ(u.value("columns_recomputed", -1), u.value("columns", -2)) << u.dump();
+  // Most columns keep their old depth; their energy moved little.
+  EXPECT_GE(u.value("columns_depth_searched", -1), 0) << u.dump();
+  EXPECT_LT(u.value("columns_depth_searched", -1), u.value("columns", 0) / 2) << u.dump();
   EXPECT_GT(u.value("rows_reused", 0), 0) << u.dump();
   EXPECT_GT(u.value("rows_patched", 0), 0) << u.dump();
   EXPECT_TRUE(ReadTree(updated / "samples") == ReadTree(full / "samples"));  // the same cells

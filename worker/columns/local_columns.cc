@@ -1,14 +1,12 @@
 #include "worker/columns/local_columns.h"
 
 #include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <optional>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
-#include "core/columns/zero_quads.h"
 #include "storage/files/atomic_file.h"
 #include "storage/store/store_layout.h"
 #include "storage/zarr/zarr_array.h"
@@ -31,19 +29,6 @@ absl::Status WriteCount(const std::filesystem::path& store, int group, RecodedCo
 
 bool Stopped(const TaskSignals& signals) {
   return signals.cancel != nullptr && signals.cancel->load(std::memory_order_relaxed);
-}
-
-// Whether a recomputed adaptive column is coded at its old depth rather than
-// searched again: an edit that leaves its energy within kDepthKeptChange of
-// the old one moves what the depths keep little, and the search is most of
-// the coding's cost. The old depth still meets the budget (the selection is
-// against it at any depth); it may keep more coefficients than the best one.
-constexpr double kDepthKeptChange = 0.25;
-bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
-                   std::span<const float> column) {
-  if (p.mode != ColumnMode::kAdaptive || was.kept == 0) return false;
-  const double energy = SumOfSquares(column.data(), column.size());
-  return std::abs(energy - was.energy) <= kDepthKeptChange * was.energy;
 }
 
 // The group's columns whose values differ from the old store's, from the
@@ -73,12 +58,29 @@ void KeepColumn(const GroupResult& was, int j, size_t at, std::optional<double> 
                         was.values.begin() + at + kept.kept);
 }
 
+// An update with bounces: every column is coded anew (bounced light reaches
+// every sample), each at its old depth where KeepsItsDepth. The old store
+// was baked with the same parameters, bounces included, so its column
+// energies are of the same sum T = Σ_b G^b T₀.
+absl::Status RecodeAtOldDepths(const BakeContext& ctx, const std::filesystem::path& store,
+                               int group, GroupStats* stats, const TaskSignals& signals) {
+  absl::StatusOr<GroupResult> old = ReadGroupColumns(ctx.reuse->old_store, group);
+  GroupStats local;
+  if (absl::Status s =
+          TransformColumns(ctx, store, group, &local, signals, nullptr, old.ok() ? &*old : nullptr);
+      !s.ok())
+    return s;
+  if (stats) *stats = local;
+  return WriteCount(store, group, {local.columns, local.searched});
+}
+
 }  // namespace
 
 absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem::path& store,
                                    int group, GroupStats* stats, const TaskSignals& signals) {
   const JobPlan& plan = ctx.plan;
   const RowReuse* reuse = ctx.reuse.get();
+  if (!CodesChangedColumnsOnly(ctx)) return RecodeAtOldDepths(ctx, store, group, stats, signals);
   absl::StatusOr<GroupResult> old_result =
       reuse && reuse->in_place && reuse->full_reason.empty()
           ? ReadGroupResult(reuse->old_store, group)
@@ -99,7 +101,11 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
   for (int j = 0; j < plan.GroupCount(group); ++j)
     if ((*changed)[j]) recode.push_back(j);
   const size_t image = size_t(plan.width) * plan.height;
-  const std::span<float> images = TaskBuffer(recode.size() * image);
+  // Asked at the group's full size: the thread's buffer then holds any later
+  // group's changed columns without a new mapping, whose pages would all be
+  // faulted in (and zeroed) again. Only the pages written are touched.
+  const std::span<float> images =
+      TaskBuffer(size_t(plan.GroupCount(group)) * image).first(recode.size() * image);
   GroupStats local;
   if (!recode.empty())
     if (absl::Status s =

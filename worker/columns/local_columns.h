@@ -31,8 +31,9 @@
 
 namespace wavebake {
 
-// TransformColumns of group `group` for ctx (CodesChangedColumnsOnly).
-// Falls back to TransformColumns when the rows moved between cells, the old
+// TransformColumns of group `group` for ctx (StartsFromOldCodings). With
+// bounces every column is coded, at its old depth where KeepsItsDepth.
+// Without, falls back to TransformColumns when the rows moved between cells, the old
 // store kept no group result for the group, or a touched tile left no record. Writes how many
 // columns were coded anew, and how many of those were searched for their depth, beside the group
 // result (RecomputedColumns reads it).

@@ -1,6 +1,7 @@
 #include "worker/columns/transform_columns.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/columns/column_coding.h"
 #include "core/columns/group_codings.h"
+#include "core/columns/zero_quads.h"
 #include "storage/store/store_layout.h"
 #include "storage/store/transport_bytes.h"
 #include "storage/zarr/zarr_array.h"
@@ -88,6 +90,14 @@ absl::Status AssembleColumns(const JobPlan& plan, const ZarrArray& staging,
   return absl::OkStatus();
 }
 
+bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
+                   std::span<const float> column) {
+  constexpr double kDepthKeptChange = 0.25;
+  if (p.mode != ColumnMode::kAdaptive || was.kept == 0) return false;
+  const double energy = SumOfSquares(column.data(), column.size());
+  return std::abs(energy - was.energy) <= kDepthKeptChange * was.energy;
+}
+
 absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTileEnergy));
   if (!a.ok()) return a.status();
@@ -115,7 +125,7 @@ std::optional<CellFiller> UncoveredFiller(const BakeContext& ctx) {
 
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
                               GroupStats* stats, const TaskSignals& signals,
-                              const MemoryStaging* memory) {
+                              const MemoryStaging* memory, const GroupResult* old) {
   const JobPlan& plan = ctx.plan;
   if (group < 0 || group >= plan.groups)
     return absl::InvalidArgumentError(
@@ -125,6 +135,7 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   absl::StatusOr<double> matrix_energy = ReadMatrixEnergy(plan, store);
   if (!matrix_energy.ok()) return matrix_energy.status();
 
+  if (old != nullptr && old->columns.size() != size_t(plan.GroupCount(group))) old = nullptr;
   GroupStats local;
   const std::span<float> images =
       TaskBuffer(size_t(plan.GroupCount(group)) * plan.width * plan.height);
@@ -159,8 +170,15 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   std::vector<ColumnCodings> codings(plan.GroupCount(group));
   for (int c = 0; c < plan.GroupCount(group); ++c) {
     if (Stopped(signals)) return Cancelled(group);
-    CodeColumn(params, images.subspan(c * cells, cells), &codings[c].fewest, left_out[c],
-               &codings[c].flat);
+    const std::span<const float> image = images.subspan(c * cells, cells);
+    if (old != nullptr && KeepsItsDepth(params, old->columns[c], image)) {
+      // No depth-0 alternative either: the old depth already is the group's choice.
+      CodeColumnAtDepth(params, image, old->columns[c].depth, &codings[c].fewest, left_out[c]);
+      codings[c].flat = NoCoding();
+    } else {
+      ++local.searched;
+      CodeColumn(params, image, &codings[c].fewest, left_out[c], &codings[c].flat);
+    }
   }
   const std::vector<uint8_t> use_flat =
       ChooseGroupCodings(params, codings, plan.GroupFirst(group), TransportBytes);

@@ -16,6 +16,7 @@
 #include "core/bake/job_plan.h"
 #include "core/columns/uncovered_fill.h"
 #include "storage/zarr/zarr_array.h"
+#include "worker/columns/group_result.h"
 #include "worker/loop/task_signals.h"
 #include "worker/tiles/bake_context.h"
 #include "worker/tiles/memory_staging.h"
@@ -28,6 +29,7 @@ struct GroupStats {
   uint64_t staging_bytes = 0;  // float32 bytes of staging read (one chunk per tile)
   uint64_t bytes_written = 0;  // size of the group's result file
   int min_bits = 2;            // max over the group's columns of their --bits auto need
+  int searched = 0;            // columns whose depth was searched (the others kept an old one)
 };
 
 // Memory: one group of column images (group_size × W×H floats) plus one
@@ -37,9 +39,20 @@ struct GroupStats {
 // between columns; nothing is written then).
 // With `memory`, the chunks the job's in-memory staging holds
 // (worker/tiles/memory_staging.h) are read from there, the rest from the store.
+// With `old` (an update's old coding of the group, its columns only), a
+// column that KeepsItsDepth is coded at its old depth without the search.
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
                               GroupStats* stats, const TaskSignals& signals = {},
-                              const MemoryStaging* memory = nullptr);
+                              const MemoryStaging* memory = nullptr,
+                              const GroupResult* old = nullptr);
+
+// Whether an update codes a column anew at its old depth (`was`) rather than
+// searching again: an edit that leaves its energy within a quarter of the old
+// one moves what the depths keep little, and the search is most of the
+// coding's cost. The old depth still meets the budget (the selection is
+// against it at any depth); it may keep more coefficients than the best one.
+bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
+                   std::span<const float> column);
 
 // The column images of `group`, assembled from chunk (group, t) of every
 // tile, each read once: from the job's in-memory staging (`memory`) if it

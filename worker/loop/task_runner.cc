@@ -113,7 +113,7 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
   GroupStats stats;
   // An update (worker/tiles/row_reuse.h) stages through the store, never in memory.
   absl::Status s =
-      CodesChangedColumnsOnly(ctx)
+      StartsFromOldCodings(ctx)
           ? LocalTransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel})
           : TransformColumns(ctx, partial, task.index(), &stats, {&progress.cancel}, memory);
   if (!s.ok()) return s;
@@ -155,7 +155,7 @@ absl::StatusOr<TaskOutcome> FinalizeTask(const v1::Task& task, const BakeContext
     if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
     // Before FINALIZE drops staging/groups.
     RecodedColumns recomputed{ctx.plan.columns, ctx.plan.columns};
-    if (CodesChangedColumnsOnly(ctx)) {
+    if (StartsFromOldCodings(ctx)) {
       absl::StatusOr<RecodedColumns> n = RecomputedColumns(ctx.plan, partial);
       if (!n.ok()) return n.status();
       recomputed = *n;

@@ -397,8 +397,10 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
 }
 
 bool CodesChangedColumnsOnly(const BakeContext& ctx) {
-  return ctx.reuse && !ctx.reuse->exact && ctx.plan.bounces == 0;
+  return StartsFromOldCodings(ctx) && ctx.plan.bounces == 0;
 }
+
+bool StartsFromOldCodings(const BakeContext& ctx) { return ctx.reuse && !ctx.reuse->exact; }
 
 absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReuse& reuse,
                                int64_t columns_recomputed, int64_t columns_searched,
@@ -413,8 +415,9 @@ absl::Status WriteUpdateRecord(const std::filesystem::path& store, const RowReus
   record["column_decisions"] =
       reuse.exact ? "every column coded anew from the merged rows, as a full bake"
       : bounces > 0
-          ? "every column coded anew, as a full bake, from the updated direct rows and the "
-            "bounces gathered over the new scene: bounced light reaches every sample"
+          ? "every column coded anew from the updated direct rows and the bounces gathered "
+            "over the new scene (bounced light reaches every sample), at its old depth "
+            "unless it kept nothing before or its energy moved by over a quarter"
           : "columns whose values changed in a tile with a rebaked cell: selected "
             "against the new matrix energy at their old depth (the adaptive depth "
             "searched again if they kept nothing before or their energy moved by over "

@@ -121,8 +121,13 @@ void PatchRow(const RowReuse& reuse, const BakeContext& ctx, int32_t id, std::sp
 // Whether an update's TRANSFORM_COLUMNS (worker/columns/local_columns.h) codes only the columns its
 // tiles changed: --update (not exact) of a bake without bounces. Bounced light reaches every sample
 // wherever the edit is (the gather spans the scene, T = Σ_b G^b T₀), so with bounces every column
-// is coded anew from the updated direct rows and the new scene's gather, as in a full bake.
+// is coded anew from the updated direct rows and the new scene's gather, each column at its old
+// depth unless its energy moved (worker/columns/transform_columns.h KeepsItsDepth).
 bool CodesChangedColumnsOnly(const BakeContext& ctx);
+
+// Whether TRANSFORM_COLUMNS starts from the old store's codings
+// (worker/columns/local_columns.h): --update, not exact, with or without bounces.
+bool StartsFromOldCodings(const BakeContext& ctx);
 
 // Adds reuse.Record() as "update" to the store's root .zattrs (after
 // FINALIZE), with the columns coded anew out of `columns`, how many of
