@@ -4,7 +4,9 @@
 # never by a path; the coordinator resolves it and the workers load the old
 # job's scene from its upload. --update-exact gives the bytes of an embedded
 # full bake of the new scene, with a bounce too (the workers gather over the
-# new scene); --update by output name reuses rows too; a bad
+# new scene); --update by output name reuses rows too, and with a bounce
+# gives the bytes of the same update run embedded (its old depths read from
+# the old store the coordinator resolved); a bad
 # reference, a store without staged rows and a changed parameter are refused
 # at submit naming why, and a raw client's update_from or update_scene is
 # refused naming the field.
@@ -35,6 +37,10 @@ BAKE=(--layout camera:16x16 --light-res 8 --tile-size 8 --column-group 128)
 BOUNCED=("${BAKE[@]}" --bounces 1 --gather-rays 16)
 "$WB" bake new.json "${BOUNCED[@]}" --out "$TMP/full_b.wbk" --quiet >"$TMP/full_b.log" 2>&1 ||
   fail "embedded bake of the new scene with a bounce: $(tail -n 2 "$TMP/full_b.log")"
+"$WB" bake old.json "${BOUNCED[@]}" --keep-staging --out "$TMP/old_b.wbk" --quiet \
+  >"$TMP/old_b.log" 2>&1 || fail "embedded bake of the old scene with a bounce"
+"$WB" bake new.json "${BOUNCED[@]}" --update "$TMP/old_b.wbk" --out "$TMP/local_b.wbk" --quiet \
+  >"$TMP/local_b.log" 2>&1 || fail "embedded update with a bounce: $(tail -n 2 "$TMP/local_b.log")"
 
 start_coordinator "$TMP/data" "$(free_port)"
 start_worker w1 "$TMP/data/store" --threads 2 --scene-cache "$TMP/worker-cache"
@@ -49,6 +55,8 @@ submit old.json "${BOUNCED[@]}" --keep-staging --output-name old_b.wbk >/dev/nul
   fail "the old bake with a bounce"
 submit new.json "${BOUNCED[@]}" --update old_b.wbk --update-exact --output-name exact_b.wbk \
   >/dev/null || fail "the exact update with a bounce"
+submit new.json "${BOUNCED[@]}" --update old_b.wbk --output-name local_b.wbk >/dev/null ||
+  fail "the update with a bounce"
 cd "$TMP"  # from here on no file of the client's is read
 
 S=$TMP/data/store
@@ -62,19 +70,28 @@ same_files() {  # same_files FULL UPDATED: every file but .zattrs byte for byte
 }
 same_files full.wbk "$S/exact.wbk"
 same_files full_b.wbk "$S/exact_b.wbk"
-/usr/bin/python3 - full.wbk "$S/exact.wbk" "$S/local.wbk" full_b.wbk "$S/exact_b.wbk" <<'PY' ||
+same_files local_b.wbk "$S/local_b.wbk"
+/usr/bin/python3 - full.wbk "$S/exact.wbk" "$S/local.wbk" full_b.wbk "$S/exact_b.wbk" \
+  local_b.wbk "$S/local_b.wbk" <<'PY' ||
 import json, sys
-full, exact, local, full_b, exact_b = (json.load(open(d + "/.zattrs")) for d in sys.argv[1:])
+full, exact, local, full_b, exact_b, embedded_b, local_b = (
+    json.load(open(d + "/.zattrs")) for d in sys.argv[1:])
 for attrs, mode, old in ((exact, "exact", "old.wbk"), (local, "local", "old.wbk"),
-                         (exact_b, "exact", "old_b.wbk")):
+                         (exact_b, "exact", "old_b.wbk"), (local_b, "local", "old_b.wbk")):
     u = attrs.pop("update")
     assert u["from"] == old, u["from"]  # the store's name, no path of the server
     assert u["mode"] == mode, u
     assert 0 < u["rows_reused"] < u["rows"], u
     assert u["rows_rebaked"] + u["rows_patched"] > 0, u
     assert u["bounces"] == (1 if old == "old_b.wbk" else 0), u
+    if old == "old_b.wbk":
+        assert u["columns_recomputed"] == u["columns"], u
+        if mode == "local":
+            assert u["columns_depth_searched"] < u["columns"], u  # old depths were read
+embedded_b.pop("update")
 assert exact == full, "exact update's .zattrs differs from the full bake's beyond its record"
 assert exact_b == full_b, "the exact update with a bounce differs from its full bake's .zattrs"
+assert local_b == embedded_b, "the update with a bounce differs from the embedded one's .zattrs"
 PY
   fail "the update records"
 
@@ -117,4 +134,4 @@ for fields, field in cases:
         continue
     raise SystemExit("accepted %s" % fields)
 PY
-echo "PASS: submit --update by job id (exact: a full bake's bytes, with a bounce too) and by output name; bad references, a store without staging, a changed parameter and raw paths refused"
+echo "PASS: submit --update by job id (exact: a full bake's bytes, with a bounce too) and by output name (with a bounce: the embedded update's bytes); bad references, a store without staging, a changed parameter and raw paths refused"
