@@ -6,7 +6,8 @@
 # and CPU seconds and their ratios to the full bake's, checks that the
 # --update-exact store is byte-identical to the full bake's (all files; the
 # .zattrs once its "update" record is set aside) and, with --eval, the
-# eval --reference error of --update against the full bake's (builtin:sky).
+# eval --reference error of --update against the full bake's (builtin:sky;
+# rel. SE 0.01 with --bounces).
 #
 #   bench/update_bake.sh [build/wavebake] [WORK_DIR] [--quick] [--eval] [--bounces B]
 #
@@ -66,8 +67,12 @@ keys = ("rows", "rows_reused", "rows_patched", "rows_rebaked", "columns_recomput
 print(" ".join("%s=%s" % (k, u.get(k)) for k in keys))
 PY
 }
+# With bounces the reference is path-traced, and eval's default standard
+# error (0.002) took over six minutes on the cubes-wall-like store: 0.01 then.
+ref_se=()
+((bounces > 0)) && ref_se=(--reference-se 0.01)
 ref_error() {
-  "$WB" eval "$1" --env builtin:sky --reference --no-dense --json 2>/dev/null |
+  "$WB" eval "$1" --env builtin:sky --reference "${ref_se[@]}" --no-dense --json 2>/dev/null |
     "$py" -c "import json,sys; print('%.5f' % json.load(sys.stdin)['compressed']['rel_rms'])"
 }
 
