@@ -58,17 +58,12 @@ void KeepColumn(const GroupResult& was, int j, size_t at, std::optional<double> 
                         was.values.begin() + at + kept.kept);
 }
 
-// An update with bounces: every column is coded anew (bounced light reaches
-// every sample), each at its old depth where KeepsItsDepth. The old store
-// was baked with the same parameters, bounces included, so its column
-// energies are of the same sum T = Σ_b G^b T₀.
-absl::Status RecodeAtOldDepths(const BakeContext& ctx, const std::filesystem::path& store,
-                               int group, GroupStats* stats, const TaskSignals& signals) {
-  absl::StatusOr<GroupResult> old = ReadGroupColumns(ctx.reuse->old_store, group);
+// Every column of the group coded anew, each at its old depth in `old`
+// where KeepsItsDepth (none: all searched).
+absl::Status CodeWholeGroup(const BakeContext& ctx, const std::filesystem::path& store, int group,
+                            const GroupResult* old, GroupStats* stats, const TaskSignals& signals) {
   GroupStats local;
-  if (absl::Status s =
-          TransformColumns(ctx, store, group, &local, signals, nullptr, old.ok() ? &*old : nullptr);
-      !s.ok())
+  if (absl::Status s = TransformColumns(ctx, store, group, &local, signals, nullptr, old); !s.ok())
     return s;
   if (stats) *stats = local;
   return WriteCount(store, group, {local.columns, local.searched});
@@ -80,7 +75,13 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
                                    int group, GroupStats* stats, const TaskSignals& signals) {
   const JobPlan& plan = ctx.plan;
   const RowReuse* reuse = ctx.reuse.get();
-  if (!CodesChangedColumnsOnly(ctx)) return RecodeAtOldDepths(ctx, store, group, stats, signals);
+  if (!CodesChangedColumnsOnly(ctx)) {
+    // With bounces every column changes (bounced light reaches every
+    // sample). The old store was baked with the same parameters, bounces
+    // included, so its column energies are of the same sum T = Σ_b G^b T₀.
+    absl::StatusOr<GroupResult> old = ReadGroupColumns(reuse->old_store, group);
+    return CodeWholeGroup(ctx, store, group, old.ok() ? &*old : nullptr, stats, signals);
+  }
   absl::StatusOr<GroupResult> old_result =
       reuse && reuse->in_place && reuse->full_reason.empty()
           ? ReadGroupResult(reuse->old_store, group)
@@ -89,8 +90,7 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
       old_result.ok() ? ChangedInGroup(*reuse, plan, store, group) : old_result.status();
   if (!changed.ok() || old_result->first_column != plan.GroupFirst(group) ||
       static_cast<int>(old_result->columns.size()) != plan.GroupCount(group)) {
-    if (absl::Status s = TransformColumns(ctx, store, group, stats, signals); !s.ok()) return s;
-    return WriteCount(store, group, {plan.GroupCount(group), plan.GroupCount(group)});
+    return CodeWholeGroup(ctx, store, group, nullptr, stats, signals);
   }
   absl::StatusOr<ZarrArray> now = ZarrArray::Open(store::Path(store, store::kStagingTransport));
   if (!now.ok()) return now.status();
