@@ -79,7 +79,8 @@ absl::Status LocalTransformColumns(const BakeContext& ctx, const std::filesystem
     // With bounces every column changes (bounced light reaches every
     // sample). The old store was baked with the same parameters, bounces
     // included, so its column energies are of the same sum T = Σ_b G^b T₀.
-    absl::StatusOr<GroupResult> old = ReadGroupColumns(reuse->old_store, group);
+    absl::StatusOr<GroupResult> old =
+        reuse ? ReadGroupColumns(reuse->old_store, group) : absl::NotFoundError("not an update");
     return CodeWholeGroup(ctx, store, group, old.ok() ? &*old : nullptr, stats, signals);
   }
   absl::StatusOr<GroupResult> old_result =
