@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <numeric>
 #include <random>
 
@@ -164,6 +165,44 @@ TEST(MemoryStagingTest, AuxiliaryRowsOfBouncesStageInMemoryToo) {
   ASSERT_TRUE(CreateStaging(plan, held).ok());
   for (int t : tiles) ASSERT_TRUE(BakeTile(ctx, held, t, nullptr, {}, &memory).ok());
   EXPECT_FALSE(std::filesystem::exists(held / store::kStagingAuxTransport / "0.0"));
+  for (int g : groups) ASSERT_TRUE(TransformColumns(ctx, held, g, nullptr, {}, &memory).ok());
+  ASSERT_TRUE(Finalize(ctx, held, {.memory = &memory}).ok());
+  EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+}
+
+// Into memory a tile is traced a band of rows at a time (about 4 MiB of
+// rows), each band transposed straight into the job's chunks. A 64×64 tile
+// at N = 8 (4096 rows of 400 floats, 6.5 MB) takes two bands, the second
+// partial, and so do its auxiliary tiles; a tile cancelled before its first
+// band gives back the chunks it began, and its retry fills them. The store
+// is the store-staged one's.
+TEST(MemoryStagingTest, TilesLargerThanABandStageBandByBandTheSameBytes) {
+  BakeParams p = MemoryJob();
+  p.layout = "camera:64x64";
+  p.tile_size = 64;
+  p.bounces = 1;
+  p.gather_rays = 8;
+  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(kMemoryScene, p);
+  ASSERT_TRUE(made.ok()) << made.status();
+  const BakeContext& ctx = **made;
+  const JobPlan& plan = ctx.plan;
+  ASSERT_EQ(plan.tiles(), 1);
+  ASSERT_GT(plan.aux_tiles(), 0);
+  ASSERT_GT(size_t(plan.tile_cells()) * (plan.columns + 16) * sizeof(float), size_t{4} << 20);
+  ScratchDir dir;
+  std::vector<int> tiles(plan.all_tiles()), groups(plan.groups);
+  std::iota(tiles.begin(), tiles.end(), 0);
+  std::iota(groups.begin(), groups.end(), 0);
+  const auto disk = dir.path() / "disk.wbk", held = dir.path() / "memory.wbk";
+  ASSERT_TRUE(BakeByHandWithMemory(ctx, disk, nullptr, tiles,
+                                   std::vector<bool>(plan.all_tiles(), false), groups)
+                  .ok());
+  MemoryStaging memory(RawStagingBytes(plan));
+  ASSERT_TRUE(CreateStaging(plan, held).ok());
+  std::atomic<bool> cancel{true};
+  for (int t : tiles)
+    EXPECT_TRUE(absl::IsCancelled(BakeTile(ctx, held, t, nullptr, {.cancel = &cancel}, &memory)));
+  for (int t : tiles) ASSERT_TRUE(BakeTile(ctx, held, t, nullptr, {}, &memory).ok());
   for (int g : groups) ASSERT_TRUE(TransformColumns(ctx, held, g, nullptr, {}, &memory).ok());
   ASSERT_TRUE(Finalize(ctx, held, {.memory = &memory}).ok());
   EXPECT_TRUE(ReadTree(held) == ReadTree(disk));

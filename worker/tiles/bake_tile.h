@@ -29,12 +29,14 @@ struct TileStats {
 // Σ staged², summed in double in a fixed order and stored as float32.
 //
 // Memory: the tile's rows (tile_cells × M floats, worker/loop/task_buffer.h) and
-// one chunk, never S×M. Single-threaded; tiles may run concurrently on one context, in any
-// order, and a retried tile rewrites the same bytes: the chunks depend only on
-// (context, tile). `tile` outside [0, plan.tiles()) is InvalidArgument naming
+// one chunk, never S×M; into an in-memory staging, a band of rows (about
+// 4 MiB) at a time, transposed straight into the job's chunks. Single-threaded; tiles may run
+// concurrently on one context, in any order, and a retried tile rewrites the same bytes: the chunks
+// depend only on (context, tile). `tile` outside [0, plan.tiles()) is InvalidArgument naming
 // "tile". stats (may be null) is added to. Between tile rows BakeTile
 // checks signals.cancel (once it is true it returns Cancelled without
-// writing: a worker whose lease was withdrawn stops promptly, DESIGN.md §4)
+// writing, or abandoning the in-memory chunks it began: a worker whose lease
+// was withdrawn stops promptly, DESIGN.md §4)
 // and publishes its rays so far to signals.rays_traced.
 //
 // With `memory` (not null) and no kept staging, the staging/transport chunks
