@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -148,6 +149,38 @@ TEST(QuantizerTest, CodesAreClampedToTheLargestCode) {
   EXPECT_EQ(BitsForCode(kMaxStoredCode), 16);
   EXPECT_EQ(BitsForCode(1), 2);
   EXPECT_EQ(BitsForCode(4), 4);  // 100b plus sign
+}
+
+// The header's formula, q = clamp(round(v/Δ + u), −C, C) with std::round
+// (half away from zero), written out with libm. With Δ = 1, v = ±½ − u is a
+// float (u has 24 bits below ½) and v + u lands on ±½ exactly: those round
+// to ±1. Random values of either sign agree with the formula too.
+TEST(QuantizerTest, RoundsHalfAwayFromZeroAsTheFormulaSays) {
+  constexpr uint64_t kSeed = 5, kColumn = 9;
+  Column halves, random = RandomColumn(4000, 8);
+  for (uint32_t p = 0; p < 1000; ++p) {
+    const double u = DitherAt(kSeed, kColumn, p);
+    for (double h : {0.5, -0.5}) {
+      halves.values.push_back(static_cast<float>(h - u));
+      ASSERT_EQ(double{halves.values.back()} + u, h);
+      halves.positions.push_back(p);
+      halves.levels.push_back(0);
+    }
+  }
+  const std::vector<int16_t> q =
+      Quantize(halves.values, halves.positions, halves.levels, LevelScaling::kUniform, 1.0f,
+               kMaxStoredCode, kSeed, kColumn);
+  for (size_t i = 0; i < q.size(); ++i) EXPECT_EQ(q[i], i % 2 == 0 ? 1 : -1) << i;
+
+  const float step = 0.01f;
+  const int c = 100;  // some values beyond ±C·Δ, clamped
+  const std::vector<int16_t> r = Quantize(random.values, random.positions, random.levels,
+                                          LevelScaling::kUniform, step, c, kSeed, kColumn);
+  for (size_t i = 0; i < r.size(); ++i) {
+    const double u = DitherAt(kSeed, kColumn, random.positions[i]);
+    const double y = std::round(double{random.values[i]} / double{step} + u);
+    EXPECT_EQ(r[i], std::clamp(y, double(-c), double(c))) << i;
+  }
 }
 
 TEST(QuantizerTest, DeterministicForSeedAndColumn) {
