@@ -344,9 +344,9 @@ TEST(EmbeddedBakeTest, ASymlinkedOutputIsResolvedToItsTarget) {
               HasSubstr("too many levels"));
 }
 
-// A failure midway (here: the column groups' output cannot be written) fails
-// the job, removes the coordinator's data dir with the partial store and
-// leaves an existing store untouched.
+// A failure midway (here: FINALIZE's shards cannot write their plan and
+// outcomes) fails the job, removes the coordinator's data dir with the
+// partial store and leaves an existing store untouched.
 TEST(EmbeddedBakeTest, FailureMidwayLeavesNothingBehind) {
   ScratchDir dir;
   const auto out = dir.path() / "out.wbk";
@@ -358,8 +358,8 @@ TEST(EmbeddedBakeTest, FailureMidwayLeavesNothingBehind) {
     for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
       const auto staging = entry.path() / "store" / ".bake.wbk.partial" / "staging";
       if (std::filesystem::is_directory(staging)) {
-        std::filesystem::remove_all(staging / "groups");
-        std::ofstream(staging / "groups") << "not a directory";
+        std::filesystem::remove_all(staging / "finalize");
+        std::ofstream(staging / "finalize") << "not a directory";
         sabotaged = true;
       }
     }

@@ -21,19 +21,25 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 BAKE=(builtin:cubes-wall --layout camera:32x32 --light-res 16 --quiet)
 
 # Sizes where SQLite (16k, 128k), staging (400k), the group results (1m) and
-# FINALIZE's store (1500k) run out first.
-for size in 16k 128k 400k 1m 1500k; do
-  mount -t tmpfs -o "size=$size" tmpfs "$DISK" || fail "cannot mount a tmpfs (run as root)"
-  start=$SECONDS rc=0
-  timeout 30 "$WB" bake "${BAKE[@]}" --out "$DISK/x.wbk" >"$TMP/out.txt" 2>&1 || rc=$?
-  ((rc != 124)) || fail "$size: the bake hung on a full disk"
-  ((rc != 0)) || { umount "$DISK"; continue; }  # it fit after all: nothing to check
-  ((SECONDS - start <= 10)) || fail "$size: took $((SECONDS - start)) s to give up"
-  grep -q "No space left on device" "$TMP/out.txt" || fail "$size: $(tail -2 "$TMP/out.txt")"
-  grep -qF "$DISK/" "$TMP/out.txt" || fail "$size: the error names no path: $(tail -1 "$TMP/out.txt")"
-  (($(grep -c . "$TMP/out.txt") <= 10)) || fail "$size: $(wc -l <"$TMP/out.txt") lines of errors"
-  [[ -z $(ls -A "$DISK") ]] || fail "$size: left $(ls -A "$DISK")"
-  umount "$DISK"
+# FINALIZE's store (1500k) run out first with --keep-staging, which writes
+# staging and group results. The default bake holds both in memory: it runs
+# out in SQLite up to 400k and fits from 1m.
+for keep in "" --keep-staging; do
+  for size in 16k 128k 400k 1m 1500k; do
+    mount -t tmpfs -o "size=$size" tmpfs "$DISK" || fail "cannot mount a tmpfs (run as root)"
+    start=$SECONDS rc=0
+    timeout 30 "$WB" bake "${BAKE[@]}" $keep --out "$DISK/x.wbk" >"$TMP/out.txt" 2>&1 || rc=$?
+    ((rc != 124)) || fail "$size$keep: the bake hung on a full disk"
+    ((rc != 0)) || { umount "$DISK"; continue; }  # it fit after all: nothing to check
+    ((SECONDS - start <= 10)) || fail "$size$keep: took $((SECONDS - start)) s to give up"
+    grep -q "No space left on device" "$TMP/out.txt" || fail "$size$keep: $(tail -2 "$TMP/out.txt")"
+    grep -qF "$DISK/" "$TMP/out.txt" ||
+      fail "$size$keep: the error names no path: $(tail -1 "$TMP/out.txt")"
+    (($(grep -c . "$TMP/out.txt") <= 10)) ||
+      fail "$size$keep: $(wc -l <"$TMP/out.txt") lines of errors"
+    [[ -z $(ls -A "$DISK") ]] || fail "$size$keep: left $(ls -A "$DISK")"
+    umount "$DISK"
+  done
 done
 
 # An older store at --out survives a bake that runs out of space.
@@ -42,7 +48,7 @@ mount -t tmpfs -o size=1200k tmpfs "$DISK"
   >/dev/null || fail "the small bake does not fit 1200k"
 before=$(cd "$DISK/x.wbk" && find . -type f -exec md5sum {} + | sort)
 rc=0
-timeout 30 "$WB" bake "${BAKE[@]}" --out "$DISK/x.wbk" >"$TMP/out.txt" 2>&1 || rc=$?
+timeout 30 "$WB" bake "${BAKE[@]}" --keep-staging --out "$DISK/x.wbk" >"$TMP/out.txt" 2>&1 || rc=$?
 ((rc != 0 && rc != 124)) || fail "the second bake: rc $rc"
 grep -q "No space left on device" "$TMP/out.txt" || fail "second bake: $(tail -2 "$TMP/out.txt")"
 [[ $before == $(cd "$DISK/x.wbk" && find . -type f -exec md5sum {} + | sort) ]] ||

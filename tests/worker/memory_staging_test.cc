@@ -16,6 +16,7 @@
 #include "tests/testing/file_tree.h"
 #include "tests/testing/scratch_dir.h"
 #include "worker/columns/finalize.h"
+#include "worker/columns/group_result.h"
 #include "worker/columns/transform_columns.h"
 #include "worker/tiles/bake_context.h"
 #include "worker/tiles/bake_tile.h"
@@ -87,7 +88,7 @@ TEST(MemoryStagingTest, StoreIsTheStoreStagedOneWhateverWentToMemory) {
   std::shuffle(groups.begin(), groups.end(), rng);
   tiles.push_back(tiles.front());
   groups.push_back(groups.front());
-  MemoryStaging memory(RawStagingBytes(plan));
+  MemoryStaging memory(2 * RawStagingBytes(plan));  // the group results held too
   const std::vector<bool> all(plan.tiles(), true);
   const auto held = dir.path() / "memory.wbk";
   ASSERT_TRUE(BakeByHandWithMemory(*ctx, held, &memory, tiles, all, groups).ok());
@@ -228,6 +229,73 @@ TEST(MemoryStagingTest, MemoryChunksAreNotInTheStoreAndAJobOverBudgetUsesTheStor
   EXPECT_TRUE(std::filesystem::exists(over / chunk));
   EXPECT_TRUE(std::filesystem::exists(fits / store::kStagingTileEnergy / "0"));
   memory.Drop(fits);
+  EXPECT_EQ(memory.held_bytes(), 0u);
+}
+
+// TRANSFORM_COLUMNS leaves its group results in the job's memory, not in
+// staging/groups, and FINALIZE finds them there (the tests below with a
+// budget of the chunks alone have them go to the files, and the stores are
+// the same); a job staged in the store writes the files.
+TEST(MemoryStagingTest, GroupResultsOfAJobInMemoryStayInMemory) {
+  const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
+  ASSERT_NE(ctx, nullptr);
+  const JobPlan& plan = ctx->plan;
+  ScratchDir dir;
+  const auto store = dir.path() / "held.wbk";
+  MemoryStaging memory(2 * RawStagingBytes(plan));  // room for the results
+  ASSERT_TRUE(CreateStaging(plan, store).ok());
+  for (int t = 0; t < plan.tiles(); ++t)
+    ASSERT_TRUE(BakeTile(*ctx, store, t, nullptr, {}, &memory).ok());
+  const std::shared_ptr<MemoryStaging::Job> job = memory.Find(store);
+  ASSERT_NE(job, nullptr);
+  for (int g = 0; g < plan.groups; ++g) {
+    GroupStats stats;
+    ASSERT_TRUE(TransformColumns(*ctx, store, g, &stats, {}, &memory).ok());
+    EXPECT_FALSE(std::filesystem::exists(GroupResultPath(store, g)));
+    ASSERT_NE(job->Group(g), nullptr);
+    EXPECT_EQ(job->Group(g)->positions.size(), stats.kept);
+    EXPECT_EQ(stats.bytes_written, 0u);
+  }
+  ASSERT_TRUE(Finalize(*ctx, store, {.memory = &memory}).ok());
+  EXPECT_EQ(memory.Find(store), nullptr);
+
+  const auto disk = dir.path() / "disk.wbk";
+  ASSERT_TRUE(CreateStaging(plan, disk).ok());
+  for (int t = 0; t < plan.tiles(); ++t) ASSERT_TRUE(BakeTile(*ctx, disk, t, nullptr).ok());
+  ASSERT_TRUE(TransformColumns(*ctx, disk, 0, nullptr, {}, &memory).ok());
+  EXPECT_TRUE(std::filesystem::exists(GroupResultPath(disk, 0)));
+}
+
+// Group results count against the same budget as the chunks: one that
+// would go over is refused (its task writes the file), a group held again
+// replaces its own bytes rather than adding to them, and dropping the job
+// gives back both.
+TEST(MemoryStagingTest, GroupResultsShareTheChunksBudget) {
+  const std::unique_ptr<BakeContext> ctx = MemoryJobContext();
+  ASSERT_NE(ctx, nullptr);
+  const JobPlan& plan = ctx->plan;
+  constexpr uint64_t kRoom = 1000;
+  MemoryStaging memory(RawStagingBytes(plan) + kRoom);
+  ScratchDir dir;
+  const auto store = dir.path() / "budget.wbk";
+  auto result = [](int g) {
+    auto r = std::make_shared<GroupResult>();
+    r->group = g;
+    return std::shared_ptr<const GroupResult>(r);
+  };
+  EXPECT_FALSE(memory.HoldGroup(store, 0, result(0), 1));  // not a held job
+  ASSERT_NE(memory.Admit(store, plan), nullptr);
+  EXPECT_TRUE(memory.HoldGroup(store, 0, result(0), kRoom - 10));
+  EXPECT_FALSE(memory.HoldGroup(store, 1, result(1), 11));
+  EXPECT_EQ(memory.Find(store)->Group(1), nullptr);
+  EXPECT_TRUE(memory.HoldGroup(store, 1, result(1), 10));
+  EXPECT_TRUE(memory.HoldGroup(store, 0, result(0), kRoom - 20));  // a retry, smaller
+  EXPECT_TRUE(memory.HoldGroup(store, 2, result(2), 10));
+  EXPECT_FALSE(memory.HoldGroup(store, 3, result(3), 1));
+  EXPECT_EQ(memory.held_bytes(), RawStagingBytes(plan) + kRoom);
+  ASSERT_NE(memory.Find(store)->Group(2), nullptr);
+  EXPECT_EQ(memory.Find(store)->Group(2)->group, 2);
+  memory.Drop(store);
   EXPECT_EQ(memory.held_bytes(), 0u);
 }
 

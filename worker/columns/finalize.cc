@@ -83,7 +83,7 @@ absl::Status WriteShard(const BakeContext& ctx, const std::filesystem::path& sto
         if (from >= to) return absl::OkStatus();
         const size_t offset = static_cast<size_t>(from - at[g]), n = static_cast<size_t>(to - from);
         if (absl::Status s =
-                indices.Append(std::span<const uint32_t>(qg.result.positions).subspan(offset, n));
+                indices.Append(std::span<const uint32_t>(qg.result->positions).subspan(offset, n));
             !s.ok())
           return s;
         return data.Append(std::span<const int16_t>(qg.q).subspan(offset, n));

@@ -31,8 +31,9 @@ struct FinalizeOptions {
   // host's count would oversubscribe them); 0, for local callers such as
   // `wavebake recode`, is one per hardware thread.
   int threads = 0;
-  // The job's in-memory staging chunks (worker/tiles/memory_staging.h), if any,
-  // are dropped with staging.
+  // The job's in-memory staging (worker/tiles/memory_staging.h), if any:
+  // group results held there are read from it, and it is dropped with
+  // staging.
   MemoryStaging* memory = nullptr;
 };
 

@@ -54,22 +54,29 @@ absl::Status Stopped(const FinalizeOptions& options, int group) {
   return absl::CancelledError(absl::StrCat("FINALIZE: cancelled at group ", group));
 }
 
-// Group g's result (only its column table if `columns_only`), checked
-// against the plan; FailedPrecondition if it is missing (FINALIZE ran too
-// early).
-absl::StatusOr<GroupResult> ReadCheckedGroup(const JobPlan& plan,
-                                             const std::filesystem::path& store,
-                                             const FinalizeOptions& options, int g,
-                                             bool columns_only) {
+// Group g's result (at least its column table if `columns_only`), checked
+// against the plan: held in the job's in-memory staging
+// (worker/tiles/memory_staging.h), else read from staging/groups.
+// FailedPrecondition if it is in neither (FINALIZE ran too early).
+absl::StatusOr<std::shared_ptr<const GroupResult>> ReadCheckedGroup(
+    const JobPlan& plan, const std::filesystem::path& store, const FinalizeOptions& options, int g,
+    bool columns_only) {
   if (absl::Status s = Stopped(options, g); !s.ok()) return s;
-  absl::StatusOr<GroupResult> r =
-      columns_only ? ReadGroupColumns(store, g) : ReadGroupResult(store, g);
-  if (absl::IsNotFound(r.status()))
-    return absl::FailedPreconditionError(
-        absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
-  if (!r.ok()) return r.status();
-  if (absl::Status s = CheckGroup(plan, store, g, *r); !s.ok()) return s;
-  return r;
+  std::shared_ptr<const GroupResult> held;
+  if (options.memory != nullptr)
+    if (const std::shared_ptr<MemoryStaging::Job> job = options.memory->Find(store))
+      held = job->Group(g);
+  if (held == nullptr) {
+    absl::StatusOr<GroupResult> r =
+        columns_only ? ReadGroupColumns(store, g) : ReadGroupResult(store, g);
+    if (absl::IsNotFound(r.status()))
+      return absl::FailedPreconditionError(
+          absl::StrCat("group ", g, " has not been transformed: ", r.status().message()));
+    if (!r.ok()) return r.status();
+    held = std::make_shared<const GroupResult>(*std::move(r));
+  }
+  if (absl::Status s = CheckGroup(plan, store, g, *held); !s.ok()) return s;
+  return held;
 }
 
 absl::StatusOr<ZarrArray> Create(const std::filesystem::path& store, const char* name, DType t,
@@ -104,13 +111,13 @@ absl::StatusOr<FinalizeScan> ScanGroups(const JobPlan& plan, const std::filesyst
   scan.columns.reserve(plan.columns);
   scan.group_offsets.reserve(plan.groups + 1);
   const int threads = FinalizeThreads(options);
-  absl::Status s = OrderedParallel<GroupResult>(
+  absl::Status s = OrderedParallel<std::shared_ptr<const GroupResult>>(
       plan.groups, threads, 2 * threads,
       [&](int g) { return ReadCheckedGroup(plan, store, options, g, true); },
-      [&](int, GroupResult& r) {
+      [&](int, std::shared_ptr<const GroupResult>& r) {
         scan.group_offsets.push_back(scan.nnz);
-        for (const GroupColumn& c : r.columns) scan.nnz += c.kept;
-        scan.columns.insert(scan.columns.end(), r.columns.begin(), r.columns.end());
+        for (const GroupColumn& c : r->columns) scan.nnz += c.kept;
+        scan.columns.insert(scan.columns.end(), r->columns.begin(), r->columns.end());
         return absl::OkStatus();
       });
   if (!s.ok()) return s;
@@ -137,8 +144,10 @@ ShardPlan MakeShardPlan(const FinalizeScan& scan, const StepPlan& steps) {
 absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const ShardPlan& steps,
                                              const std::filesystem::path& store,
                                              const FinalizeOptions& options, int g) {
-  absl::StatusOr<GroupResult> r = ReadCheckedGroup(ctx.plan, store, options, g, false);
-  if (!r.ok()) return r.status();
+  absl::StatusOr<std::shared_ptr<const GroupResult>> read =
+      ReadCheckedGroup(ctx.plan, store, options, g, false);
+  if (!read.ok()) return read.status();
+  const std::shared_ptr<const GroupResult>& r = *read;
   const JobPlan& plan = ctx.plan;
   QuantizedGroup out;
   out.q.resize(r->positions.size());
@@ -163,7 +172,7 @@ absl::StatusOr<QuantizedGroup> QuantizeGroup(const BakeContext& ctx, const Shard
     for (int16_t v : q) largest = std::max(largest, std::abs(int{v}));
     out.bits.push_back(positions.empty() ? 0 : BitsForCode(largest));
   }
-  out.result = *std::move(r);
+  out.result = r;
   return out;
 }
 

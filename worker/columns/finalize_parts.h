@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -43,7 +44,7 @@ int FinalizeThreads(const FinalizeOptions& options);
 // (weighted like the selection) and the bits its largest code needs (0 for
 // a column without codes).
 struct QuantizedGroup {
-  GroupResult result;
+  std::shared_ptr<const GroupResult> result;
   DefaultInitVector<int16_t> q;  // parallel to result.positions, written in full
   std::vector<double> error_energy;
   std::vector<int> bits;

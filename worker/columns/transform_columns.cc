@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "storage/zarr/zarr_array.h"
 #include "worker/columns/column_bounces.h"
 #include "worker/columns/group_result.h"
+#include "worker/columns/shard_plan.h"
 #include "worker/loop/task_buffer.h"
 
 namespace wavebake {
@@ -98,6 +100,23 @@ bool KeepsItsDepth(const ColumnCodingParams& p, const GroupColumn& was,
   return std::abs(energy - was.energy) <= kDepthKeptChange * was.energy;
 }
 
+// The group's result for FINALIZE: held in the job's in-memory staging
+// where it fits (memory, if not null), else written to staging/groups.
+// Returns the bytes written to the store (0 if held).
+absl::StatusOr<uint64_t> PutGroupResult(const std::filesystem::path& store, MemoryStaging* memory,
+                                        std::shared_ptr<const GroupResult> result) {
+  // A FINALIZE plan worked out from the group results before is not this one's.
+  if (absl::Status s = RemoveShardPlan(store); !s.ok()) return s;
+  const uint64_t held_bytes = result->positions.size() * sizeof(uint32_t) +
+                              result->values.size() * sizeof(float) +
+                              result->columns.size() * sizeof(GroupColumn);
+  if (memory != nullptr && memory->HoldGroup(store, result->group, result, held_bytes)) return 0;
+  if (absl::Status s = WriteGroupResult(store, *result); !s.ok()) return s;
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(GroupResultPath(store, result->group), ec);
+  return ec ? 0 : bytes;  // progress only: a failed stat fails no task
+}
+
 absl::StatusOr<double> ReadMatrixEnergy(const JobPlan& plan, const std::filesystem::path& store) {
   absl::StatusOr<ZarrArray> a = ZarrArray::Open(store::Path(store, store::kStagingTileEnergy));
   if (!a.ok()) return a.status();
@@ -124,8 +143,8 @@ std::optional<CellFiller> UncoveredFiller(const BakeContext& ctx) {
 }
 
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
-                              GroupStats* stats, const TaskSignals& signals,
-                              const MemoryStaging* memory, const GroupResult* old) {
+                              GroupStats* stats, const TaskSignals& signals, MemoryStaging* memory,
+                              const GroupResult* old) {
   const JobPlan& plan = ctx.plan;
   if (group < 0 || group >= plan.groups)
     return absl::InvalidArgumentError(
@@ -187,12 +206,15 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
     AppendColumn(coded, &result);
     local.min_bits = std::max(local.min_bits, coded.min_bits);
   }
-  if (absl::Status s = WriteGroupResult(store, result); !s.ok()) return s;
-
   local.columns = plan.GroupCount(group);
   local.kept = result.positions.size();
-  std::error_code ec;
-  local.bytes_written = std::filesystem::file_size(GroupResultPath(store, group), ec);
+  if (absl::StatusOr<uint64_t> bytes =
+          PutGroupResult(store, memory, std::make_shared<const GroupResult>(std::move(result)));
+      bytes.ok()) {
+    local.bytes_written = *bytes;
+  } else {
+    return bytes.status();
+  }
   if (stats != nullptr) *stats = local;
   return absl::OkStatus();
 }

@@ -27,7 +27,7 @@ struct GroupStats {
   int columns = 0;
   uint64_t kept = 0;           // coefficients kept over the group's columns
   uint64_t staging_bytes = 0;  // float32 bytes of staging read (one chunk per tile)
-  uint64_t bytes_written = 0;  // size of the group's result file
+  uint64_t bytes_written = 0;  // size of the group's result file (0: held in memory)
   int min_bits = 2;            // max over the group's columns of their --bits auto need
   int searched = 0;            // columns whose depth was searched (the others kept an old one)
 };
@@ -38,13 +38,14 @@ struct GroupStats {
 // Cancelled once signals.cancel is seen (checked between staging chunks and
 // between columns; nothing is written then).
 // With `memory`, the chunks the job's in-memory staging holds
-// (worker/tiles/memory_staging.h) are read from there, the rest from the store.
+// (worker/tiles/memory_staging.h) are read from there, the rest from the
+// store; the group's result is held there for FINALIZE where the job is held
+// and the result fits, else written to staging/groups.
 // With `old` (an update's old coding of the group, its columns only), a
 // column that KeepsItsDepth is coded at its old depth without the search.
 absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::path& store, int group,
                               GroupStats* stats, const TaskSignals& signals = {},
-                              const MemoryStaging* memory = nullptr,
-                              const GroupResult* old = nullptr);
+                              MemoryStaging* memory = nullptr, const GroupResult* old = nullptr);
 
 // Whether an update codes a column anew at its old depth (`was`) rather than
 // searching again: an edit that leaves its energy within a quarter of the old

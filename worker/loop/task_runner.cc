@@ -109,7 +109,7 @@ absl::StatusOr<TaskOutcome> BakeTileTask(const v1::Task& task, const BakeContext
 // large N takes as long as a tile.
 absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContext& ctx,
                                           const std::filesystem::path& partial,
-                                          TaskProgress& progress, const MemoryStaging* memory) {
+                                          TaskProgress& progress, MemoryStaging* memory) {
   GroupStats stats;
   // An update (worker/tiles/row_reuse.h) stages through the store, never in memory.
   absl::Status s =
@@ -130,14 +130,15 @@ absl::StatusOr<TaskOutcome> TransformTask(const v1::Task& task, const BakeContex
 absl::StatusOr<TaskOutcome> FinalizeShardTask(const v1::Task& task, const BakeContext& ctx,
                                               const std::filesystem::path& partial,
                                               const std::filesystem::path& out, int threads,
-                                              TaskProgress& progress) {
+                                              TaskProgress& progress, MemoryStaging* memory) {
   std::error_code ec;
   if (!std::filesystem::exists(partial, ec) && ReadStoreInfo(out).ok()) return TaskOutcome{};
   if (absl::Status s = CheckPartial(partial); !s.ok()) return s;
   if (absl::Status s = FinalizeShard(ctx, partial, task.index(),
                                      {.keep_staging = ctx.params.keep_staging,
                                       .cancel = &progress.cancel,
-                                      .threads = threads});
+                                      .threads = threads,
+                                      .memory = memory});
       !s.ok())
     return s;
   return TaskOutcome{};
@@ -210,7 +211,8 @@ absl::StatusOr<TaskOutcome> RunTask(const v1::Task& task, const TaskEnv& env,
     case v1::FINALIZE:
       outcome =
           task.index() < FinalizeShards(task.groups())
-              ? FinalizeShardTask(task, **ctx, partial, out, env.threads, progress)
+              ? FinalizeShardTask(task, **ctx, partial, out, env.threads, progress,
+                                  env.memory_staging)
               : FinalizeTask(task, **ctx, partial, out, env.threads, progress, env.memory_staging);
       break;
     default:

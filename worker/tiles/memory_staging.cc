@@ -2,6 +2,9 @@
 
 #include <sys/mman.h>
 
+#include <numeric>
+#include <utility>
+
 namespace wavebake {
 namespace {
 
@@ -29,7 +32,9 @@ MemoryStaging::Job::Job(const JobPlan& plan, Mapping mapping)
       slots_(size_t(plan.groups) * plan.all_tiles()),
       chunk_floats_(size_t(plan.group_size) * plan.tile_cells()),
       mapping_(mapping),
-      state_(slots_, State::kEmpty) {}
+      state_(slots_, State::kEmpty),
+      groups_(plan.groups),
+      group_bytes_(plan.groups, 0) {}
 
 MemoryStaging::Job::~Job() { ::munmap(mapping_.data, mapping_.bytes); }
 
@@ -57,6 +62,28 @@ std::span<const float> MemoryStaging::Job::Chunk(int g, int t) const {
   return {mapping_.data + Slot(g, t) * chunk_floats_, chunk_floats_};
 }
 
+uint64_t MemoryStaging::Job::SetGroup(int g, std::shared_ptr<const GroupResult> result,
+                                      uint64_t bytes) {
+  std::lock_guard lock(mu_);
+  groups_[g] = std::move(result);
+  return std::exchange(group_bytes_[g], bytes);
+}
+
+uint64_t MemoryStaging::Job::GroupBytes(int g) const {
+  std::lock_guard lock(mu_);
+  return group_bytes_[g];
+}
+
+uint64_t MemoryStaging::Job::group_bytes() const {
+  std::lock_guard lock(mu_);
+  return std::accumulate(group_bytes_.begin(), group_bytes_.end(), uint64_t{0});
+}
+
+std::shared_ptr<const GroupResult> MemoryStaging::Job::Group(int g) const {
+  std::lock_guard lock(mu_);
+  return groups_[g];
+}
+
 std::shared_ptr<MemoryStaging::Job> MemoryStaging::Admit(const std::filesystem::path& store,
                                                          const JobPlan& plan) {
   std::lock_guard lock(mu_);
@@ -80,11 +107,23 @@ std::shared_ptr<MemoryStaging::Job> MemoryStaging::Find(const std::filesystem::p
   return it == jobs_.end() ? nullptr : it->second;
 }
 
+bool MemoryStaging::HoldGroup(const std::filesystem::path& store, int g,
+                              std::shared_ptr<const GroupResult> result, uint64_t bytes) {
+  std::lock_guard lock(mu_);
+  auto it = jobs_.find(store.lexically_normal().string());
+  if (it == jobs_.end()) return false;
+  const uint64_t others = held_ - it->second->GroupBytes(g);
+  if (others + bytes > budget_) return false;
+  it->second->SetGroup(g, std::move(result), bytes);
+  held_ = others + bytes;
+  return true;
+}
+
 void MemoryStaging::Drop(const std::filesystem::path& store) {
   std::lock_guard lock(mu_);
   const std::string key = store.lexically_normal().string();
   if (auto it = jobs_.find(key); it != jobs_.end()) {
-    held_ -= it->second->bytes();
+    held_ -= it->second->bytes() + it->second->group_bytes();
     jobs_.erase(it);
   }
   refused_.erase(key);
