@@ -55,7 +55,7 @@ class MemoryStaging {
   // TRANSFORM_COLUMNS' result for group g of the job at `store`
   // (worker/columns/group_result.h, `bytes` long), held for FINALIZE
   // instead of staging/groups/<g>.wbg: on the bunny at N = 64, 66 MB of
-  // results whose zstd, files and reads cost 4 % of the bake's CPU. False,
+  // results whose zstd, files and reads cost 5 % of the bake's CPU. False,
   // holding nothing, if the job is not held or the result does not fit what
   // is left of the budget: the caller writes the file then. A group held
   // again (a retry: the same values) replaces the one before.
