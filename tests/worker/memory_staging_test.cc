@@ -141,17 +141,10 @@ TEST(MemoryStagingTest, ATileWithoutSamplesStagesTheSameZeros) {
   EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
 }
 
-// A camera's bounces gather from its auxiliary vertices, whose direct rows
-// are tiles of their own (core/bake/bake_gather.h): they go to memory too,
-// and the store is still the store-staged one's; nothing of them is in the
-// store's staging.
-TEST(MemoryStagingTest, AuxiliaryRowsOfBouncesStageInMemoryToo) {
-  BakeParams p = MemoryJob();
-  p.bounces = 2;
-  p.gather_rays = 16;
-  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(kMemoryScene, p);
-  ASSERT_TRUE(made.ok()) << made.status();
-  const BakeContext& ctx = **made;
+// The tasks of a job with auxiliary tiles by hand, every tile into memory
+// (each cancelled once first if `cancel_first`): nothing of the auxiliary
+// rows reaches the store's staging, and the store is the store-staged one's.
+void ExpectAuxJobInMemoryIsTheStoreStaged(const BakeContext& ctx, bool cancel_first) {
   const JobPlan& plan = ctx.plan;
   ASSERT_GT(plan.aux_tiles(), 0);
   ScratchDir dir;
@@ -164,11 +157,27 @@ TEST(MemoryStagingTest, AuxiliaryRowsOfBouncesStageInMemoryToo) {
                   .ok());
   MemoryStaging memory(RawStagingBytes(plan));
   ASSERT_TRUE(CreateStaging(plan, held).ok());
+  const std::atomic<bool> cancel{true};
+  for (int t = 0; cancel_first && t < plan.all_tiles(); ++t)
+    EXPECT_TRUE(absl::IsCancelled(BakeTile(ctx, held, t, nullptr, {.cancel = &cancel}, &memory)));
   for (int t : tiles) ASSERT_TRUE(BakeTile(ctx, held, t, nullptr, {}, &memory).ok());
   EXPECT_FALSE(std::filesystem::exists(held / store::kStagingAuxTransport / "0.0"));
   for (int g : groups) ASSERT_TRUE(TransformColumns(ctx, held, g, nullptr, {}, &memory).ok());
   ASSERT_TRUE(Finalize(ctx, held, {.memory = &memory}).ok());
   EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+}
+
+// A camera's bounces gather from its auxiliary vertices, whose direct rows
+// are tiles of their own (core/bake/bake_gather.h): they go to memory too,
+// and the store is still the store-staged one's; nothing of them is in the
+// store's staging.
+TEST(MemoryStagingTest, AuxiliaryRowsOfBouncesStageInMemoryToo) {
+  BakeParams p = MemoryJob();
+  p.bounces = 2;
+  p.gather_rays = 16;
+  absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(kMemoryScene, p);
+  ASSERT_TRUE(made.ok()) << made.status();
+  ExpectAuxJobInMemoryIsTheStoreStaged(**made, false);
 }
 
 // Into memory a tile is traced a band of rows at a time (about 4 MiB of
@@ -185,28 +194,10 @@ TEST(MemoryStagingTest, TilesLargerThanABandStageBandByBandTheSameBytes) {
   p.gather_rays = 8;
   absl::StatusOr<std::unique_ptr<BakeContext>> made = MakeBakeContext(kMemoryScene, p);
   ASSERT_TRUE(made.ok()) << made.status();
-  const BakeContext& ctx = **made;
-  const JobPlan& plan = ctx.plan;
+  const JobPlan& plan = (*made)->plan;
   ASSERT_EQ(plan.tiles(), 1);
-  ASSERT_GT(plan.aux_tiles(), 0);
   ASSERT_GT(size_t(plan.tile_cells()) * (plan.columns + 16) * sizeof(float), size_t{4} << 20);
-  ScratchDir dir;
-  std::vector<int> tiles(plan.all_tiles()), groups(plan.groups);
-  std::iota(tiles.begin(), tiles.end(), 0);
-  std::iota(groups.begin(), groups.end(), 0);
-  const auto disk = dir.path() / "disk.wbk", held = dir.path() / "memory.wbk";
-  ASSERT_TRUE(BakeByHandWithMemory(ctx, disk, nullptr, tiles,
-                                   std::vector<bool>(plan.all_tiles(), false), groups)
-                  .ok());
-  MemoryStaging memory(RawStagingBytes(plan));
-  ASSERT_TRUE(CreateStaging(plan, held).ok());
-  std::atomic<bool> cancel{true};
-  for (int t : tiles)
-    EXPECT_TRUE(absl::IsCancelled(BakeTile(ctx, held, t, nullptr, {.cancel = &cancel}, &memory)));
-  for (int t : tiles) ASSERT_TRUE(BakeTile(ctx, held, t, nullptr, {}, &memory).ok());
-  for (int g : groups) ASSERT_TRUE(TransformColumns(ctx, held, g, nullptr, {}, &memory).ok());
-  ASSERT_TRUE(Finalize(ctx, held, {.memory = &memory}).ok());
-  EXPECT_TRUE(ReadTree(held) == ReadTree(disk));
+  ExpectAuxJobInMemoryIsTheStoreStaged(**made, true);
 }
 
 TEST(MemoryStagingTest, MemoryChunksAreNotInTheStoreAndAJobOverBudgetUsesTheStore) {
