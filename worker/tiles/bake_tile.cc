@@ -105,15 +105,14 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
 // The blocked transpose (DESIGN.md §2) of one column group: chunk (g, tile)
 // is [group_size, tile_cells] row major, column m of T over the tile
 // contiguous; the rows past the last column (the last group's padding) are 0.
-// `rows` holds the rows of cells [first_cell, first_cell + cells) of the
-// tile (all of it by default), and only those cells of the chunk are
-// written. Sixteen cells at a time, so that every write fills a whole cache
-// line of the chunk (which stays in cache until it is compressed) and the
-// sixteen rows read are reused for sixteen consecutive m.
+// `rows` holds the rows of cells [first_cell, first_cell + n) of the tile,
+// and only those cells of the chunk are written. Sixteen cells at a time,
+// so that every write fills a whole cache line of the chunk (which stays in
+// cache until it is compressed) and the sixteen rows read are reused for
+// sixteen consecutive m.
 void TransposeGroup(std::span<const float> rows, const JobPlan& plan, int g, std::span<float> chunk,
-                    size_t first_cell = 0, std::optional<size_t> cells_in_rows = std::nullopt) {
+                    size_t first_cell, size_t n) {
   const size_t cells = plan.tile_cells(), stride = RowStride(plan);
-  const size_t n = cells_in_rows.value_or(cells);
   const int first = plan.GroupFirst(g), count = plan.GroupCount(g);
   for (size_t c0 = 0; c0 < n; c0 += 16) {
     const size_t width = std::min<size_t>(16, n - c0);
@@ -218,7 +217,7 @@ absl::Status WriteTileChunks(const ZarrArray& transport, const JobPlan& plan, in
       if (s.ok()) continue;
       if (!absl::IsNotFound(s)) return s;  // not staged there: written anew
     }
-    TransposeGroup(rows, plan, g, chunk);
+    TransposeGroup(rows, plan, g, chunk, 0, plan.tile_cells());
     if (absl::Status s = WriteChunkCounted(transport, index, chunk, stats); !s.ok()) return s;
   }
   return absl::OkStatus();
