@@ -1,5 +1,9 @@
 #include "worker/tiles/bake_tile.h"
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <optional>
 #include <system_error>
@@ -102,28 +106,56 @@ void TraceTileRow(const BakeContext& ctx, const TileRect& rect, int cy, std::spa
   stats.rays_traced += traced.rays_traced;
 }
 
+// How a transposed chunk is written: the store path compresses it at once,
+// so its lines should stay in cache; memory staging reads it only in
+// TRANSFORM_COLUMNS, a phase later, so there its whole lines are streamed
+// past the caches (non-temporal stores need no read for ownership and evict
+// none of the rows being read; docs/RESULTS.md has the timings).
+enum class ChunkWrites { kCached, kStreamed };
+
+// out[0..15] = in[0], in[stride], …, in[15·stride], one 64-byte line of the
+// chunk (`out` 64-byte aligned), written past the caches where the target
+// has streaming stores.
+void StreamLine(float* out, const float* in, size_t stride) {
+#if defined(__SSE2__)
+  for (size_t i = 0; i < 16; i += 4) {
+    const float* r = in + i * stride;
+    _mm_stream_ps(out + i, _mm_set_ps(r[3 * stride], r[2 * stride], r[stride], r[0]));
+  }
+#else
+  for (size_t i = 0; i < 16; ++i) out[i] = in[i * stride];
+#endif
+}
+
 // The blocked transpose (DESIGN.md §2) of one column group: chunk (g, tile)
 // is [group_size, tile_cells] row major, column m of T over the tile
 // contiguous; the rows past the last column (the last group's padding) are 0.
 // `rows` holds the rows of cells [first_cell, first_cell + n) of the tile,
 // and only those cells of the chunk are written. Sixteen cells at a time,
-// so that every write fills a whole cache line of the chunk (which stays in
-// cache until it is compressed) and the sixteen rows read are reused for
-// sixteen consecutive m.
+// so that every write fills a whole cache line of the chunk and the sixteen
+// rows read are reused for sixteen consecutive m.
 void TransposeGroup(std::span<const float> rows, const JobPlan& plan, int g, std::span<float> chunk,
-                    size_t first_cell, size_t n) {
+                    size_t first_cell, size_t n, ChunkWrites writes = ChunkWrites::kCached) {
   const size_t cells = plan.tile_cells(), stride = RowStride(plan);
   const int first = plan.GroupFirst(g), count = plan.GroupCount(g);
+  const bool stream = writes == ChunkWrites::kStreamed;
   for (size_t c0 = 0; c0 < n; c0 += 16) {
     const size_t width = std::min<size_t>(16, n - c0);
     const float* in = rows.data() + c0 * stride + first;
     for (int j = 0; j < count; ++j) {
       float* out = chunk.data() + j * cells + first_cell + c0;
+      if (stream && width == 16 && reinterpret_cast<uintptr_t>(out) % 64 == 0) {
+        StreamLine(out, in + j, stride);
+        continue;
+      }
       for (size_t i = 0; i < width; ++i) out[i] = in[i * stride + j];
     }
   }
   for (int j = count; j < plan.group_size; ++j)
     std::fill_n(chunk.begin() + j * cells + first_cell, n, 0.0f);
+#if defined(__SSE2__)
+  if (stream) _mm_sfence();  // the streamed lines are visible before the chunk is published
+#endif
 }
 
 // Rows traced at a time into an in-memory staging: a band of cells whose
@@ -155,7 +187,8 @@ class TileSlots {
 
   void Write(std::span<const float> rows, size_t first_cell, size_t cells) {
     for (int g = 0; g < plan_.groups; ++g)
-      if (!slots_[g].empty()) TransposeGroup(rows, plan_, g, slots_[g], first_cell, cells);
+      if (!slots_[g].empty())
+        TransposeGroup(rows, plan_, g, slots_[g], first_cell, cells, ChunkWrites::kStreamed);
   }
   void Publish() {
     for (int g = 0; g < plan_.groups; ++g)
