@@ -6,11 +6,13 @@
 // every bench/*.cc is its own binary.
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
@@ -58,6 +60,26 @@ struct PhasedBake {
             {"finalizing", phase(finalizing)}};
   }
 };
+
+// Each time of `runs` (bakes of one job, repeated), the median of its runs
+// taken on its own: what a drifting machine does to one run is not what it
+// does to the next.
+inline PhasedBake MedianBake(std::vector<PhasedBake> runs) {
+  auto median = [&](auto field) {
+    std::vector<double> v;
+    for (const PhasedBake& r : runs) v.push_back(field(r));
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  };
+  PhasedBake m = runs.back();
+  for (PhaseTime PhasedBake::*phase : {&PhasedBake::total, &PhasedBake::setup, &PhasedBake::baking,
+                                       &PhasedBake::transforming, &PhasedBake::finalizing}) {
+    (m.*phase).wall = median([&](const PhasedBake& r) { return (r.*phase).wall; });
+    (m.*phase).cpu = median([&](const PhasedBake& r) { return (r.*phase).cpu; });
+  }
+  return m;
+}
 
 // `on_phase(name, wall seconds so far)` at each phase change (may be empty).
 inline absl::StatusOr<PhasedBake> RunPhasedBake(

@@ -1,7 +1,7 @@
 // Visibility refinement against brute force, whole bakes, in one run: the
 // ratios the speed goals ask for, printed side by side.
 //
-//   build/bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N]
+//   build/bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N] [--repeat R]
 //
 // Cases: builtin:cubes-wall on camera:256x256, spot.obj and the bunny on
 // hilbert:64x64 (../shared/data). For each, at N = 64:
@@ -23,7 +23,11 @@
 // as x_cols), error within +0.002 of the brute-force store's under
 // each probe. The machine's load inflates wall times; CPU ratios are printed
 // beside them, with x_cpu's floor (below). --quick: cubes-wall on
-// camera:64x64 only, N = 32 and 64.
+// camera:64x64 only, N = 32 and 64. --repeat R (default 1): the two bakes of
+// each case alternate R times and every time is the median of its R runs
+// (the stores and errors are the last runs'); the brute-force bake's speed
+// drifts with the machine's state from one run to the next more than the
+// refined one's does.
 // The last line is one JSON object with every number.
 #include <algorithm>
 #include <atomic>
@@ -63,6 +67,7 @@ struct Config {
   std::filesystem::path work;
   bool quick = false;
   int workers = 2;
+  int repeat = 1;
   int bake_res = 64, rays_res = 128;
 };
 
@@ -114,21 +119,30 @@ std::pair<uint64_t, uint64_t> CountRays(const Case& c, int light_res, int thread
 nlohmann::json RunCase(const Case& c, const Config& config) {
   nlohmann::json j = {{"case", c.name}, {"scene", c.scene}, {"layout", c.layout}};
   std::filesystem::path stores[2];
+  std::vector<bench::PhasedBake> runs[2];
+  // Brute force and refinement in turn, --repeat times: both see the same
+  // drift of the machine, and each time is the median of its runs.
+  for (int repeat = 0; repeat < config.repeat; ++repeat) {
+    for (int refine = 0; refine < 2; ++refine) {
+      BakeParams p;
+      p.light_res = config.bake_res;
+      p.layout = c.layout;
+      p.refine = refine == 1;
+      stores[refine] = config.work / (c.name + (refine ? "-refined.wbk" : "-brute.wbk"));
+      std::filesystem::remove_all(stores[refine]);
+      const bench::PhasedBake& run = runs[refine].emplace_back(
+          Value(bench::RunPhasedBake(c.scene, p, stores[refine], config.workers)));
+      std::fprintf(stderr, "%s N=%d %s: %lld rays, %.1f s wall (%.1f s CPU)\n", c.name.c_str(),
+                   config.bake_res, refine ? "refined" : "brute force",
+                   static_cast<long long>(run.rays), run.total.wall, run.total.cpu);
+    }
+  }
   bench::PhasedBake bakes[2];
   for (int refine = 0; refine < 2; ++refine) {
-    BakeParams p;
-    p.light_res = config.bake_res;
-    p.layout = c.layout;
-    p.refine = refine == 1;
-    stores[refine] = config.work / (c.name + (refine ? "-refined.wbk" : "-brute.wbk"));
-    std::filesystem::remove_all(stores[refine]);
-    bakes[refine] = Value(bench::RunPhasedBake(c.scene, p, stores[refine], config.workers));
-    std::fprintf(stderr, "%s N=%d %s: %lld rays, %.1f s wall (%.1f s CPU)\n", c.name.c_str(),
-                 config.bake_res, refine ? "refined" : "brute force",
-                 static_cast<long long>(bakes[refine].rays), bakes[refine].total.wall,
-                 bakes[refine].total.cpu);
+    bakes[refine] = bench::MedianBake(runs[refine]);
     j[refine ? "refined" : "brute"] = bakes[refine].ToJson();
   }
+  j["repeat"] = config.repeat;
   j["x_rays"] = double(bakes[1].rays) / bakes[0].rays;
   j["x_wall"] = bakes[1].total.wall / bakes[0].total.wall;
   j["x_cpu"] = bakes[1].total.cpu / bakes[0].total.cpu;
@@ -198,6 +212,8 @@ void PrintTable(const nlohmann::json& cases, const Config& config) {
 }  // namespace wavebake
 
 int main(int argc, char** argv) {
+  constexpr const char* kUsage =
+      "usage: bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N] [--repeat R]";
   wavebake::Config config;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -207,14 +223,15 @@ int main(int argc, char** argv) {
       config.bake_res = std::atoi(argv[++i]);
     } else if (arg == "--workers" && i + 1 < argc) {
       config.workers = std::atoi(argv[++i]);
+    } else if (arg == "--repeat" && i + 1 < argc) {
+      config.repeat = std::atoi(argv[++i]);
     } else if (!arg.empty() && arg[0] != '-' && config.work.empty()) {
       config.work = arg;
     } else {
-      wavebake::Die("usage: bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N]");
+      wavebake::Die(kUsage);
     }
   }
-  if (config.work.empty() || config.workers < 1)
-    wavebake::Die("usage: bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N]");
+  if (config.work.empty() || config.workers < 1 || config.repeat < 1) wavebake::Die(kUsage);
   if (config.quick) config.bake_res = 32, config.rays_res = 64;
   if (!config.quick) config.rays_res = std::max(128, config.bake_res);
   std::filesystem::create_directories(config.work);
