@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,10 +62,10 @@ struct PhasedBake {
   }
 };
 
-// Each time of `runs` (bakes of one job, repeated), the median of its runs
-// taken on its own: what a drifting machine does to one run is not what it
-// does to the next.
-inline PhasedBake MedianBake(std::vector<PhasedBake> runs) {
+// Repeated bakes of one job (non-empty) as one: every time, wall and CPU of
+// each phase, is the median of its runs, taken on its own (the medians of
+// two phases may come from different runs); the counts are the last run's.
+inline PhasedBake MedianBake(std::span<const PhasedBake> runs) {
   auto median = [&](auto field) {
     std::vector<double> v;
     for (const PhasedBake& r : runs) v.push_back(field(r));
