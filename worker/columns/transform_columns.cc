@@ -208,13 +208,10 @@ absl::Status TransformColumns(const BakeContext& ctx, const std::filesystem::pat
   }
   local.columns = plan.GroupCount(group);
   local.kept = result.positions.size();
-  if (absl::StatusOr<uint64_t> bytes =
-          PutGroupResult(store, memory, std::make_shared<const GroupResult>(std::move(result)));
-      bytes.ok()) {
-    local.bytes_written = *bytes;
-  } else {
-    return bytes.status();
-  }
+  const absl::StatusOr<uint64_t> bytes =
+      PutGroupResult(store, memory, std::make_shared<const GroupResult>(std::move(result)));
+  if (!bytes.ok()) return bytes.status();
+  local.bytes_written = *bytes;
   if (stats != nullptr) *stats = local;
   return absl::OkStatus();
 }

@@ -62,11 +62,11 @@ std::span<const float> MemoryStaging::Job::Chunk(int g, int t) const {
   return {mapping_.data + Slot(g, t) * chunk_floats_, chunk_floats_};
 }
 
-uint64_t MemoryStaging::Job::SetGroup(int g, std::shared_ptr<const GroupResult> result,
-                                      uint64_t bytes) {
+void MemoryStaging::Job::SetGroup(int g, std::shared_ptr<const GroupResult> result,
+                                  uint64_t bytes) {
   std::lock_guard lock(mu_);
   groups_[g] = std::move(result);
-  return std::exchange(group_bytes_[g], bytes);
+  group_bytes_[g] = bytes;
 }
 
 uint64_t MemoryStaging::Job::GroupBytes(int g) const {

@@ -110,8 +110,8 @@ class MemoryStaging::Job {
   Mapping mapping_;
   std::vector<State> state_;
   friend class MemoryStaging;
-  // Holds `result` as group g's; returns the bytes of the one it replaces.
-  uint64_t SetGroup(int g, std::shared_ptr<const GroupResult> result, uint64_t bytes);
+  // Holds `result` (`bytes` long) as group g's, in place of any before it.
+  void SetGroup(int g, std::shared_ptr<const GroupResult> result, uint64_t bytes);
   uint64_t GroupBytes(int g) const;
 
   std::vector<std::shared_ptr<const GroupResult>> groups_;  // [groups]
