@@ -6,7 +6,7 @@
 // the rays traced, the store's size and the peak resident set size.
 //
 //   build/bench_bake_phases SCENE --out DIR [--layout L] [--light-res N] [--refine on|off]
-//                           [--workers W] [--keep]
+//                           [--column-mode adaptive|full|2d] [--workers W] [--keep]
 //
 // The store goes to DIR/bake.wbk and is removed afterwards unless --keep.
 // The last line is one JSON object with every number (the big bake of
@@ -19,6 +19,7 @@
 #include <string>
 
 #include "bench/bake_run.h"
+#include "core/bake/bake_params_io.h"
 
 namespace wavebake {
 namespace {
@@ -32,6 +33,7 @@ struct Args {
   std::string scene, layout = "camera", out;
   int light_res = 32, workers = 2;
   bool refine = true, keep = false;
+  ColumnMode column_mode = ColumnMode::kAdaptive;
 };
 
 Args Parse(int argc, char** argv) {
@@ -50,6 +52,10 @@ Args Parse(int argc, char** argv) {
       const std::string v = next();
       if (v != "on" && v != "off") Die("--refine: on or off");
       a.refine = v == "on";
+    } else if (arg == "--column-mode") {
+      absl::StatusOr<ColumnMode> mode = ParseColumnMode(next());
+      if (!mode.ok()) Die("--column-mode: " + std::string(mode.status().message()));
+      a.column_mode = *mode;
     } else if (arg == "--workers") {
       a.workers = std::atoi(next().c_str());
     } else if (arg == "--out") {
@@ -60,7 +66,7 @@ Args Parse(int argc, char** argv) {
       a.scene = arg;
     } else {
       Die("usage: bench_bake_phases SCENE --out DIR [--layout L] [--light-res N] "
-          "[--refine on|off] [--workers W] [--keep]");
+          "[--refine on|off] [--column-mode adaptive|full|2d] [--workers W] [--keep]");
     }
   }
   if (a.scene.empty() || a.out.empty()) Die("SCENE and --out DIR are required");
@@ -72,6 +78,7 @@ int Run(const Args& a) {
   params.layout = a.layout;
   params.light_res = a.light_res;
   params.refine = a.refine;
+  params.column_mode = a.column_mode;
   std::filesystem::create_directories(a.out);
   const std::filesystem::path store = std::filesystem::path(a.out) / "bake.wbk";
   absl::StatusOr<bench::PhasedBake> bake = bench::RunPhasedBake(
@@ -84,6 +91,7 @@ int Run(const Args& a) {
   out["layout"] = a.layout;
   out["light_res"] = a.light_res;
   out["refine"] = a.refine;
+  out["column_mode"] = std::string(ToString(a.column_mode));
   out["workers"] = a.workers;
   out["peak_rss_mib"] = bench::PeakRssMiB();
   const bench::PhasedBake& b = *bake;

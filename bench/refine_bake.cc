@@ -2,6 +2,7 @@
 // ratios the speed goals ask for, printed side by side.
 //
 //   build/bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N] [--repeat R]
+//                           [--fixed-depth]
 //
 // Cases: builtin:cubes-wall on camera:256x256, spot.obj and the bunny on
 // hilbert:64x64 (../shared/data). For each, at N = 64:
@@ -27,7 +28,9 @@
 // each case alternate R times and every time is the median of its R runs
 // (the stores and errors are the last runs'); the brute-force bake's speed
 // drifts with the machine's state from one run to the next more than the
-// refined one's does.
+// refined one's does. --fixed-depth: the refined bake also runs with
+// --column-mode 2d and full in the same turns, and a second table prints
+// their x_cpu and x_cols: the column stage without any depth search.
 // The last line is one JSON object with every number.
 #include <algorithm>
 #include <atomic>
@@ -40,6 +43,7 @@
 #include <vector>
 
 #include "bench/bake_run.h"
+#include "core/bake/bake_params_io.h"
 #include "core/transport/refined_row.h"
 #include "core/transport/transport_row.h"
 #include "driver/eval/reference_measure.h"
@@ -68,6 +72,7 @@ struct Config {
   bool quick = false;
   int workers = 2;
   int repeat = 1;
+  bool fixed_depth = false;
   int bake_res = 64, rays_res = 128;
 };
 
@@ -116,31 +121,50 @@ std::pair<uint64_t, uint64_t> CountRays(const Case& c, int light_res, int thread
   return {refined.load(), brute.load()};
 }
 
+// The bakes of a case, in the order they alternate: brute force and
+// refinement (the adaptive column stage), then with --fixed-depth the refined
+// bake at each fixed depth (`2d`: the cells, `full`: the deepest), whose
+// column stage has no depth search: what the column stage and FINALIZE would
+// cost however cheap the search became.
+struct Variant {
+  const char* name;
+  bool refine;
+  ColumnMode mode;
+};
+constexpr Variant kBrute{"brute", false, ColumnMode::kAdaptive};
+constexpr Variant kRefined{"refined", true, ColumnMode::kAdaptive};
+constexpr Variant kFixedDepths[] = {{"refined-2d", true, ColumnMode::k2d},
+                                    {"refined-full", true, ColumnMode::kFull}};
+
 nlohmann::json RunCase(const Case& c, const Config& config) {
   nlohmann::json j = {{"case", c.name}, {"scene", c.scene}, {"layout", c.layout}};
-  std::filesystem::path stores[2];
-  std::vector<bench::PhasedBake> runs[2];
-  // Brute force and refinement in turn, --repeat times: both see the same
-  // drift of the machine, and each time is the median of its runs.
+  std::vector<Variant> variants = {kBrute, kRefined};
+  if (config.fixed_depth)
+    variants.insert(variants.end(), std::begin(kFixedDepths), std::end(kFixedDepths));
+  std::vector<std::filesystem::path> stores(variants.size());
+  std::vector<std::vector<bench::PhasedBake>> runs(variants.size());
+  // The bakes in turn, --repeat times: all see the same drift of the
+  // machine, and each time is the median of its runs.
   for (int repeat = 0; repeat < config.repeat; ++repeat) {
-    for (int refine = 0; refine < 2; ++refine) {
+    for (size_t v = 0; v < variants.size(); ++v) {
       BakeParams p;
       p.light_res = config.bake_res;
       p.layout = c.layout;
-      p.refine = refine == 1;
-      stores[refine] = config.work / (c.name + (refine ? "-refined.wbk" : "-brute.wbk"));
-      std::filesystem::remove_all(stores[refine]);
-      const bench::PhasedBake& run = runs[refine].emplace_back(
-          Value(bench::RunPhasedBake(c.scene, p, stores[refine], config.workers)));
+      p.refine = variants[v].refine;
+      p.column_mode = variants[v].mode;
+      stores[v] = config.work / (c.name + "-" + variants[v].name + ".wbk");
+      std::filesystem::remove_all(stores[v]);
+      const bench::PhasedBake& run =
+          runs[v].emplace_back(Value(bench::RunPhasedBake(c.scene, p, stores[v], config.workers)));
       std::fprintf(stderr, "%s N=%d %s: %lld rays, %.1f s wall (%.1f s CPU)\n", c.name.c_str(),
-                   config.bake_res, refine ? "refined" : "brute force",
-                   static_cast<long long>(run.rays), run.total.wall, run.total.cpu);
+                   config.bake_res, variants[v].name, static_cast<long long>(run.rays),
+                   run.total.wall, run.total.cpu);
     }
   }
-  bench::PhasedBake bakes[2];
-  for (int refine = 0; refine < 2; ++refine) {
-    bakes[refine] = bench::MedianBake(runs[refine]);
-    j[refine ? "refined" : "brute"] = bakes[refine].ToJson();
+  std::vector<bench::PhasedBake> bakes(variants.size());
+  for (size_t v = 0; v < variants.size(); ++v) {
+    bakes[v] = bench::MedianBake(runs[v]);
+    j[variants[v].name] = bakes[v].ToJson();
   }
   j["repeat"] = config.repeat;
   j["x_rays"] = double(bakes[1].rays) / bakes[0].rays;
@@ -154,6 +178,14 @@ nlohmann::json RunCase(const Case& c, const Config& config) {
   // The column stage and FINALIZE of the refined bake against the whole
   // brute-force bake's CPU (target <= 0.15 on spot and the bunny at N = 64).
   j["x_cols_cpu"] = (r.transforming.cpu + r.finalizing.cpu) / bakes[0].total.cpu;
+  for (size_t v = 2; v < variants.size(); ++v) {
+    const bench::PhasedBake& f = bakes[v];
+    j["fixed_depth"][std::string(ToString(variants[v].mode))] = {
+        {"x_cpu", f.total.cpu / bakes[0].total.cpu},
+        {"x_cols_cpu", (f.transforming.cpu + f.finalizing.cpu) / bakes[0].total.cpu},
+        {"store_bytes", f.store_bytes}};
+    std::filesystem::remove_all(stores[v]);
+  }
   BakeParams layout;
   layout.layout = c.layout;
   for (const char* probe : kProbes) {
@@ -169,7 +201,7 @@ nlohmann::json RunCase(const Case& c, const Config& config) {
     std::fprintf(stderr, "%s under %s: brute %.5f, refined %.5f (reference rel SE %.5f)\n",
                  c.name.c_str(), probe, brute, refined, measure->reference().rel_se);
   }
-  for (const auto& s : stores) std::filesystem::remove_all(s);
+  for (size_t v = 0; v < 2; ++v) std::filesystem::remove_all(stores[v]);
   const auto [refined_rays, brute_rays] = CountRays(c, config.rays_res, config.workers);
   j["rays_at"] = {{"light_res", config.rays_res},
                   {"refined", refined_rays},
@@ -206,6 +238,16 @@ void PrintTable(const nlohmann::json& cases, const Config& config) {
       "x_cpu floor: the refined bake's setup, column stage and FINALIZE CPU over the\n"
       "brute-force bake's CPU, what x_cpu would be with a free baking phase; x_cols: the\n"
       "refined bake's column stage and FINALIZE CPU over the brute-force bake's CPU\n");
+  if (!config.fixed_depth) return;
+  std::printf("\nwithout a depth search (--fixed-depth): the refined bake at one depth\n");
+  std::printf("%-11s %-13s %8s %8s %12s\n", "case", "column mode", "x_cpu", "x_cols", "bytes");
+  for (const nlohmann::json& c : cases) {
+    for (const auto& [mode, f] : c["fixed_depth"].items()) {
+      const double xc = f["x_cpu"], xcols = f["x_cols_cpu"];
+      std::printf("%-11s %-13s %8.3f %8.3f %12lld\n", c["case"].get<std::string>().c_str(),
+                  mode.c_str(), xc, xcols, f["store_bytes"].get<long long>());
+    }
+  }
 }
 
 }  // namespace
@@ -213,7 +255,8 @@ void PrintTable(const nlohmann::json& cases, const Config& config) {
 
 int main(int argc, char** argv) {
   constexpr const char* kUsage =
-      "usage: bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N] [--repeat R]";
+      "usage: bench_refine_bake WORK_DIR [--quick] [--workers W] [--bake-res N] [--repeat R] "
+      "[--fixed-depth]";
   wavebake::Config config;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -223,6 +266,8 @@ int main(int argc, char** argv) {
       config.bake_res = std::atoi(argv[++i]);
     } else if (arg == "--workers" && i + 1 < argc) {
       config.workers = std::atoi(argv[++i]);
+    } else if (arg == "--fixed-depth") {
+      config.fixed_depth = true;
     } else if (arg == "--repeat" && i + 1 < argc) {
       config.repeat = std::atoi(argv[++i]);
     } else if (!arg.empty() && arg[0] != '-' && config.work.empty()) {

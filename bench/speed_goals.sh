@@ -11,7 +11,9 @@
 #     wall and CPU time, the column stage + FINALIZE CPU as x_cols, eval
 #     --reference error under grace and pisa), at N = 64 (whole bake <= 0.35x,
 #     x_cols <= 0.15x on spot and the bunny; the two bakes in turn three
-#     times, medians) and with --n128 at N = 128 (whole bake <= 0.25x; once);
+#     times, medians; beside them the refined bake at one fixed depth, 2d and
+#     full, the column stage without a depth search: the floor of any cheaper
+#     search) and with --n128 at N = 128 (whole bake <= 0.25x; once);
 #   * adaptive <= min(2d, full) in transport bytes on the same three scenes at
 #     N = 64 (one CLI bake per column mode);
 #   * with --big, the big bake (cubes-wall camera 512x512, N = 128): peak RSS
@@ -74,9 +76,10 @@ done
 # pair's ratio moved by a fifth with the machine's state from one run to the
 # next. At N = 128 once: its bakes take a quarter of an hour as it is.
 repeat=3
-[[ -n $quick ]] && repeat=1
+fixed=--fixed-depth
+[[ -n $quick ]] && repeat=1 fixed=''
 echo "== refinement against brute force (bench_refine_bake)" >&2
-"$build/bench_refine_bake" "$work/bakes" ${quick:+--quick} --repeat "$repeat" \
+"$build/bench_refine_bake" "$work/bakes" ${quick:+--quick} --repeat "$repeat" $fixed \
   | tee "$work/refine_bake.txt" | head -n -1
 if [[ -n $n128 ]]; then
   echo "== refinement against brute force at N = 128 (bench_refine_bake --bake-res 128)" >&2
