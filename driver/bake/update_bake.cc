@@ -21,7 +21,8 @@ absl::Status PrepareUpdate(BakeParams& params) {
   const std::filesystem::path from = std::filesystem::absolute(params.update_from, ec);
   if (ec) return absl::InvalidArgumentError(absl::StrCat("--update: ", ec.message()));
   params.update_from = from.lexically_normal().string();
-  return CheckUpdateSource(params.update_from, params);
+  if (absl::Status s = CheckUpdateSource(params.update_from, params); !s.ok()) return s;
+  return CheckOldScene(params.update_from);
 }
 
 absl::StatusOr<bool> CopyIfUnchanged(const std::string& scene, const BakeParams& params,

@@ -11,8 +11,9 @@
 
 namespace wavebake::driver {
 
-// params.update_from made absolute and checked (CheckUpdateSource): errors
-// name --update and what the old store lacks or the first parameter that differs.
+// params.update_from made absolute and checked (CheckUpdateSource,
+// CheckOldScene): errors name --update and what the old store lacks, the
+// first parameter that differs, or its scene that no longer loads here.
 absl::Status PrepareUpdate(BakeParams& params);
 
 // An update whose scene hashes as the old store's (same content, same

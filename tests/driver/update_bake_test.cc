@@ -352,6 +352,24 @@ TEST_F(UpdateBakeTest, RefusalsNameWhyAndLeaveTheOldStore) {
   job = Bake(new_scene_, p, out);
   EXPECT_THAT(job.status().message(), HasSubstr("--update needs a finished store"));
 
+  // The old scene is gone, or edited since: refused before any task runs
+  // (the status itself, not a job that failed), naming the scene.
+  const auto moved = dir_.path() / "old.json.moved";
+  std::filesystem::rename(old_scene_, moved);
+  p = Params("camera:16x16");
+  p.update_from = old_store.string();
+  job = Bake(new_scene_, p, out);
+  EXPECT_EQ(job.status().code(), absl::StatusCode::kFailedPrecondition) << job.status();
+  EXPECT_THAT(job.status().message(), HasSubstr("its scene 'old.json'"));
+  EXPECT_THAT(job.status().message(), HasSubstr("does not load"));
+  std::filesystem::rename(moved, old_scene_);
+  const std::string old_text = before.at("old.json");
+  WriteScene(old_scene_, -0.4, 0.3);
+  job = Bake(new_scene_, p, out);
+  EXPECT_EQ(job.status().code(), absl::StatusCode::kFailedPrecondition) << job.status();
+  EXPECT_THAT(job.status().message(), HasSubstr("has changed since the store was baked"));
+  std::ofstream(old_scene_, std::ios::binary | std::ios::trunc) << old_text;
+
   // Also into the old store itself: refused before anything is written.
   p = Params("camera:16x16");
   p.target_error = 0.02;

@@ -87,6 +87,12 @@ struct RowReuse {
 // Reads only.
 absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const BakeParams& params);
 
+// Whether the scene `old_store` names still loads here and hashes as the
+// store recorded it (PlanRowReuse needs it: FailedPrecondition naming the
+// scene otherwise). For a local update, which can say so before any task
+// runs; a coordinator's job brings the old scene with it instead.
+absl::Status CheckOldScene(const std::filesystem::path& old_store);
+
 // The reuse plan of ctx (the new scene's context) from `old_store`: checks
 // it (CheckUpdateSource), loads the old store's scene (it must still hash as
 // recorded: the old placement of what moved bounds the dirty rows), diffs the
