@@ -1,11 +1,14 @@
 // What a process may use (driver/process/memory_limit.h): cgroup limit files
-// as the kernel writes them, and a usable size no larger than the machine.
+// as the kernel writes them, a usable size no larger than the machine, and
+// the embedded bake's default staging budget within a quarter of it and 4 GiB.
 #include "driver/process/memory_limit.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdint>
+
+#include "driver/bake/embedded_bake.h"
 
 namespace wavebake::driver {
 namespace {
@@ -26,6 +29,14 @@ TEST(MemoryLimitTest, UsableMemoryIsAtMostThePhysicalMemory) {
   const uint64_t usable = UsableMemoryBytes();
   EXPECT_GT(usable, 0u);
   EXPECT_LE(usable, physical);
+}
+
+TEST(MemoryLimitTest, DefaultStagingBudgetIsAQuarterOfUsableMemoryAtMostFourGiB) {
+  const uint64_t budget = EmbeddedBakeOptions::DefaultMemoryStagingBytes();
+  EXPECT_GT(budget, 0u);
+  EXPECT_LE(budget, UsableMemoryBytes() / 4);
+  EXPECT_LE(budget, uint64_t{4} << 30);
+  EXPECT_EQ(EmbeddedBakeOptions{}.memory_staging_bytes, budget);
 }
 
 }  // namespace
