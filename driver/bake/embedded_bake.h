@@ -47,11 +47,11 @@ struct EmbeddedBakeOptions {
   static uint64_t DefaultMemoryStagingBytes() {
     return std::min(UsableMemoryBytes() / 4, kMemoryStagingCap);
   }
-  // Past a few GB, fresh pages cost more than the store's round trip on
-  // sandboxed VMs like ours (a first touch of memory the guest has not used
-  // lately took ~6 µs a page): cubes-wall camera 256², N = 64 (6.4 GB of rows)
-  // took 39–42 s of CPU in memory against 34–37 s through the store, where
-  // 1.6 and 3.2 GB staged in memory took 7 % and 12 % less (docs/PIPELINE.md).
+  // Past a few GB, fresh pages cost more than the store's round trip on VMs
+  // that hand free pages back to the host, like ours (a first touch of memory
+  // the guest has not used lately took ~6 µs a page): cubes-wall camera 256², N = 64 (6.4 GB of
+  // rows) took 39–42 s of CPU in memory against 34–37 s through the store, where 1.6 and 3.2 GB
+  // staged in memory took 7 % and 12 % less (docs/PIPELINE.md).
   static constexpr uint64_t kMemoryStagingCap = uint64_t{4} << 30;
 };
 
