@@ -41,17 +41,16 @@ struct EmbeddedBakeOptions {
   // more than a store-staged one's (docs/RESULTS.md).
   uint64_t memory_staging_bytes = DefaultMemoryStagingBytes();
   // A quarter of what the process may use (driver/process/memory_limit.h),
-  // at most kMemoryStagingCap: 1 GiB held the N = 64 bunny and spot but not
+  // at most kMemoryStagingCap. 1 GiB held the N = 64 bunny and spot but not
   // N = 128 (1.6 GB), whose staging zstd and files were a sixth of the
-  // bake's CPU.
+  // bake's CPU. Past a few GB, fresh pages cost more than the store's round
+  // trip on VMs that hand free pages back to the host, like ours (~6 µs a
+  // page): cubes-wall camera 256², N = 64 (6.4 GB of rows) took 39–42 s of
+  // CPU in memory against 34–37 s through the store, where 1.6 and 3.2 GB in
+  // memory took 7 % and 12 % less (docs/PIPELINE.md).
   static uint64_t DefaultMemoryStagingBytes() {
     return std::min(UsableMemoryBytes() / 4, kMemoryStagingCap);
   }
-  // Past a few GB, fresh pages cost more than the store's round trip on VMs
-  // that hand free pages back to the host, like ours (a first touch of memory
-  // the guest has not used lately took ~6 µs a page): cubes-wall camera 256², N = 64 (6.4 GB of
-  // rows) took 39–42 s of CPU in memory against 34–37 s through the store, where 1.6 and 3.2 GB
-  // staged in memory took 7 % and 12 % less (docs/PIPELINE.md).
   static constexpr uint64_t kMemoryStagingCap = uint64_t{4} << 30;
 };
 

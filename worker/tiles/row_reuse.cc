@@ -72,18 +72,6 @@ absl::StatusOr<Scene> OldScene(const StoreInfo& info, const OldStore& old) {
   return scene;
 }
 
-}  // namespace
-
-absl::Status CheckOldScene(const std::filesystem::path& old_store) {
-  absl::StatusOr<StoreInfo> info = ReadStoreInfo(old_store);
-  if (!info.ok()) return info.status();
-  OldStore old;
-  old.path = old_store;
-  return OldScene(*info, old).status();
-}
-
-namespace {
-
 void MarkRows(const BakeContext& ctx, const std::vector<int64_t>& old_column,
               const std::unordered_map<SampleKey, int32_t, SampleKeyHash>& old_ids,
               const DirtyRowTest* dirty, RowReuse& r) {
@@ -246,6 +234,14 @@ absl::Status CheckUpdateSource(const std::filesystem::path& old_store, const Bak
       !differs.empty())
     return Refuse(old_store, differs);
   return absl::OkStatus();
+}
+
+absl::Status CheckOldScene(const std::filesystem::path& old_store) {
+  absl::StatusOr<StoreInfo> info = ReadStoreInfo(old_store);
+  if (!info.ok()) return info.status();
+  OldStore old;
+  old.path = old_store;
+  return OldScene(*info, old).status();
 }
 
 absl::StatusOr<std::shared_ptr<const RowReuse>> PlanRowReuse(BakeContext& ctx, const OldStore& old,
